@@ -1,0 +1,74 @@
+"""The one place that owns terminal output.
+
+Results go to stdout, diagnostics (info, warnings, errors) to stderr; colours only on a
+terminal; `emit_json` writes machine output to stdout with nothing else mixed in.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from typing import Any, Iterable, Sequence
+
+from rich.console import Console
+from rich.table import Table
+
+from ..errors import InputError
+
+out = Console(highlight=False, soft_wrap=True)
+err = Console(stderr=True, highlight=False, soft_wrap=True)
+
+
+def info(message: str) -> None:
+    err.print(f"[cyan]info[/]: {message}", markup=True) if err.is_terminal else err.print(f"info: {message}", markup=False)
+
+
+def warning(message: str) -> None:
+    if err.is_terminal:
+        err.print(f"[yellow]warning[/]: {_escape(message)}")
+    else:
+        err.print(f"warning: {message}", markup=False)
+
+
+def error(message: str) -> None:
+    if err.is_terminal:
+        err.print(f"[bold red]error[/]: {_escape(message)}")
+    else:
+        err.print(f"error: {message}", markup=False)
+
+
+def success(message: str) -> None:
+    if out.is_terminal:
+        out.print(f"[bold green]✓[/] {_escape(message)}")
+    else:
+        out.print(message, markup=False)
+
+
+def input_errors(errors: Sequence[InputError]) -> None:
+    for problem in errors:
+        error(problem.format())
+    if len(errors) > 1:
+        err.print(f"{len(errors)} problems found", markup=False)
+
+
+def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
+    grid = Table(title=title, show_lines=False, header_style="bold")
+    for column in columns:
+        grid.add_column(column, overflow="fold")
+    for row in rows:
+        grid.add_row(*(str(c) for c in row))
+    out.print(grid)
+
+
+def emit_json(data: Any) -> None:
+    sys.stdout.write(json.dumps(data, indent=2, sort_keys=False) + "\n")
+    sys.stdout.flush()
+
+
+def plain(text: str) -> None:
+    out.print(text, markup=False)
+
+
+def _escape(text: str) -> str:
+    from rich.markup import escape
+
+    return escape(text)

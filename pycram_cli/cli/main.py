@@ -1,0 +1,82 @@
+"""`pycram`: the command-line entry point. Each command group lives in its own module."""
+from __future__ import annotations
+
+import sys
+import warnings
+from typing import Any
+
+import click
+
+from ..errors import InputError, InputErrors, PycramError, as_list
+from ..world import quiet
+from . import console
+
+EXIT_INPUT = 2
+EXIT_INTERNAL = 3
+
+
+class PycramGroup(click.Group):
+    """Turns every error into a message and an exit code; never a traceback for bad input."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except (InputError, InputErrors) as exc:
+            console.input_errors(as_list(exc))
+            ctx.exit(EXIT_INPUT)
+        except PycramError as exc:
+            console.error(str(exc))
+            ctx.exit(EXIT_INPUT)
+        except (click.exceptions.Exit, click.exceptions.Abort, click.ClickException):
+            raise
+        except KeyboardInterrupt:
+            console.error("interrupted")
+            ctx.exit(130)
+        except Exception as exc:  # noqa: BLE001 - last line of defence
+            if quiet.is_verbose():
+                raise
+            console.error(f"internal error: {exc.__class__.__name__}: {exc} (run with --verbose for the traceback)")
+            ctx.exit(EXIT_INTERNAL)
+
+
+def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
+    console.warning(str(message))
+
+
+@click.group(cls=PycramGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.option("--verbose", is_flag=True, help="Show PyBullet's own console output and full tracebacks.")
+@click.version_option(package_name="pycram-cli", prog_name="pycram")
+def cli(verbose: bool) -> None:
+    """Run robot plans and ask reasoning questions in a lightweight PyBullet world.
+
+    With no world given, commands use the bundled kitchen world.
+    """
+    quiet.set_verbose(verbose)
+    warnings.showwarning = _show_warning
+
+
+def _register() -> None:
+    from . import validate_cmd, world_cmd
+
+    cli.add_command(world_cmd.world)
+    cli.add_command(validate_cmd.validate)
+    for module_name in ("query_cmd", "run_cmd", "trace_cmd", "designators_cmd"):
+        try:
+            module = __import__(f"{__package__}.{module_name}", fromlist=["command"])
+        except ModuleNotFoundError as exc:
+            if exc.name and exc.name.endswith(module_name):
+                continue
+            raise
+        for command in getattr(module, "COMMANDS", []):
+            cli.add_command(command)
+
+
+_register()
+
+
+def main() -> None:
+    cli(prog_name="pycram")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,95 @@
+"""Errors about what the user gave us: each names the file, line, column and key.
+
+Every layer raises `InputError` (or `InputErrors` for several at once) for bad
+input; the CLI prints them without a traceback and exits with code 2.
+"""
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass, field
+from typing import Iterable, Sequence
+
+
+def closest(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | None:
+    """The candidate closest to `word`, if any is close enough to suggest."""
+    pool = [c for c in candidates if isinstance(c, str)]
+    match = difflib.get_close_matches(word, pool, n=1, cutoff=cutoff)
+    if match:
+        return match[0]
+    lowered = {c.lower(): c for c in pool}
+    return lowered.get(word.lower())
+
+
+def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
+    """`did you mean 'x'?` or None."""
+    match = closest(word, candidates)
+    return f"did you mean '{match}'?" if match is not None and match != word else None
+
+
+@dataclass
+class Location:
+    """A place in a user's file (1-based line and column)."""
+
+    file: str | None = None
+    line: int | None = None
+    column: int | None = None
+
+    def __str__(self) -> str:
+        parts = [self.file or "<input>"]
+        if self.line is not None:
+            parts.append(str(self.line))
+            if self.column is not None:
+                parts.append(str(self.column))
+        return ":".join(parts)
+
+
+class PycramError(Exception):
+    """Base of every error pycram raises on purpose."""
+
+
+@dataclass
+class InputError(PycramError):
+    """One problem with user input."""
+
+    message: str
+    location: Location = field(default_factory=Location)
+    key: str | None = None
+    suggestion: str | None = None
+
+    def __post_init__(self) -> None:
+        super().__init__(self.format())
+
+    def format(self) -> str:
+        head = str(self.location)
+        key = f" {self.key}:" if self.key else ""
+        hint = f" ({self.suggestion})" if self.suggestion else ""
+        return f"{head}:{key} {self.message}{hint}"
+
+    def __str__(self) -> str:
+        return self.format()
+
+
+class InputErrors(PycramError):
+    """Several problems found together (validation reports them all at once)."""
+
+    def __init__(self, errors: Sequence[InputError]):
+        self.errors = list(errors)
+        super().__init__("\n".join(e.format() for e in self.errors))
+
+
+def raise_if_any(errors: Sequence[InputError]) -> None:
+    """Raise the problems found (in file order), if any."""
+    errors = sorted(errors, key=lambda e: (e.location.file or "", e.location.line or 0, e.location.column or 0))
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise InputErrors(errors)
+
+
+def as_list(error: PycramError) -> list[InputError]:
+    """The individual problems inside an `InputError` or `InputErrors`."""
+    if isinstance(error, InputErrors):
+        return error.errors
+    if isinstance(error, InputError):
+        return [error]
+    return [InputError(str(error))]

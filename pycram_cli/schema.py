@@ -1,0 +1,88 @@
+"""Small checks for mappings read from YAML: allowed and required keys, value types.
+
+Every problem becomes an `InputError` at the exact place, with the closest valid key.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable
+
+from .errors import InputError, Location, did_you_mean
+from .yamlsource import LMap, where_of
+
+TYPE_NAMES = {str: "a string", bool: "true or false", int: "an integer", float: "a number",
+              list: "a list", dict: "a mapping"}
+
+
+def describe(value: Any) -> str:
+    if value is None:
+        return "nothing (null)"
+    if isinstance(value, bool):
+        return f"{value!r}".lower()
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return f"a list of {len(value)}"
+    if isinstance(value, str):
+        return f"the string '{value}'"
+    return repr(value)
+
+
+def check_keys(mapping: LMap, allowed: Iterable[str], required: Iterable[str], context: str,
+               errors: list[InputError]) -> None:
+    allowed = list(allowed)
+    for key in mapping:
+        if key not in allowed:
+            errors.append(InputError(f"unknown key '{key}' in {context}", mapping.loc(key), key=str(key),
+                                     suggestion=did_you_mean(str(key), allowed)
+                                     or f"valid keys: {', '.join(allowed)}"))
+    for key in required:
+        if key not in mapping:
+            errors.append(InputError(f"missing required key '{key}' in {context}", mapping.loc(), key=key))
+
+
+def is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def number_list(value: Any, size: int | tuple[int, ...], where: Location, key: str,
+                errors: list[InputError]) -> list[float] | None:
+    sizes = (size,) if isinstance(size, int) else size
+    expected = " or ".join(str(s) for s in sizes)
+    if not isinstance(value, list):
+        errors.append(InputError(f"expected a list of {expected} numbers, got {describe(value)}", where, key=key))
+        return None
+    if len(value) not in sizes:
+        errors.append(InputError(f"expected {expected} numbers, got {len(value)}", where_of(value, where), key=key))
+        return None
+    bad = [v for v in value if not is_number(v)]
+    if bad:
+        errors.append(InputError(f"expected numbers, got {describe(bad[0])}", where_of(value, where), key=key))
+        return None
+    return [float(v) for v in value]
+
+
+def expect(value: Any, kind: type | tuple[type, ...], where: Location, key: str, errors: list[InputError]) -> bool:
+    kinds = kind if isinstance(kind, tuple) else (kind,)
+    ok = isinstance(value, kinds) and not (isinstance(value, bool) and bool not in kinds)
+    if float in kinds and is_number(value):
+        ok = True
+    if not ok:
+        names = " or ".join(TYPE_NAMES.get(k, k.__name__) for k in kinds)
+        errors.append(InputError(f"expected {names}, got {describe(value)}", where, key=key))
+    return ok
+
+
+def quaternion(value: Any, where: Location, key: str, errors: list[InputError]) -> list[float] | None:
+    q = number_list(value, 4, where, key, errors)
+    if q is None:
+        if isinstance(value, list) and len(value) == 3:
+            errors[-1].suggestion = "orientation is a quaternion x, y, z, w; e.g. [0, 0, 0, 1] for no rotation"
+        return None
+    norm = math.sqrt(sum(c * c for c in q))
+    if abs(norm - 1.0) > 1e-3:
+        scaled = ", ".join(f"{c / norm:.4g}" for c in q) if norm > 0 else "0, 0, 0, 1"
+        errors.append(InputError(f"quaternion must have unit length, got norm {norm:.4g}", where_of(value, where),
+                                 key=key, suggestion=f"normalised: [{scaled}]"))
+        return None
+    return q

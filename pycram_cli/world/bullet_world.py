@@ -1,0 +1,191 @@
+"""BulletWorld: one PyBullet client with its objects, gravity, events and state.
+
+Every PyBullet call names this world's client, so any number of worlds can live side
+by side without seeing each other's changes; at most one of them shows a GUI window.
+"""
+from __future__ import annotations
+
+import contextlib
+import threading
+from typing import TYPE_CHECKING, Iterator, Sequence
+
+import pybullet as p
+
+from .events import Event
+from .pose import check_position
+from .quiet import silenced
+from .state import WorldState, capture, release, restore
+
+if TYPE_CHECKING:
+    from .object import Object
+
+STEP_HZ = 240
+
+
+class WorldError(RuntimeError):
+    """Misuse of a world (a second GUI, a world that has exited, ...)."""
+
+
+class BulletWorld:
+    """A simulated world. `BulletWorld.current_world` is the newest one that has not exited."""
+
+    current_world: "BulletWorld | None" = None
+    _live: list["BulletWorld"] = []
+    _gui_world: "BulletWorld | None" = None
+    _registry_lock = threading.Lock()
+
+    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81)) -> None:
+        if mode not in ("direct", "gui"):
+            raise ValueError(f"mode must be 'direct' or 'gui', got {mode!r}")
+        with BulletWorld._registry_lock:
+            if mode == "gui" and BulletWorld._gui_world is not None:
+                raise WorldError(
+                    "a GUI world is already open (PyBullet allows one window per process); "
+                    "exit it first or create this world with mode='direct'"
+                )
+            with silenced():
+                client = p.connect(p.GUI if mode == "gui" else p.DIRECT)
+            if client < 0:
+                raise WorldError(f"could not start a PyBullet {mode} client (for the GUI, is a display available?)")
+            self.client_id: int = client
+            self.mode = mode
+            if mode == "gui":
+                BulletWorld._gui_world = self
+                p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
+            BulletWorld._live.append(self)
+            BulletWorld.current_world = self
+        self.objects: list[Object] = []
+        self._by_id: dict[int, Object] = {}
+        self.robot: Object | None = None
+        self.attachment_event = Event("attachment")
+        self.detachment_event = Event("detachment")
+        self.manipulation_event = Event("manipulation")
+        self.lock = threading.RLock()
+        self.gravity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._exited = False
+        self._realtime = False
+        p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
+        self.set_gravity(gravity)
+
+    # -- life cycle -------------------------------------------------------------
+    @classmethod
+    def current(cls) -> "BulletWorld | None":
+        return cls.current_world
+
+    @property
+    def alive(self) -> bool:
+        return not self._exited
+
+    def exit(self) -> None:
+        """Disconnect the client; the current world becomes the newest live one (or None)."""
+        if self._exited:
+            return
+        self._exited = True
+        with BulletWorld._registry_lock:
+            with contextlib.suppress(Exception), silenced():
+                p.disconnect(physicsClientId=self.client_id)
+            if self in BulletWorld._live:
+                BulletWorld._live.remove(self)
+            if BulletWorld._gui_world is self:
+                BulletWorld._gui_world = None
+            BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
+
+    def __enter__(self) -> "BulletWorld":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.exit()
+
+    def _check_alive(self) -> None:
+        if self._exited:
+            raise WorldError("this world has exited")
+
+    # -- physics ----------------------------------------------------------------
+    def set_gravity(self, vector: Sequence[float]) -> None:
+        self._check_alive()
+        self.gravity = check_position(vector, "gravity")
+        p.setGravity(*self.gravity, physicsClientId=self.client_id)
+
+    def set_realtime(self, realtime: bool) -> None:
+        self._check_alive()
+        self._realtime = bool(realtime)
+        p.setRealTimeSimulation(1 if realtime else 0, physicsClientId=self.client_id)
+
+    def simulate(self, seconds: float) -> None:
+        """Step the physics for `seconds` at 240 Hz.
+
+        Fixed objects (robots, environments) are kinematic: their joints are held and put
+        back exactly afterwards, so they never drift. Attached objects follow their parent
+        at every step.
+        """
+        self._check_alive()
+        steps = int(round(seconds * STEP_HZ))
+        with self.lock:
+            held = [(obj, obj.get_joint_positions()) for obj in self.objects if obj.fixed and obj.movable_joints]
+            followers = [o for o in self.objects if any(a.parent is o for a in o.attachments.values())]
+            for _ in range(steps):
+                p.stepSimulation(physicsClientId=self.client_id)
+                for obj in followers:
+                    obj._move_attached()
+            for obj, positions in held:
+                obj._reset_joints(positions)
+            for obj in followers:
+                obj._move_attached()
+
+    # -- objects ----------------------------------------------------------------
+    def _add(self, obj: "Object") -> None:
+        self.objects.append(obj)
+        self._by_id[obj.id] = obj
+        if obj.type == "robot" and self.robot is None:
+            self.robot = obj
+
+    def _remove(self, obj: "Object") -> None:
+        self.objects.remove(obj)
+        self._by_id.pop(obj.id, None)
+        if self.robot is obj:
+            self.robot = None
+
+    def get_objects_by_name(self, name: str) -> list["Object"]:
+        return [o for o in self.objects if o.name == name]
+
+    def get_object_by_name(self, name: str) -> "Object | None":
+        found = self.get_objects_by_name(name)
+        return found[0] if found else None
+
+    def get_objects_by_type(self, type: str) -> list["Object"]:
+        return [o for o in self.objects if o.type == type]
+
+    def get_object_by_id(self, id: int) -> "Object | None":
+        return self._by_id.get(id)
+
+    # -- state ------------------------------------------------------------------
+    def save_state(self) -> WorldState:
+        """Everything needed to put the world back exactly: poses, joints, velocities, attachments."""
+        self._check_alive()
+        return capture(self)
+
+    def restore_state(self, state: WorldState) -> None:
+        self._check_alive()
+        restore(self, state)
+
+    def release_state(self, state: WorldState) -> None:
+        """Free the memory PyBullet holds for a saved state."""
+        release(self, state)
+
+    @contextlib.contextmanager
+    def snapshot(self) -> Iterator[WorldState]:
+        """`with world.snapshot():` — whatever happens inside is undone on leaving."""
+        state = self.save_state()
+        try:
+            yield state
+        finally:
+            if not self._exited:
+                self.restore_state(state)
+                self.release_state(state)
+
+    def __repr__(self) -> str:
+        return f"BulletWorld(mode={self.mode!r}, client_id={self.client_id}, objects={len(self.objects)})"
+
+
+def current_world() -> BulletWorld | None:
+    return BulletWorld.current_world

@@ -1,0 +1,94 @@
+"""Reading STL and OBJ meshes: vertices, triangles, volume, centre of mass, inertia.
+
+Used to turn a mesh into a one-link URDF with physically sensible inertial data.
+"""
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+
+@dataclass
+class Mesh:
+    vertices: np.ndarray  # (n, 3)
+    triangles: np.ndarray  # (m, 3) indices
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.vertices.min(axis=0), self.vertices.max(axis=0)
+
+    def volume_and_centroid(self) -> tuple[float, np.ndarray]:
+        """Signed-tetrahedron volume and centroid (valid for closed meshes)."""
+        a, b, c = (self.vertices[self.triangles[:, i]] for i in range(3))
+        vols = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+        volume = float(vols.sum())
+        if abs(volume) < 1e-12:
+            lo, hi = self.bounds
+            return 0.0, (lo + hi) / 2.0
+        centroid = (vols[:, None] * (a + b + c) / 4.0).sum(axis=0) / volume
+        return abs(volume), centroid
+
+
+def _read_stl(path: Path) -> Mesh:
+    data = path.read_bytes()
+    if len(data) >= 84:
+        count = struct.unpack_from("<I", data, 80)[0]
+        if 84 + count * 50 == len(data):
+            raw = np.frombuffer(data, dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]), count=count, offset=84)
+            verts = raw["v"].reshape(-1, 3).astype(float)
+            return Mesh(verts, np.arange(len(verts)).reshape(-1, 3))
+    verts = []
+    for line in data.decode("ascii", errors="replace").splitlines():
+        parts = line.split()
+        if parts and parts[0] == "vertex":
+            verts.append([float(x) for x in parts[1:4]])
+    arr = np.array(verts, dtype=float).reshape(-1, 3)
+    return Mesh(arr, np.arange(len(arr)).reshape(-1, 3))
+
+
+def _read_obj(path: Path) -> Mesh:
+    verts: list[list[float]] = []
+    tris: list[list[int]] = []
+    for line in path.read_text(errors="replace").splitlines():
+        if line.startswith("v "):
+            verts.append([float(x) for x in line.split()[1:4]])
+        elif line.startswith("f "):
+            idx = []
+            for token in line.split()[1:]:
+                i = int(token.split("/")[0])
+                idx.append(i - 1 if i > 0 else len(verts) + i)
+            for k in range(1, len(idx) - 1):
+                tris.append([idx[0], idx[k], idx[k + 1]])
+    return Mesh(np.array(verts, dtype=float).reshape(-1, 3), np.array(tris, dtype=int).reshape(-1, 3))
+
+
+def read_mesh(path: Path) -> Mesh:
+    suffix = path.suffix.lower()
+    if suffix == ".stl":
+        return _read_stl(path)
+    if suffix == ".obj":
+        return _read_obj(path)
+    raise ValueError(f"{path}: unsupported mesh format {suffix!r} (expected .stl or .obj)")
+
+
+@dataclass
+class Inertial:
+    mass: float
+    origin: tuple[float, float, float]
+    diagonal: tuple[float, float, float]
+
+
+def inertial_for(mesh: Mesh, density: float = 400.0, mass: float | None = None) -> Inertial:
+    """Mass from volume × density (unless given), inertia of the bounding box about the centroid."""
+    volume, centroid = mesh.volume_and_centroid()
+    lo, hi = mesh.bounds
+    size = np.maximum(hi - lo, 1e-3)
+    if mass is None:
+        mass = float(np.clip(volume * density, 0.02, 20.0))
+    ix = mass / 12.0 * (size[1] ** 2 + size[2] ** 2)
+    iy = mass / 12.0 * (size[0] ** 2 + size[2] ** 2)
+    iz = mass / 12.0 * (size[0] ** 2 + size[1] ** 2)
+    return Inertial(mass, (float(centroid[0]), float(centroid[1]), float(centroid[2])), (ix, iy, iz))

@@ -1,0 +1,197 @@
+"""Turning the files a user names into something PyBullet loads.
+
+- STL/OBJ meshes become a generated one-link URDF (with colour and inertia), written
+  to the cache folder, never next to the user's file.
+- URDFs with ROS `package://` URIs, or with mesh files that are missing, are loaded
+  from a patched copy in the cache folder: URIs resolved through ROS_PACKAGE_PATH and
+  package folders beside the URDF, elements whose mesh is missing dropped (reported).
+- `describe_urdf` reads link and joint names and limits straight from the XML, so that
+  world files can be validated without starting a simulation.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..paths import cache_dir
+from .meshes import inertial_for, read_mesh
+
+MESH_SUFFIXES = {".stl", ".obj"}
+
+
+def _digest(*parts: object) -> str:
+    h = hashlib.sha1()
+    for part in parts:
+        h.update(repr(part).encode())
+    return h.hexdigest()[:16]
+
+
+def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, mass: float | None = None) -> Path:
+    """A one-link URDF wrapping `mesh_path`, cached by the mesh's content and the colour."""
+    mesh_path = mesh_path.resolve()
+    rgba = tuple(color) if color is not None else (0.8, 0.8, 0.8, 1.0)
+    stat = mesh_path.stat()
+    key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 2)
+    target = cache_dir() / "meshes" / f"{mesh_path.stem}-{key}.urdf"
+    if target.exists():
+        return target
+    inertial = inertial_for(read_mesh(mesh_path), mass=mass)
+    name = mesh_path.stem
+    text = f"""<?xml version="1.0"?>
+<robot name="{name}">
+  <link name="{name}">
+    <inertial>
+      <origin xyz="{inertial.origin[0]:.6f} {inertial.origin[1]:.6f} {inertial.origin[2]:.6f}" rpy="0 0 0"/>
+      <mass value="{inertial.mass:.6f}"/>
+      <inertia ixx="{inertial.diagonal[0]:.8f}" ixy="0" ixz="0" iyy="{inertial.diagonal[1]:.8f}" iyz="0" izz="{inertial.diagonal[2]:.8f}"/>
+    </inertial>
+    <visual>
+      <geometry>
+        <mesh filename="{mesh_path}" scale="1 1 1"/>
+      </geometry>
+      <material name="{name}_color">
+        <color rgba="{rgba[0]} {rgba[1]} {rgba[2]} {rgba[3] if len(rgba) > 3 else 1.0}"/>
+      </material>
+    </visual>
+    <collision>
+      <geometry>
+        <mesh filename="{mesh_path}" scale="1 1 1"/>
+      </geometry>
+    </collision>
+  </link>
+</robot>
+"""
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_suffix(f".{os.getpid()}.tmp")
+    tmp.write_text(text)
+    tmp.replace(target)
+    return target
+
+
+def _package_roots(package: str, urdf_dir: Path) -> list[Path]:
+    """Candidate folders for ROS package `package`, in search order."""
+    found: list[Path] = []
+    for entry in filter(None, os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep)):
+        root = Path(entry)
+        if root.name == package and root.is_dir():
+            found.append(root)
+        if (root / package).is_dir():
+            found.append(root / package)
+        if root.is_dir():
+            for manifest in root.glob("*/*/package.xml"):
+                if manifest.parent.name == package:
+                    found.append(manifest.parent)
+    for parent in [urdf_dir, *urdf_dir.parents][:3]:
+        if (parent / package).is_dir():
+            found.append(parent / package)
+    return found
+
+
+def resolve_uri(uri: str, urdf_dir: Path) -> Path | None:
+    """The file a mesh URI names (package://, file://, relative or absolute), or None."""
+    if uri.startswith("package://"):
+        package, _, rest = uri[len("package://") :].partition("/")
+        for root in _package_roots(package, urdf_dir):
+            candidate = root / rest
+            if candidate.exists():
+                return candidate
+        return None
+    if uri.startswith("file://"):
+        uri = uri[len("file://") :]
+    path = Path(uri)
+    if not path.is_absolute():
+        path = urdf_dir / path
+    return path if path.exists() else None
+
+
+@dataclass
+class PreparedUrdf:
+    path: Path
+    missing: list[str] = field(default_factory=list)
+
+
+def prepare_urdf(urdf: Path) -> PreparedUrdf:
+    """The URDF to hand to PyBullet, patched into the cache when it needs to be."""
+    urdf = urdf.resolve()
+    text = urdf.read_text(errors="replace")
+    tree = ET.fromstring(text)
+    meshes = [(parent, el) for parent in tree.iter() for el in parent if el.tag in ("visual", "collision")]
+    needs_patch = "package://" in text or "file://" in text
+    missing: list[str] = []
+    for parent, element in meshes:
+        for mesh in element.iter("mesh"):
+            uri = mesh.get("filename", "")
+            resolved = resolve_uri(uri, urdf.parent)
+            if resolved is None:
+                missing.append(uri)
+                needs_patch = True
+    if not needs_patch:
+        return PreparedUrdf(urdf)
+    stat = urdf.stat()
+    key = _digest(str(urdf), stat.st_size, stat.st_mtime_ns, os.environ.get("ROS_PACKAGE_PATH", ""), 1)
+    for parent, element in meshes:
+        drop = False
+        for mesh in element.iter("mesh"):
+            resolved = resolve_uri(mesh.get("filename", ""), urdf.parent)
+            if resolved is None:
+                drop = True
+            else:
+                mesh.set("filename", str(resolved))
+        if drop:
+            parent.remove(element)
+    target = cache_dir() / "urdf" / f"{urdf.stem}-{key}.urdf"
+    target.parent.mkdir(parents=True, exist_ok=True)
+    ET.indent(tree)
+    tmp = target.with_suffix(f".{os.getpid()}.tmp")
+    tmp.write_text(ET.tostring(tree, encoding="unicode"))
+    tmp.replace(target)
+    return PreparedUrdf(target, sorted(set(missing)))
+
+
+@dataclass
+class JointInfo:
+    name: str
+    type: str
+    lower: float
+    upper: float
+
+    @property
+    def movable(self) -> bool:
+        return self.type in ("revolute", "prismatic", "continuous")
+
+    @property
+    def limited(self) -> bool:
+        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
+
+
+@dataclass
+class ModelInfo:
+    """Names found in a model file without loading it into a simulation."""
+
+    links: list[str]
+    joints: dict[str, JointInfo]
+
+
+def describe_urdf(urdf: Path) -> ModelInfo:
+    tree = ET.parse(urdf).getroot()
+    links = [link.get("name", "") for link in tree.findall("link")]
+    joints: dict[str, JointInfo] = {}
+    for joint in tree.findall("joint"):
+        limit = joint.find("limit")
+        lower = float(limit.get("lower", 0.0)) if limit is not None else 0.0
+        upper = float(limit.get("upper", 0.0)) if limit is not None else 0.0
+        kind = joint.get("type", "fixed")
+        if kind == "continuous":
+            lower, upper = -math.inf, math.inf
+        joints[joint.get("name", "")] = JointInfo(joint.get("name", ""), kind, lower, upper)
+    return ModelInfo(links, joints)
+
+
+def describe_model(path: Path) -> ModelInfo:
+    if path.suffix.lower() in MESH_SUFFIXES:
+        return ModelInfo([path.stem], {})
+    return describe_urdf(path)

@@ -1,0 +1,353 @@
+"""Object: anything in a world — a robot, a kitchen, a spoon — loaded from URDF, STL or OBJ."""
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable, Mapping, Sequence
+
+import pybullet as p
+
+from .bullet_world import BulletWorld, WorldError
+from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, mesh_urdf, prepare_urdf
+from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
+from .quiet import silenced
+
+KINEMATIC_TYPES = ("robot", "environment")
+_HOLD_FORCE = 1e5
+
+
+class MissingMeshWarning(UserWarning):
+    """A URDF names mesh files that do not exist; it was loaded without them."""
+
+
+class JointLimitError(ValueError):
+    """A joint value outside the joint's limits."""
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """`child` follows `parent`: the child link keeps `transform` relative to the parent link."""
+
+    parent: "Object"
+    child: "Object"
+    parent_link: int
+    child_link: int
+    transform: tuple[Vec3, Quat]
+
+
+@dataclass(frozen=True)
+class Joint:
+    index: int
+    name: str
+    type: str  # revolute, prismatic, continuous, fixed, ...
+    lower: float
+    upper: float
+    child_link: str
+
+    @property
+    def movable(self) -> bool:
+        return self.type in ("revolute", "prismatic", "continuous")
+
+    @property
+    def limited(self) -> bool:
+        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
+
+
+_JOINT_TYPES = {p.JOINT_REVOLUTE: "revolute", p.JOINT_PRISMATIC: "prismatic", p.JOINT_FIXED: "fixed",
+                p.JOINT_SPHERICAL: "spherical", p.JOINT_PLANAR: "planar", p.JOINT_POINT2POINT: "point2point",
+                p.JOINT_GEAR: "gear"}
+
+
+class Object:
+    """A body in a BulletWorld, addressed by name; links and joints by their URDF names."""
+
+    def __init__(
+        self,
+        name: str,
+        type: str,
+        path: str | Path,
+        position: Sequence[float] = (0.0, 0.0, 0.0),
+        orientation: Sequence[float] = (0.0, 0.0, 0.0, 1.0),
+        world: BulletWorld | None = None,
+        color: Sequence[float] | None = None,
+        fixed: bool | None = None,
+        mass: float | None = None,
+    ) -> None:
+        world = world if world is not None else BulletWorld.current_world
+        if world is None or not world.alive:
+            raise WorldError(f"object '{name}': no world to load it into (create a BulletWorld first)")
+        position = check_position(position, f"object '{name}' position")
+        orientation = check_quaternion(orientation, f"object '{name}' orientation")
+        rgba = _check_color(color, name)
+        self.name = name
+        self.type = type
+        self.world = world
+        self.path = Path(path)
+        self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
+        if not self.path.exists():
+            raise FileNotFoundError(f"object '{name}': file not found: {self.path}")
+        if self.path.suffix.lower() in MESH_SUFFIXES:
+            load_path = mesh_urdf(self.path, rgba, mass)
+        else:
+            prepared = prepare_urdf(self.path)
+            load_path = prepared.path
+            if prepared.missing:
+                warnings.warn(
+                    f"{self.path}: {len(prepared.missing)} mesh file(s) missing, loaded without them: "
+                    + ", ".join(prepared.missing),
+                    MissingMeshWarning,
+                    stacklevel=2,
+                )
+        cid = world.client_id
+        with silenced():
+            body = p.loadURDF(str(load_path), position, orientation, useFixedBase=self.fixed, physicsClientId=cid)
+        if body < 0:
+            raise ValueError(f"object '{name}': PyBullet could not load {self.path}")
+        self.id: int = body
+        # loadURDF puts the inertial frame of a free base at basePosition; put the link frame there.
+        p.resetBasePositionAndOrientation(body, position, orientation, physicsClientId=cid)
+        self.attachments: dict[Object, Attachment] = {}
+        self._index_model(describe_urdf(load_path).joints if load_path.suffix.lower() == ".urdf" else {})
+        if rgba is not None and self.path.suffix.lower() not in MESH_SUFFIXES:
+            for link in [-1, *range(len(self.joints))]:
+                p.changeVisualShape(body, link, rgbaColor=rgba, physicsClientId=cid)
+        if self.fixed and self.movable_joints:
+            ids = [j.index for j in self.movable_joints]
+            p.setJointMotorControlArray(body, ids, p.VELOCITY_CONTROL, targetVelocities=[0.0] * len(ids),
+                                        forces=[_HOLD_FORCE] * len(ids), physicsClientId=cid)
+        world._add(self)
+
+    # -- model ------------------------------------------------------------------
+    def _index_model(self, declared: Mapping[str, "JointInfo"]) -> None:
+        cid = self.world.client_id
+        base_name, _ = p.getBodyInfo(self.id, physicsClientId=cid)
+        self.base_link_name = base_name.decode()
+        self.joints: list[Joint] = []
+        self._joint_ids: dict[str, int] = {}
+        self._link_ids: dict[str, int] = {self.base_link_name: -1}
+        for index in range(p.getNumJoints(self.id, physicsClientId=cid)):
+            info = p.getJointInfo(self.id, index, physicsClientId=cid)
+            name, kind, lower, upper, link = info[1].decode(), info[2], info[8], info[9], info[12].decode()
+            type_name = _JOINT_TYPES.get(kind, "unknown")
+            if type_name == "revolute" and (lower > upper or getattr(declared.get(name), "type", "") == "continuous"):
+                type_name, lower, upper = "continuous", -math.inf, math.inf
+            joint = Joint(index, name, type_name, float(lower), float(upper), link)
+            self.joints.append(joint)
+            self._joint_ids[name] = index
+            self._link_ids[link] = index
+        self._link_names = {v: k for k, v in self._link_ids.items()}
+        self.movable_joints = [j for j in self.joints if j.movable]
+
+    @property
+    def link_names(self) -> list[str]:
+        return list(self._link_ids)
+
+    @property
+    def joint_names(self) -> list[str]:
+        return list(self._joint_ids)
+
+    def get_joint_id(self, name: str) -> int:
+        try:
+            return self._joint_ids[name]
+        except KeyError:
+            raise KeyError(_unknown(f"object '{self.name}' has no joint", name, self._joint_ids)) from None
+
+    def get_link_id(self, name: str) -> int:
+        try:
+            return self._link_ids[name]
+        except KeyError:
+            raise KeyError(_unknown(f"object '{self.name}' has no link", name, self._link_ids)) from None
+
+    def get_link_name(self, link_id: int) -> str:
+        return self._link_names[link_id]
+
+    def joint(self, name: str) -> Joint:
+        return self.joints[self.get_joint_id(name)]
+
+    # -- pose -------------------------------------------------------------------
+    def get_position(self) -> Vec3:
+        return tuple(p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)[0])  # type: ignore[return-value]
+
+    def get_orientation(self) -> Quat:
+        return tuple(p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)[1])  # type: ignore[return-value]
+
+    def get_pose(self) -> tuple[Vec3, Quat]:
+        """(position, orientation) of the base in the world frame."""
+        pos, orn = p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
+        return tuple(pos), tuple(orn)  # type: ignore[return-value]
+
+    def set_position_and_orientation(self, position: Sequence[float], orientation: Sequence[float]) -> None:
+        """Teleport the object; everything attached to it follows at once."""
+        position = check_position(position, f"object '{self.name}' position")
+        orientation = check_quaternion(orientation, f"object '{self.name}' orientation")
+        with self.world.lock:
+            p.resetBasePositionAndOrientation(self.id, position, orientation, physicsClientId=self.world.client_id)
+            self._after_move()
+
+    def set_position(self, position: Sequence[float]) -> None:
+        self.set_position_and_orientation(position, self.get_orientation())
+
+    def set_orientation(self, orientation: Sequence[float]) -> None:
+        self.set_position_and_orientation(self.get_position(), orientation)
+
+    set_pose = set_position_and_orientation
+
+    def get_link_position_and_orientation(self, link: str | int) -> tuple[Vec3, Quat]:
+        index = link if isinstance(link, int) else self.get_link_id(link)
+        if index == -1:
+            return self.get_pose()
+        state = p.getLinkState(self.id, index, computeForwardKinematics=True, physicsClientId=self.world.client_id)
+        return tuple(state[4]), tuple(state[5])  # type: ignore[return-value]
+
+    def get_link_position(self, link: str | int) -> Vec3:
+        return self.get_link_position_and_orientation(link)[0]
+
+    def get_link_orientation(self, link: str | int) -> Quat:
+        return self.get_link_position_and_orientation(link)[1]
+
+    def get_aabb(self, link: str | int | None = None) -> tuple[Vec3, Vec3]:
+        """Axis-aligned bounding box (min corner, max corner) of a link or the whole object."""
+        cid = self.world.client_id
+        if link is not None:
+            index = link if isinstance(link, int) else self.get_link_id(link)
+            lo, hi = p.getAABB(self.id, index, physicsClientId=cid)
+            return tuple(lo), tuple(hi)  # type: ignore[return-value]
+        boxes = [p.getAABB(self.id, i, physicsClientId=cid) for i in [-1, *range(len(self.joints))]]
+        lo = tuple(min(b[0][k] for b in boxes) for k in range(3))
+        hi = tuple(max(b[1][k] for b in boxes) for k in range(3))
+        return lo, hi  # type: ignore[return-value]
+
+    # -- joints -----------------------------------------------------------------
+    def get_joint_position(self, name: str) -> float:
+        return float(p.getJointState(self.id, self.get_joint_id(name), physicsClientId=self.world.client_id)[0])
+
+    def get_joint_positions(self, names: Iterable[str] | None = None) -> dict[str, float]:
+        joints = [self.joint(n) for n in names] if names is not None else self.movable_joints
+        if not joints:
+            return {}
+        states = p.getJointStates(self.id, [j.index for j in joints], physicsClientId=self.world.client_id)
+        return {j.name: float(s[0]) for j, s in zip(joints, states)}
+
+    def set_joint_position(self, name: str, value: float) -> None:
+        self.set_joint_positions({name: value})
+
+    def set_joint_positions(self, values: Mapping[str, float]) -> None:
+        """Set joints by name (checked against their limits); attached objects follow at once."""
+        checked: list[tuple[Joint, float]] = []
+        for name, value in values.items():
+            joint = self.joint(name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise JointLimitError(f"joint '{name}' of '{self.name}': expected a number, got {value!r}")
+            if joint.limited and not (joint.lower - 1e-9 <= value <= joint.upper + 1e-9):
+                raise JointLimitError(
+                    f"joint '{name}' of '{self.name}': {value:g} is outside its limits "
+                    f"[{joint.lower:g}, {joint.upper:g}]"
+                )
+            checked.append((joint, float(value)))
+        with self.world.lock:
+            old = self.get_joint_positions([j.name for j, _ in checked]) if self.type != "robot" else {}
+            cid = self.world.client_id
+            for joint, value in checked:
+                p.resetJointState(self.id, joint.index, value, 0.0, physicsClientId=cid)
+            self._after_move()
+        if self.type != "robot":
+            for joint, value in checked:
+                if old.get(joint.name) != value:
+                    self.world.manipulation_event(self, joint.name, old.get(joint.name), value)
+
+    def _reset_joints(self, positions: Mapping[str, float]) -> None:
+        """Put joints back without checks or events (used when undoing drift)."""
+        cid = self.world.client_id
+        for name, value in positions.items():
+            p.resetJointState(self.id, self._joint_ids[name], value, 0.0, physicsClientId=cid)
+
+    # -- attachments -----------------------------------------------------------
+    def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
+        """Attach `other` to this object: from now on it follows this object's link rigidly.
+
+        Attachments are bilateral (either side can detach); attaching an attached pair again changes nothing.
+        """
+        if other is self:
+            raise ValueError(f"object '{self.name}' cannot be attached to itself")
+        if other.world is not self.world:
+            raise WorldError(f"'{self.name}' and '{other.name}' are in different worlds")
+        if other in self.attachments:
+            return
+        plink = self.get_link_id(parent_link) if parent_link else -1
+        clink = other.get_link_id(child_link) if child_link else -1
+        transform = _relative(self.get_link_position_and_orientation(plink), other.get_link_position_and_orientation(clink))
+        att = Attachment(self, other, plink, clink, transform)
+        self.attachments[other] = att
+        other.attachments[self] = att
+        self.world.attachment_event(self, other)
+
+    def detach(self, other: "Object") -> None:
+        att = self.attachments.pop(other, None)
+        if att is None:
+            raise ValueError(f"'{self.name}' and '{other.name}' are not attached")
+        other.attachments.pop(self, None)
+        self.world.detachment_event(att.parent, att.child)
+
+    def _after_move(self) -> None:
+        """This object was moved on purpose: children follow; as a child, it keeps its new offset."""
+        for other, att in list(self.attachments.items()):
+            if att.child is self:
+                transform = _relative(att.parent.get_link_position_and_orientation(att.parent_link),
+                                      self.get_link_position_and_orientation(att.child_link))
+                new = Attachment(att.parent, self, att.parent_link, att.child_link, transform)
+                self.attachments[other] = new
+                other.attachments[self] = new
+        self._move_attached()
+
+    def _move_attached(self, visited: set[int] | None = None) -> None:
+        """Move every object attached to this one (and theirs, recursively) to its kept offset."""
+        visited = visited if visited is not None else {self.id}
+        cid = self.world.client_id
+        for child, att in list(self.attachments.items()):
+            if att.parent is not self or child.id in visited:
+                continue
+            visited.add(child.id)
+            target = compose(self.get_link_position_and_orientation(att.parent_link), att.transform)
+            if att.child_link != -1:
+                base_to_link = _relative(child.get_pose(), child.get_link_position_and_orientation(att.child_link))
+                target = compose(target, invert(base_to_link))
+            p.resetBasePositionAndOrientation(child.id, target[0], target[1], physicsClientId=cid)
+            p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
+            child._move_attached(visited)
+
+    def remove(self) -> None:
+        """Take the object out of its world (detaching it from everything)."""
+        for other in list(self.attachments):
+            self.detach(other)
+        p.removeBody(self.id, physicsClientId=self.world.client_id)
+        self.world._remove(self)
+
+    def __repr__(self) -> str:
+        return f"Object({self.name!r}, type={self.type!r}, id={self.id})"
+
+    __hash__ = object.__hash__
+
+
+def _relative(a: tuple[Sequence[float], Sequence[float]], b: tuple[Sequence[float], Sequence[float]]) -> tuple[Vec3, Quat]:
+    """Pose b expressed in frame a."""
+    return compose(invert(a), b)
+
+
+def _check_color(color: Sequence[float] | None, name: str) -> tuple[float, float, float, float] | None:
+    if color is None:
+        return None
+    values = list(color)
+    if len(values) not in (3, 4) or not all(isinstance(v, (int, float)) and 0 <= v <= 1 for v in values):
+        raise ValueError(f"object '{name}' color: expected 3 or 4 numbers in 0..1 (r, g, b[, a]), got {values!r}")
+    if len(values) == 3:
+        values.append(1.0)
+    return (float(values[0]), float(values[1]), float(values[2]), float(values[3]))
+
+
+def _unknown(prefix: str, name: str, known: Iterable[str]) -> str:
+    from ..errors import did_you_mean
+
+    hint = did_you_mean(name, known)
+    return f"{prefix} '{name}'" + (f" ({hint})" if hint else "")

@@ -1,0 +1,48 @@
+"""Building a BulletWorld from a YAML world file."""
+from __future__ import annotations
+
+import contextlib
+from pathlib import Path
+from typing import Iterator
+
+from ..errors import InputError, Location
+
+from ..paths import default_world
+from ..world import BulletWorld, Object
+from .spec import WorldSpec, parse_world
+
+
+@contextlib.contextmanager
+def _reported_at(where: Location) -> Iterator[None]:
+    """Problems the simulation finds with an object become input errors at its place in the file."""
+    try:
+        yield
+    except (ValueError, KeyError, FileNotFoundError) as exc:
+        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+        raise InputError(str(message), where) from None
+
+
+def load_spec(spec: WorldSpec, mode: str = "direct") -> BulletWorld:
+    world = BulletWorld(mode=mode, gravity=spec.gravity)
+    try:
+        objects: dict[str, Object] = {}
+        for item in spec.objects:
+            with _reported_at(item.where):
+                objects[item.name] = Object(item.name, item.type, item.file, item.position, item.orientation,
+                                            world=world, color=item.color, fixed=item.fixed, mass=item.mass)
+                if item.joints:
+                    objects[item.name].set_joint_positions(item.joints)
+        for item in spec.objects:
+            for att in item.attach:
+                with _reported_at(item.where):
+                    objects[att.to].attach(objects[item.name], att.parent_link, att.child_link)
+        world.source = spec.path  # type: ignore[attr-defined]
+    except BaseException:
+        world.exit()
+        raise
+    return world
+
+
+def load_world(path: str | Path | None = None, mode: str = "direct") -> BulletWorld:
+    """A BulletWorld built from `path` (default: the bundled kitchen world)."""
+    return load_spec(parse_world(Path(path) if path is not None else default_world()), mode=mode)
