@@ -1,0 +1,60 @@
+"""The failures a plan can raise and catch by name (CRAM's failure hierarchy).
+
+Every failure carries a message a person understands: which object, which arm, how far off.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+
+class Failure(Exception):
+    """Base of every plan failure; a handler for `Failure` catches them all."""
+
+    def __init__(self, message: str, **details: Any) -> None:
+        super().__init__(message)
+        self.message = message
+        self.details = details
+
+    @property
+    def type_name(self) -> str:
+        return type(self).__name__
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class PerceptionFailure(Failure):
+    """The robot could not see what it was asked to detect."""
+
+
+class ReasoningFailure(Failure):
+    """A reasoning check the plan relies on did not hold (e.g. the placed object is not stable)."""
+
+
+class NavigationFailure(Failure):
+    """The robot could not stand at the requested pose (collision, invalid target)."""
+
+
+class ReachabilityFailure(Failure):
+    """No arm configuration brings the tool frame to the target (inverse kinematics)."""
+
+
+class GripperFailure(Failure):
+    """The gripper could not open, close or hold what it should."""
+
+
+class ManipulationFailure(Failure):
+    """Manipulating an object or an articulated part failed (wrong object held, drawer stuck, ...)."""
+
+
+FAILURES: dict[str, type[Failure]] = {
+    cls.__name__: cls
+    for cls in (Failure, PerceptionFailure, ReasoningFailure, NavigationFailure, ReachabilityFailure,
+                GripperFailure, ManipulationFailure)
+}
+# the design's own names for two of them
+ALIASES = {"PerceptionError": "PerceptionFailure", "ReasoningError": "ReasoningFailure"}
+
+
+def failure_class(name: str) -> type[Failure] | None:
+    return FAILURES.get(ALIASES.get(name, name))
