@@ -326,10 +326,11 @@ def arm_links(side: str) -> list[Link]:
     """
     p = side
     return [
-        # Shoulder housing around the pan axis, ending 2.5 cm above the base
-        # deck at torso height 0.
+        # Shoulder housing around the pan axis (real mesh: x -0.127..0.068 below
+        # the lift joint), ending 2.5 cm above the base deck at torso height 0.
+        # The hanging upper arm only reaches it beyond shoulder lift 1.26 rad.
         Link(f"{p}_shoulder_pan_link", 25.8, (
-            cylinder_z(0.115, -0.42, 0.142, "shoulder_white", x=-0.03),
+            cylinder_z(0.105, -0.42, 0.142, "shoulder_white", x=-0.04),
         )),
         Link(f"{p}_shoulder_lift_link", 2.75, (
             cylinder_y(0.12, 0.15, "shoulder_white"),
