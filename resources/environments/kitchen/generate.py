@@ -27,8 +27,9 @@ Main facts (world frame, joints at zero)
   ``sink_area`` frame, limits 0..0.48 -> opening moves the drawer towards -x.
   Open-topped box; interior floor at z = DRAWER_FLOOR_Z (0.70), interior
   x 1.275..1.785, y 0.515..1.275, walls up to z 0.815.
-* ``sink_area_left_upper_drawer_handle``: origin (1.1925, 0.89, 0.7725); a
-  horizontal bar (radius 1 cm, 0.60 m long along y) 4.25 cm in front of the panel.
+* ``sink_area_left_upper_drawer_handle``: origin (1.1925, 0.89, 0.7725) = the axis
+  of a horizontal bar (radius 1 cm, 0.60 m long along y) on two stand-offs; the
+  gap between bar and front panel (x 1.245) is 4.25 cm.
 * ``kitchen_island_surface``: x -1.4675..-0.6675, y 0.4942..2.9442, top z 0.861.
 * Kept free for the robot: floor region x -0.6..0.95, y -0.3..2.0 (up to 2 m),
   and the space above both counter tops up to z 1.5.
@@ -102,6 +103,17 @@ ISLAND_SLAB_Z = 0.821
 ISLAND_BODY_FRONT_X = -0.805  # the island carcass; the top overhangs to -0.6675
 STOVE_X = (-1.3175, -0.8175)
 STOVE_Y = (2.1992, 2.7708)
+
+
+# Drawers of the sink counter: name -> (joint origin in the sink_area frame as in the
+# IAI model, front panel extent (y0, y1, z0, z1) in the world, handle joint origin in
+# the drawer frame as in the IAI model, handle bar length).
+SINK_DRAWERS: dict[str, tuple[Vec3, tuple[float, float, float, float], Vec3, float]] = {
+    "sink_area_left_upper_drawer": ((0.01, -0.6, 0.345), (0.495, 1.295, 0.688, 0.826), (0.3325, 0.0, 0.0175), 0.60),
+    "sink_area_left_middle_drawer": ((0.01, -0.6, 0.12), (0.495, 1.295, 0.388, 0.672), (0.3325, 0.0, 0.11), 0.60),
+    "sink_area_left_bottom_drawer": ((0.01, -0.6, -0.18), (0.495, 1.295, 0.088, 0.372), (0.3325, 0.0, 0.11), 0.60),
+    "sink_area_trash_drawer": ((0.01, 0.7, -0.015), (-0.715, -0.105, 0.088, 0.680), (0.3325, 0.0, 0.2375), 0.45),
+}
 
 
 # --------------------------------------------------------------------------------------
@@ -282,31 +294,22 @@ def sink_area() -> tuple[list[Link], list[Joint]]:
     ]
     links.insert(0, Link("sink_area_footprint", [], mass=1.0))
 
-    # (name, joint origin in sink_area frame, front panel y/z extent, handle offset, handle length)
-    drawers = [
-        ("sink_area_left_upper_drawer", (0.01, -0.6, 0.345), (0.495, 1.295, 0.688, 0.826), (0.3325, 0.0, 0.0175), 0.60),
-        ("sink_area_left_middle_drawer", (0.01, -0.6, 0.12), (0.495, 1.295, 0.388, 0.672), (0.3325, 0.0, 0.11), 0.60),
-        ("sink_area_left_bottom_drawer", (0.01, -0.6, -0.18), (0.495, 1.295, 0.088, 0.372), (0.3325, 0.0, 0.11), 0.60),
-        ("sink_area_trash_drawer", (0.01, 0.7, -0.015), (-0.715, -0.105, 0.088, 0.680), (0.3325, 0.0, 0.2375), 0.45),
-    ]
-    for name, origin, (fy0, fy1, fz0, fz1), handle_off, handle_len in drawers:
+    for name, (origin, (fy0, fy1, fz0, fz1), handle_off, _) in SINK_DRAWERS.items():
         main, handle = f"{name}_main", f"{name}_handle"
         links.append(Link(main, drawer_box(fy0, fy1, fz0, fz1), mass=2.0))
         joints.append(Joint(f"{main}_joint", "prismatic", "sink_area", main, origin,
                             axis=(1.0, 0.0, 0.0), lower=0.0, upper=0.48))
         joints.append(Joint(f"{handle}_joint", "fixed", main, handle, handle_off))
-        links.append(Link(handle, [], mass=0.2))  # geometry filled in below (needs world pose)
+        links.append(Link(handle, [], mass=0.2))  # bar added by fill_handles (needs world pose)
     return links, joints
 
 
 def fill_handles(links: dict[str, Link], world: dict[str, np.ndarray]) -> None:
-    """Give every ``*_drawer_handle`` link a bar centred on its (world) origin."""
-    lengths = {"sink_area_trash_drawer_handle": 0.45}
-    for name, link in links.items():
-        if name.endswith("_drawer_handle") and not link.shapes:
-            c = world[name][:3, 3]
-            link.shapes.extend(handle_bar("handle", (float(c[0]), float(c[1]), float(c[2])),
-                                          lengths.get(name, 0.60), DRAWER_FRONT_X))
+    """Give every sink drawer's handle link a bar centred on its (world) origin."""
+    for name, (_, _, _, length) in SINK_DRAWERS.items():
+        c = world[f"{name}_handle"][:3, 3]
+        links[f"{name}_handle"].shapes.extend(
+            handle_bar("handle", (float(c[0]), float(c[1]), float(c[2])), length, DRAWER_FRONT_X))
 
 
 def oven_area() -> tuple[list[Link], list[Joint]]:
