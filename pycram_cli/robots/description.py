@@ -73,6 +73,17 @@ class RobotDescription:
         except KeyError:
             raise KeyError(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
 
+    def grasp_orientation(self, grasp: str | tuple[float, ...] | list[float],
+                          base_orientation: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
+        """World orientation of the tool frame for a named grasp (relative to the base) or a world quaternion."""
+        from ..world.pose import check_quaternion, quat_multiply
+
+        if isinstance(grasp, str):
+            if grasp not in self.grasps:
+                raise KeyError(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps)})")
+            return quat_multiply(base_orientation, self.grasps[grasp])
+        return check_quaternion(grasp, "grasp")
+
     def arm_of_link(self, link: str) -> str | None:
         for arm in self.arms.values():
             if link in arm.links:

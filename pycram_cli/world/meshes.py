@@ -32,6 +32,18 @@ class Mesh:
         return abs(volume), centroid
 
 
+def is_binary_stl(path: Path) -> bool:
+    data = path.read_bytes()
+    return len(data) >= 84 and 84 + struct.unpack_from("<I", data, 80)[0] * 50 == len(data)
+
+
+def write_binary_stl(mesh: Mesh, path: Path) -> None:
+    tris = mesh.vertices[mesh.triangles].astype("<f4")
+    records = np.zeros(len(tris), dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]))
+    records["v"] = tris.reshape(-1, 9)
+    path.write_bytes(b"pycram binary stl".ljust(80, b" ") + struct.pack("<I", len(tris)) + records.tobytes())
+
+
 def _read_stl(path: Path) -> Mesh:
     data = path.read_bytes()
     if len(data) >= 84:

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..paths import cache_dir
-from .meshes import inertial_for, read_mesh
+from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
 
 MESH_SUFFIXES = {".stl", ".obj"}
 
@@ -39,8 +39,15 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     target = cache_dir() / "meshes" / f"{mesh_path.stem}-{key}.urdf"
     if target.exists():
         return target
-    inertial = inertial_for(read_mesh(mesh_path), mass=mass)
+    mesh = read_mesh(mesh_path)
+    inertial = inertial_for(mesh, mass=mass)
     name = mesh_path.stem
+    if mesh_path.suffix.lower() == ".stl" and not is_binary_stl(mesh_path):
+        # PyBullet reads binary STL only: hand it a binary copy of an ASCII file
+        binary = target.with_suffix(".stl")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        write_binary_stl(mesh, binary)
+        mesh_path = binary
     text = f"""<?xml version="1.0"?>
 <robot name="{name}">
   <link name="{name}">

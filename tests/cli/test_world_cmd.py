@@ -1,0 +1,78 @@
+"""`pycram world show|render` and `pycram validate` from a user's point of view."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+
+
+def run(*args: str):
+    return CliRunner().invoke(cli, list(args))
+
+
+def small_world(tmp_path, data_dir):
+    path = tmp_path / "w.yaml"
+    path.write_text(f"objects:\n  - {{name: floor, type: environment, file: plane.urdf}}\n"
+                    f"  - {{name: arm, type: robot, file: {data_dir}/arm.urdf, joints: {{slide: 0.1}}}}\n"
+                    f"  - {{name: cube, type: box, file: {data_dir}/cube.obj, position: [0.5, 0, 0]}}\n")
+    return path
+
+
+def test_world_show_lists_objects_with_type_file_position_and_joints(tmp_path, data_dir):
+    result = run("world", "show", str(small_world(tmp_path, data_dir)))
+    assert result.exit_code == 0, result.output
+    for text in ("floor", "environment", "plane.urdf", "cube", "(0.500, 0.000, 0.000)", "slide=0.10"):
+        assert text in result.output
+
+
+def test_world_show_json_is_machine_readable(tmp_path, data_dir):
+    result = run("world", "show", str(small_world(tmp_path, data_dir)), "--json")
+    data = json.loads(result.stdout)
+    assert [o["name"] for o in data["objects"]] == ["floor", "arm", "cube"]
+    assert data["robot"] == "arm"
+    assert data["objects"][1]["movable_joints"]["slide"] == 0.1
+
+
+def test_world_render_writes_a_png(tmp_path, data_dir):
+    out = tmp_path / "scene.png"
+    result = run("world", "render", str(small_world(tmp_path, data_dir)), "-o", str(out), "--size", "64x48",
+                 "--camera", "2,2,2:0,0,0")
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_bad_camera_is_an_input_error(tmp_path, data_dir):
+    result = run("world", "render", str(small_world(tmp_path, data_dir)), "--camera", "1,2")
+    assert result.exit_code == 2 and "expected EYE:TARGET" in result.output
+
+
+def test_validate_reports_every_problem_and_exits_2_without_traceback(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("objects:\n  - name: a\n    type: box\n    file: plane.urdf\n    postion: [0, 0, 0]\n")
+    result = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", "validate", str(bad)],
+                            capture_output=True, text=True)
+    assert result.returncode == 2
+    assert f"{bad}:5:5: postion: unknown key 'postion'" in result.stderr
+    assert "Traceback" not in result.stderr + result.stdout
+
+
+def test_validate_accepts_a_good_world(tmp_path, data_dir):
+    result = run("validate", str(small_world(tmp_path, data_dir)))
+    assert result.exit_code == 0 and "valid world file" in result.output
+
+
+def test_a_missing_world_file_is_an_input_error():
+    result = run("world", "show", "no_such_world.yaml")
+    assert result.exit_code == 2 and "world file not found" in result.output
+
+
+def test_pybullet_console_noise_stays_off_the_terminal(tmp_path, data_dir):
+    result = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", "world", "show",
+                             str(small_world(tmp_path, data_dir))], capture_output=True, text=True)
+    assert result.returncode == 0
+    assert "pybullet build time" not in result.stdout + result.stderr
+    assert "b3Printf" not in result.stdout + result.stderr
