@@ -4,9 +4,12 @@
 people look for them) and are installed as `pycram_cli/_bundled/<name>`, so a
 regular `pip install .` finds them; `pycram_cli.paths` looks in both places.
 """
+from pathlib import Path
+
 from setuptools import find_packages, setup
 
-BUNDLED = ("resources", "worlds", "plans")
+HERE = Path(__file__).resolve().parent
+BUNDLED = tuple(name for name in ("resources", "worlds", "plans") if (HERE / name).is_dir())
 
 setup(
     packages=find_packages(include=["pycram_cli", "pycram_cli.*"])
