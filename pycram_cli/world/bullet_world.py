@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import threading
-from typing import TYPE_CHECKING, Iterator, Sequence
+from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 import pybullet as p
 
@@ -64,6 +64,7 @@ class BulletWorld:
         self.gravity: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self._exited = False
         self._realtime = False
+        self._exit_hooks: list[Callable[[], None]] = []
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -76,11 +77,18 @@ class BulletWorld:
     def alive(self) -> bool:
         return not self._exited
 
+    def add_exit_hook(self, hook: Callable[[], None]) -> None:
+        """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
+        self._exit_hooks.append(hook)
+
     def exit(self) -> None:
         """Disconnect the client; the current world becomes the newest live one (or None)."""
         if self._exited:
             return
         self._exited = True
+        for hook in self._exit_hooks:
+            with contextlib.suppress(Exception):
+                hook()
         with BulletWorld._registry_lock:
             with contextlib.suppress(Exception), silenced():
                 p.disconnect(physicsClientId=self.client_id)

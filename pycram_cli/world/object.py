@@ -106,8 +106,13 @@ class Object:
         if body < 0:
             raise ValueError(f"object '{name}': PyBullet could not load {self.path}")
         self.id: int = body
-        # loadURDF puts the inertial frame of a free base at basePosition; put the link frame there.
-        p.resetBasePositionAndOrientation(body, position, orientation, physicsClientId=cid)
+        # PyBullet's base pose is the base's centre-of-mass (inertial) frame; ours is its URDF link
+        # frame (for meshes: the mesh origin, e.g. the bottom centre). Keep the offset between them.
+        dyn = p.getDynamicsInfo(body, -1, physicsClientId=cid)
+        self._inertial: tuple[Vec3, Quat] | None = None
+        if tuple(dyn[3]) != (0.0, 0.0, 0.0) or tuple(dyn[4]) != (0.0, 0.0, 0.0, 1.0):
+            self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # type: ignore[assignment]
+        self._reset_base(position, orientation)
         self.attachments: dict[Object, Attachment] = {}
         self._index_model(describe_urdf(load_path).joints if load_path.suffix.lower() == ".urdf" else {})
         if rgba is not None and self.path.suffix.lower() not in MESH_SUFFIXES:
@@ -168,22 +173,30 @@ class Object:
 
     # -- pose -------------------------------------------------------------------
     def get_position(self) -> Vec3:
-        return tuple(p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)[0])  # type: ignore[return-value]
+        return self.get_pose()[0]
 
     def get_orientation(self) -> Quat:
-        return tuple(p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)[1])  # type: ignore[return-value]
+        return self.get_pose()[1]
 
     def get_pose(self) -> tuple[Vec3, Quat]:
-        """(position, orientation) of the base in the world frame."""
+        """(position, orientation) of the base link's frame in the world frame."""
         pos, orn = p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
+        if self._inertial is not None:
+            return compose((pos, orn), invert(self._inertial))
         return tuple(pos), tuple(orn)  # type: ignore[return-value]
+
+    def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
+        """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
+        if self._inertial is not None:
+            position, orientation = compose((position, orientation), self._inertial)
+        p.resetBasePositionAndOrientation(self.id, position, orientation, physicsClientId=self.world.client_id)
 
     def set_position_and_orientation(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Teleport the object; everything attached to it follows at once."""
         position = check_position(position, f"object '{self.name}' position")
         orientation = check_quaternion(orientation, f"object '{self.name}' orientation")
         with self.world.lock:
-            p.resetBasePositionAndOrientation(self.id, position, orientation, physicsClientId=self.world.client_id)
+            self._reset_base(position, orientation)
             self._after_move()
 
     def set_position(self, position: Sequence[float]) -> None:
@@ -313,7 +326,7 @@ class Object:
             if att.child_link != -1:
                 base_to_link = _relative(child.get_pose(), child.get_link_position_and_orientation(att.child_link))
                 target = compose(target, invert(base_to_link))
-            p.resetBasePositionAndOrientation(child.id, target[0], target[1], physicsClientId=cid)
+            child._reset_base(target[0], target[1])
             p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
             child._move_attached(visited)
 

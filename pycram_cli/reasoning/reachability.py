@@ -1,0 +1,142 @@
+"""reachable(target, robot, gripper_link, grasp) and blocking(...): can the arm get there, and what would it touch?
+
+Both solve inverse kinematics for the arm that owns `gripper_link` (see `ik.py`): only
+that arm's joints move; torso and base stay. The target is an object (its position), a
+position, or a pose (whose orientation then counts as the grasp). A grasp is `front`,
+`top`, `left` or `right` — the robot description's tool orientations relative to the robot
+base, turned with the base's current orientation — or a world quaternion; with a grasp the
+tool must also come within `angle_threshold` of that orientation (the design's future work).
+
+`blocking` puts the arm at the solution (the best one found when the target is out of
+reach), lists every object the robot then touches — never the target, the robot itself or
+what it holds — and puts the joints back with their saved positions and velocities. Objects
+the robot holds move with the hand while checking (and collide too); in that case the
+world is saved and restored whole.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
+
+import pybullet as p
+
+from ..robots import description_for
+from ..world.pose import check_position, check_quaternion, quat_multiply
+from ._common import JointUndo, attached_descendants
+from .ik import solve
+
+if TYPE_CHECKING:
+    from ..world import Object
+
+GRASPS = ("front", "top", "left", "right")
+#: the robot touches an object when their collision shapes are closer than this (m)
+TOUCH = 0.001
+
+
+@dataclass(frozen=True)
+class ReachableAnswer:
+    """Truthy when reachable. `joint_positions`: the IK solution (the best found when unreachable);
+    `position_error` (m) and `orientation_error` (rad, None without a grasp): what remains."""
+
+    reachable: bool
+    joint_positions: dict[str, float] = field(default_factory=dict)
+    position_error: float = math.inf
+    orientation_error: float | None = None
+
+    def __bool__(self) -> bool:
+        return self.reachable
+
+
+def target_pose(target: Any) -> tuple[tuple[float, float, float], tuple[float, float, float, float] | None]:
+    """(position, orientation or None) of an object, a position or a (position, orientation) pose."""
+    if hasattr(target, "get_position") and hasattr(target, "world"):
+        return target.get_position(), None
+    items = list(target)
+    if len(items) == 2 and all(hasattr(v, "__len__") for v in items):
+        return check_position(items[0], "target position"), check_quaternion(items[1], "target orientation")
+    return check_position(items, "target position"), None
+
+
+def grasp_orientation(robot: "Object", grasp: Any) -> tuple[float, float, float, float] | None:
+    """World orientation of the tool for a grasp name (robot description, relative to the base) or a quaternion."""
+    if grasp is None:
+        return None
+    if isinstance(grasp, str):
+        desc = description_for(robot)
+        grasps = desc.grasps if desc is not None else {}
+        if grasp not in grasps:
+            known = ", ".join(grasps) or "none: the robot has no description"
+            raise ValueError(f"unknown grasp '{grasp}' for robot '{robot.name}' (grasps: {known})")
+        return quat_multiply(robot.get_orientation(), grasps[grasp])
+    return check_quaternion(grasp, "grasp orientation")
+
+
+def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshold: float, angle_threshold: float):
+    position, orientation = target_pose(target)
+    wanted = grasp_orientation(robot, grasp)
+    if wanted is None:
+        wanted = orientation
+    return solve(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
+
+
+def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = 0.01,
+              angle_threshold: float = 0.1) -> ReachableAnswer:
+    """Whether IK brings `gripper_link` within `threshold` m (and `angle_threshold` rad of the grasp) of `target`."""
+    if not (threshold > 0 and math.isfinite(threshold)):
+        raise ValueError(f"threshold must be a positive distance in metres, got {threshold!r}")
+    with robot.world.lock:
+        sol = _solve(target, robot, gripper_link, grasp, threshold, angle_threshold)
+    return ReachableAnswer(sol.success, sol.joint_positions, sol.position_error, sol.orientation_error)
+
+
+def blocking(target: Any, robot: "Object", gripper_link: str, grasp: Any = None,
+             exclude_types: Iterable[str] = (), threshold: float = 0.01, angle_threshold: float = 0.1,
+             tolerance: float = TOUCH) -> list["Object"]:
+    """The objects the robot touches at the IK solution for `target` (sorted by name).
+
+    Never the target itself, the robot, or what the robot holds; objects whose type is in
+    `exclude_types` are left out. For an unreachable target the best solution found is used.
+    """
+    with robot.world.lock:
+        sol = _solve(target, robot, gripper_link, grasp, threshold, angle_threshold)
+        return touching_at(robot, sol.joint_positions, target, exclude_types, tolerance)
+
+
+def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any = None,
+                exclude_types: Iterable[str] = (), tolerance: float = TOUCH) -> list["Object"]:
+    """The objects the robot touches with `joint_positions` applied (then put back exactly)."""
+    world = robot.world
+    excluded_types = {exclude_types} if isinstance(exclude_types, str) else set(exclude_types)
+    with world.lock:
+        held = attached_descendants(robot)
+        skip = {robot.id, *(o.id for o in held)}
+        if hasattr(target, "world") and hasattr(target, "id"):
+            skip.add(target.id)
+        candidates = [o for o in world.objects if o.id not in skip and o.type not in excluded_types]
+        movers = [robot, *held]
+        if held:  # held objects follow the hand: moving them is undone by restoring the whole world
+            state = world.save_state()
+            try:
+                robot.set_joint_positions(joint_positions)
+                return _touching(movers, candidates, tolerance)
+            finally:
+                world.restore_state(state)
+                world.release_state(state)
+        undo = JointUndo(robot, [robot.get_joint_id(n) for n in joint_positions])
+        try:
+            cid = world.client_id
+            for name, value in joint_positions.items():
+                p.resetJointState(robot.id, robot.get_joint_id(name), value, 0.0, physicsClientId=cid)
+            return _touching(movers, candidates, tolerance)
+        finally:
+            undo.restore()
+
+
+def _touching(movers: Sequence["Object"], candidates: Sequence["Object"], tolerance: float) -> list["Object"]:
+    found = []
+    for other in candidates:
+        cid = other.world.client_id
+        if any(p.getClosestPoints(m.id, other.id, tolerance, physicsClientId=cid) for m in movers):
+            found.append(other)
+    return sorted(found, key=lambda o: (o.name, o.id))

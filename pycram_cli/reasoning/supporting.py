@@ -1,0 +1,48 @@
+"""supporting(a, b): does `a` carry `b` — b above a, touching it, through a roughly horizontal contact?
+
+The design compared z coordinates and asked `contact`; comparing origins fails for objects
+whose origin is not where they rest (a kitchen's origin is on the floor, a shelf's anywhere),
+so here the contact itself decides: at least one contact point between them whose normal
+is within ~45° of vertical, with b's centre above that point.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import pybullet as p
+
+from ._common import same_world
+
+if TYPE_CHECKING:
+    from ..world import Object
+
+#: |n_z| of the contact normal: above this the contact is "roughly horizontal" (about 45°)
+MIN_NORMAL_Z = 0.7
+TOLERANCE = 0.005
+
+
+def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> list[tuple[str, tuple[float, float, float]]]:
+    """The contact points where `a` holds `b` up: (a's link name, point on a)."""
+    if a is b:
+        raise ValueError(f"supporting needs two different objects, got '{a.name}' twice")
+    world = same_world(a, b)
+    cid = world.client_id
+    with world.lock:
+        # bodyA = b, bodyB = a: contactNormalOnB points from a towards b (up, when b rests on a)
+        points = p.getClosestPoints(b.id, a.id, tolerance, physicsClientId=cid)
+        if not points:
+            return []
+        lo, hi = p.getAABB(b.id, -1, physicsClientId=cid) if not b.joints else b.get_aabb()
+        centre_z = (lo[2] + hi[2]) / 2.0
+        found = []
+        for pt in points:
+            normal_z = pt[7][2]
+            on_a = pt[6]
+            if normal_z > MIN_NORMAL_Z and centre_z > on_a[2]:
+                found.append((a.get_link_name(pt[4]), (float(on_a[0]), float(on_a[1]), float(on_a[2]))))
+        return found
+
+
+def supporting(a: "Object", b: "Object") -> bool:
+    """True when `b` rests on `a`: b above, in contact, the contact roughly horizontal."""
+    return bool(support_points(a, b))

@@ -1,0 +1,317 @@
+"""visible(obj, camera) and occluding(obj, camera): what a camera sees of an object.
+
+As in the design, the object's pixels are counted twice: once with the whole scene (the
+pixels where it is in front) and once alone (all the pixels it covers). Two things make it
+fast and exact:
+
+* Only a small window is rendered: an off-centre perspective projection whose frustum is
+  cropped to the object's bounding box as seen from the camera, about 32×32 pixels, with
+  the far plane just behind the object. TinyRenderer's cost is mostly per pixel.
+* The object alone is rendered in a private PyBullet client that holds a copy of just that
+  object (same model file, same pose and joint positions), so the world itself is never
+  touched — no colours to hide and restore, no bodies to move.
+
+Camera: None (the robot's camera frame from its description, with its field of view), a
+link name of the robot (its camera frame: as None; any other link: a position at that link's
+origin), a `(position, orientation)` pose whose orientation is an optical frame (+z forward,
++x right, +y down; the robot camera's field of view), or a bare position (looking straight
+at the object, no field-of-view limit). With a field of view, pixels outside it are not
+seen: an object outside the view is 0 % visible.
+"""
+from __future__ import annotations
+
+import math
+import weakref
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+import pybullet as p
+
+from ..robots import description_for
+from ..world.model_files import MESH_SUFFIXES, mesh_urdf, prepare_urdf
+from ..world.pose import check_position, check_quaternion, quat_to_matrix
+from ..world.quiet import silenced
+from ._common import world_of
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld, Object
+
+#: pixels of the rendered window (about 32 x 32, shaped like the object's image)
+PIXEL_BUDGET = 1024
+MAX_SIDE = 128
+MIN_SIDE = 4
+#: default field of view (rad) for a pose camera when the robot has no description
+DEFAULT_FOV = (0.995, 0.75)
+DEFAULT_NEAR = 0.05
+POSITION_NEAR = 0.01
+#: half-angle limit of a window when the object reaches behind the camera
+WIDE = math.tan(math.radians(80.0))
+
+
+@dataclass(frozen=True)
+class VisibleAnswer:
+    """Truthy when at least `threshold` of the object's pixels are seen. `fraction`: seen / all;
+    `pixels`: the seen pixels (in the rendered window); `total`: the object's pixels alone."""
+
+    visible: bool
+    fraction: float
+    pixels: int
+    total: int = 0
+
+    def __bool__(self) -> bool:
+        return self.visible
+
+
+@dataclass(frozen=True)
+class CameraPose:
+    """An optical frame in the world: `rotation` columns are the camera's x (right), y (down), z (forward)."""
+
+    position: np.ndarray
+    rotation: np.ndarray
+    fov: tuple[float, float] | None  # horizontal, vertical (rad); None: unlimited
+    near: float
+    label: str
+
+
+# -- cameras ---------------------------------------------------------------------------
+
+
+def look_at(eye: Sequence[float], target: Sequence[float]) -> np.ndarray:
+    """Optical-frame rotation (x right, y down, z forward) looking from `eye` at `target`, upright."""
+    z = np.asarray(target, dtype=float) - np.asarray(eye, dtype=float)
+    norm = float(np.linalg.norm(z))
+    z = z / norm if norm > 1e-12 else np.array([1.0, 0.0, 0.0])
+    up = np.array([0.0, 0.0, 1.0]) if abs(z[2]) < 0.999 else np.array([1.0, 0.0, 0.0])
+    x = np.cross(z, up)
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)
+    return np.column_stack([x, y, z])
+
+
+def _robot_camera(world: "BulletWorld") -> tuple["Object", Any]:
+    robot = world.robot
+    if robot is None:
+        raise ValueError("no camera given and the world has no robot to take it from")
+    desc = description_for(robot)
+    if desc is None:
+        raise ValueError(f"no camera given and robot '{robot.name}' has no description naming its camera")
+    return robot, desc.camera
+
+
+def _frame_camera(robot: "Object", cam: Any) -> CameraPose:
+    pos, orn = robot.get_link_position_and_orientation(cam.frame)
+    return CameraPose(np.asarray(pos, dtype=float), quat_to_matrix(orn), (cam.horizontal_fov, cam.vertical_fov),
+                      cam.near, cam.frame)
+
+
+def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
+    """Turn any accepted camera argument into an optical frame pose."""
+    world = obj.world
+    centre = _aabb_centre(obj)
+    if camera is None:
+        robot, cam = _robot_camera(world)
+        return _frame_camera(robot, cam)
+    if isinstance(camera, str):
+        robot = world.robot
+        if robot is None:
+            raise ValueError(f"camera link '{camera}': the world has no robot")
+        desc = description_for(robot)
+        if desc is not None and camera == desc.camera.frame:
+            return _frame_camera(robot, desc.camera)
+        pos = robot.get_link_position(camera)  # KeyError with a suggestion for unknown links
+        return CameraPose(np.asarray(pos, dtype=float), look_at(pos, centre), None, POSITION_NEAR, camera)
+    if isinstance(camera, CameraPose):
+        return camera
+    items = list(camera)
+    if len(items) == 2 and all(hasattr(v, "__len__") for v in items):
+        position = check_position(items[0], "camera position")
+        orientation = check_quaternion(items[1], "camera orientation")
+        fov, near = DEFAULT_FOV, DEFAULT_NEAR
+        if world.robot is not None and description_for(world.robot) is not None:
+            cam = description_for(world.robot).camera
+            fov, near = (cam.horizontal_fov, cam.vertical_fov), cam.near
+        return CameraPose(np.asarray(position), quat_to_matrix(orientation), fov, near, "pose")
+    position = check_position(items, "camera position")
+    return CameraPose(np.asarray(position), look_at(position, centre), None, POSITION_NEAR,
+                      ",".join(f"{v:g}" for v in position))
+
+
+def _aabb(obj: "Object") -> tuple[np.ndarray, np.ndarray]:
+    cid = obj.world.client_id
+    if not obj.joints:
+        lo, hi = p.getAABB(obj.id, -1, physicsClientId=cid)
+        return np.asarray(lo), np.asarray(hi)
+    lo, hi = obj.get_aabb()
+    return np.asarray(lo), np.asarray(hi)
+
+
+def _aabb_centre(obj: "Object") -> np.ndarray:
+    lo, hi = _aabb(obj)
+    return (lo + hi) / 2.0
+
+
+# -- the private client that renders objects alone --------------------------------------
+
+
+class _Solo:
+    """A DIRECT client holding copies of the objects asked about, to render each of them alone."""
+
+    def __init__(self) -> None:
+        with silenced():
+            self.client = p.connect(p.DIRECT)
+        self.bodies: dict[int, tuple[weakref.ref, int]] = {}
+        self._finalizer = weakref.finalize(self, _disconnect, self.client)
+
+    def body_for(self, obj: "Object") -> int:
+        entry = self.bodies.get(id(obj))
+        if entry is not None and entry[0]() is obj:
+            return entry[1]
+        if obj.path.suffix.lower() in MESH_SUFFIXES:
+            path = mesh_urdf(obj.path, None)
+        else:
+            path = prepare_urdf(obj.path).path
+        with silenced():
+            body = p.loadURDF(str(path), useFixedBase=True, physicsClientId=self.client)
+        if body < 0:
+            raise RuntimeError(f"could not load a copy of '{obj.name}' to render it alone")
+        self.bodies[id(obj)] = (weakref.ref(obj), body)
+        return body
+
+    def park(self, body: int) -> None:
+        """Put a copy out of every view (each copy has its own spot far below the world)."""
+        p.resetBasePositionAndOrientation(body, (0.0, 0.0, -1000.0 - 50.0 * body), (0, 0, 0, 1),
+                                          physicsClientId=self.client)
+
+    def place(self, obj: "Object", body: int) -> None:
+        """Give the copy the object's pose and joint positions."""
+        cid = obj.world.client_id
+        pos, orn = p.getBasePositionAndOrientation(obj.id, physicsClientId=cid)
+        p.resetBasePositionAndOrientation(body, pos, orn, physicsClientId=self.client)
+        if obj.movable_joints:
+            ids = [j.index for j in obj.movable_joints]
+            for jid, state in zip(ids, p.getJointStates(obj.id, ids, physicsClientId=cid)):
+                p.resetJointState(body, jid, state[0], 0.0, physicsClientId=self.client)
+
+
+def _disconnect(client: int) -> None:
+    try:
+        p.disconnect(physicsClientId=client)
+    except Exception:  # noqa: BLE001 - already gone at interpreter exit
+        pass
+
+
+def _solo(world: "BulletWorld") -> _Solo:
+    solo = getattr(world, "_reasoning_solo", None)
+    if solo is None:
+        solo = _Solo()
+        world._reasoning_solo = solo  # type: ignore[attr-defined]
+        world.add_exit_hook(solo._finalizer)
+    return solo
+
+
+# -- rendering --------------------------------------------------------------------------
+
+
+@dataclass
+class _Views:
+    scene: np.ndarray  # segmentation of the whole scene (body ids, -1 background)
+    alone: np.ndarray  # True where the object covers the pixel when rendered alone
+    in_view: np.ndarray  # True for pixels inside the camera's field of view
+
+
+def _window(obj: "Object", cam: CameraPose) -> tuple[float, float, float, float, float, float] | None:
+    """(umin, umax, vmin, vmax, near, far) of the object's box on the image plane, or None if behind."""
+    lo, hi = _aabb(obj)
+    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+    local = (corners - cam.position) @ cam.rotation  # camera coordinates
+    depth = local[:, 2]
+    far = float(depth.max()) * 1.02 + 0.01
+    if far <= cam.near:
+        return None
+    front = depth > cam.near
+    u = local[front, 0] / depth[front]
+    v = local[front, 1] / depth[front]
+    if front.all():
+        umin, umax, vmin, vmax = float(u.min()), float(u.max()), float(v.min()), float(v.max())
+    else:  # the box reaches behind the camera: its image is unbounded
+        umin, umax, vmin, vmax = -WIDE, WIDE, -WIDE, WIDE
+    umin, umax = max(umin, -WIDE), min(umax, WIDE)
+    vmin, vmax = max(vmin, -WIDE), min(vmax, WIDE)
+    if umax - umin < 1e-9 or vmax - vmin < 1e-9:
+        return None
+    return umin, umax, vmin, vmax, cam.near, far
+
+
+def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | None:
+    window = _window(obj, cam)
+    if window is None:
+        return None
+    umin, umax, vmin, vmax, near, far = window
+    if cam.fov is not None:
+        tu, tv = math.tan(cam.fov[0] / 2.0), math.tan(cam.fov[1] / 2.0)
+        if umax < -tu or umin > tu or vmax < -tv or vmin > tv:
+            return None  # entirely outside the field of view
+    ratio = (umax - umin) / (vmax - vmin)
+    width = int(min(MAX_SIDE, max(MIN_SIDE, round(math.sqrt(PIXEL_BUDGET * ratio)))))
+    height = int(min(MAX_SIDE, max(MIN_SIDE, round(math.sqrt(PIXEL_BUDGET / ratio)))))
+    eye = cam.position
+    forward, down = cam.rotation[:, 2], cam.rotation[:, 1]
+    view = p.computeViewMatrix(eye.tolist(), (eye + forward).tolist(), (-down).tolist(), physicsClientId=world.client_id)
+    proj = p.computeProjectionMatrix(near * umin, near * umax, -near * vmax, -near * vmin, near, far,
+                                     physicsClientId=world.client_id)
+    scene = _segmentation(world.client_id, width, height, view, proj)
+    solo = _solo(world)
+    body = solo.body_for(obj)
+    solo.place(obj, body)
+    try:
+        alone = _segmentation(solo.client, width, height, view, proj) == body
+    finally:
+        solo.park(body)
+    if cam.fov is not None:
+        us = umin + (np.arange(width) + 0.5) / width * (umax - umin)
+        vs = vmin + (np.arange(height) + 0.5) / height * (vmax - vmin)
+        in_view = (np.abs(vs)[:, None] <= tv) & (np.abs(us)[None, :] <= tu)
+    else:
+        in_view = np.ones((height, width), dtype=bool)
+    return _Views(scene, alone, in_view)
+
+
+def _segmentation(client: int, width: int, height: int, view: Sequence[float], proj: Sequence[float]) -> np.ndarray:
+    _, _, _, _, seg = p.getCameraImage(width, height, view, proj, shadow=0, renderer=p.ER_TINY_RENDERER,
+                                       physicsClientId=client)
+    return np.asarray(seg, dtype=np.int64).reshape(height, width)
+
+
+# -- the queries --------------------------------------------------------------------------
+
+
+def visible(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None,
+            threshold: float = 0.8) -> VisibleAnswer:
+    """Whether at least `threshold` (default 80 %) of `obj`'s pixels are seen from `camera`."""
+    world = world_of(obj, world)
+    if not 0.0 <= threshold <= 1.0:
+        raise ValueError(f"threshold must be a fraction between 0 and 1, got {threshold!r}")
+    with world.lock:
+        cam = resolve_camera(obj, camera)
+        views = _render(world, obj, cam)
+    if views is None:
+        return VisibleAnswer(False, 0.0, 0, 0)
+    total = int(views.alone.sum())
+    seen = int((views.alone & views.in_view & (views.scene == obj.id)).sum())
+    fraction = seen / total if total else 0.0
+    return VisibleAnswer(total > 0 and fraction >= threshold, fraction, seen, total)
+
+
+def occluding(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None) -> list["Object"]:
+    """The objects in front of `obj`'s pixels as seen from `camera` (sorted by name; never obj itself)."""
+    world = world_of(obj, world)
+    with world.lock:
+        cam = resolve_camera(obj, camera)
+        views = _render(world, obj, cam)
+    if views is None:
+        return []
+    covered = views.scene[views.alone & views.in_view]
+    ids = {int(i) for i in np.unique(covered)} - {obj.id, -1}
+    found = [o for o in (world.get_object_by_id(i) for i in ids) if o is not None]
+    return sorted(found, key=lambda o: (o.name, o.id))

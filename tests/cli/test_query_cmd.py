@@ -1,0 +1,114 @@
+"""`pycram query QUERY ARGS`: reasoning questions from the command line, as a user asks them."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+
+
+def query(*args: str):
+    return CliRunner().invoke(cli, ["query", *args])
+
+
+def query_json(*args: str) -> dict:
+    result = query(*args, "--json")
+    assert result.exit_code == 0, result.output
+    return json.loads(result.stdout)
+
+
+@pytest.mark.parametrize("args, says", [
+    (["visible", "bottle"], "bottle is visible: 100% of its pixels seen from wide_stereo_optical_frame"),
+    (["occluding", "spoon"], "spoon is occluded by: bowl, kitchen"),
+    (["contact", "kitchen", "milk"], "kitchen and milk are in contact"),
+    (["stable", "milk"], "milk is stable"),
+    (["supporting", "kitchen", "milk"], "kitchen supports milk (at sink_area_surface)"),
+    (["reachable", "milk", "--arm", "right", "--grasp", "front"], "milk is NOT reachable (best: the right arm, front grasp"),
+    (["reachable", "1.3,0.6,1.0", "--arm", "left"], "(1.3, 0.6, 1) is NOT reachable (best: the left arm"),
+    (["blocking", "milk", "--arm", "left", "--exclude-type", "environment"], "nothing blocks the left arm reaching milk"),
+])
+def test_each_query_answers_in_one_line_with_its_key_figure(args, says):
+    result = query(*args)
+    assert result.exit_code == 0, result.output
+    assert says in result.stdout
+
+
+def test_json_output_is_one_object_with_query_args_result_and_details():
+    data = query_json("visible", "bottle")
+    assert data["query"] == "visible"
+    assert data["args"] == {"object": "bottle", "from": "wide_stereo_optical_frame", "threshold": 0.8}
+    assert data["result"] is True
+    assert data["details"]["fraction"] == 1.0
+
+
+def test_a_position_target_and_options_reach_the_query():
+    data = query_json("reachable", "1.3,0.6,1.0", "--arm", "left", "--threshold", "0.5")
+    assert data["args"]["target"] == [1.3, 0.6, 1.0]
+    assert data["args"]["arm"] == "left" and data["args"]["threshold"] == 0.5
+    assert data["result"] is True  # within 50 cm
+    assert data["details"]["position_error"] < 0.5
+
+
+def test_negative_coordinates_are_positions_not_options():
+    data = query_json("reachable", "-0.8,1,0.93", "--arm", "left")
+    assert data["args"]["target"] == [-0.8, 1.0, 0.93]
+
+
+def test_from_sets_the_camera_as_a_position_or_a_link():
+    assert query_json("visible", "bottle", "--from", "1.35,0.4,1.8")["args"]["from"] == [1.35, 0.4, 1.8]
+    assert query_json("occluding", "milk", "--from", "head_tilt_link")["details"]["camera"] == "head_tilt_link"
+
+
+def test_exclude_type_can_be_repeated():
+    data = query_json("blocking", "milk", "--exclude-type", "environment", "--exclude-type", "bowl")
+    assert data["args"]["exclude-type"] == ["environment", "bowl"]
+
+
+def test_a_negative_answer_still_exits_zero():
+    result = query("visible", "spoon")
+    assert result.exit_code == 0
+    assert "spoon is NOT visible: 0%" in result.stdout
+
+
+@pytest.mark.parametrize("args, message", [
+    (["visible", "botle"], "no object 'botle' (did you mean 'bottle'?)"),
+    (["visble", "bottle"], "unknown query 'visble' (did you mean 'visible'?)"),
+    (["contact", "kitchen"], "missing arguments: expected 2 (a, b), got 1"),
+    (["stable", "milk", "bowl"], "too many arguments"),
+    (["stable", "milk", "--arm", "left"], "option --arm does not apply to 'stable'"),
+    (["reachable", "milk", "--arm", "middle"], "unknown arm 'middle' (arms: left, right)"),
+    (["reachable", "milk", "--grasp", "side"], "unknown grasp 'side'"),
+    (["visible", "milk", "--from", "head_tilt_lnk"], "did you mean 'head_tilt_link'?"),
+    (["visible", "milk", "--world", "kitchn"], "world file not found"),
+])
+def test_bad_input_exits_2_with_a_helpful_message(args, message):
+    result = query(*args)
+    assert result.exit_code == 2, result.output
+    assert message in result.stderr
+    assert result.stdout == ""
+
+
+def test_help_lists_every_query():
+    result = query("--help")
+    assert result.exit_code == 0
+    for name in ("stable", "contact", "visible", "occluding", "reachable", "blocking", "supporting"):
+        assert name in result.stdout
+
+
+def test_end_to_end_json_on_stdout_only():
+    done = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", "query", "contact", "kitchen", "milk", "--json"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert data["result"] is True and data["details"]["links"] == [["sink_area_surface", "milk"]]
+
+
+def test_end_to_end_bad_object_exits_2():
+    done = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", "query", "visible", "botle"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert "no object 'botle' (did you mean 'bottle'?)" in done.stderr

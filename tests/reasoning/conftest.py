@@ -1,0 +1,24 @@
+"""Fixtures for the reasoning tests: one kitchen world per module, put back exactly after every test."""
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+import pytest
+from scenes import kitchen_world, wake
+
+
+@pytest.fixture(scope="module")
+def kitchen() -> Iterator[Any]:
+    world = kitchen_world()
+    yield world
+    world.exit()
+
+
+@pytest.fixture
+def scene(kitchen: Any) -> Iterator[Any]:
+    """The module's kitchen world; whatever the test moves is undone afterwards."""
+    state = kitchen.save_state()
+    yield kitchen
+    kitchen.restore_state(state)
+    kitchen.release_state(state)
+    wake(kitchen)

@@ -1,0 +1,131 @@
+"""ik.solve: the arm's joints that bring a tool frame to a position (and orientation), checked by PyBullet."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pybullet as p
+import pytest
+from scenes import COUNTER_POSE, fingerprint
+
+from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve
+from pycram_cli.reasoning.ik import _Problem as Problem
+from pycram_cli.world.pose import angle_between, quat_multiply
+
+LEFT, RIGHT = "l_gripper_tool_frame", "r_gripper_tool_frame"
+LEFT_ARM = ["l_shoulder_pan_joint", "l_shoulder_lift_joint", "l_upper_arm_roll_joint", "l_elbow_flex_joint",
+            "l_forearm_roll_joint", "l_wrist_flex_joint", "l_wrist_roll_joint"]
+FRONT = (0.0, 0.0, 0.0, 1.0)
+TOP = (0.0, 0.7071068, 0.0, 0.7071068)
+
+
+@pytest.fixture
+def at_counter(scene):
+    scene.robot.set_position_and_orientation(*COUNTER_POSE)
+    return scene
+
+
+@pytest.mark.parametrize("tool", [LEFT, RIGHT, "wide_stereo_optical_frame"])
+def test_the_kinematic_chain_agrees_with_pybullet(scene, tool):
+    robot = scene.robot
+    robot.set_position_and_orientation((0.3, -0.2, 0.0), (0.0, 0.0, math.sin(0.4), math.cos(0.4)))
+    chain = chain_for(robot, robot.get_link_id(tool))
+    names = [j.name for j in chain.joints if j.kind in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC)]
+    problem = Problem(robot, chain, names)
+    rng = np.random.default_rng(7)
+    lo = np.where(np.isfinite(problem.lo), problem.lo, -math.pi)
+    hi = np.where(np.isfinite(problem.hi), problem.hi, math.pi)
+    configurations = lo + rng.random((5, len(lo))) * (hi - lo)
+    tools, _, _ = problem.forward(configurations)
+    for q, ours in zip(configurations, tools):
+        pos, orn = forward_pose(robot, tool, dict(zip(problem.names, q)))
+        assert ours[:3, 3] == pytest.approx(pos, abs=1e-6)
+        assert ours[:3, :3] == pytest.approx(np.array(p.getMatrixFromQuaternion(orn)).reshape(3, 3), abs=1e-6)
+
+
+def test_a_position_in_front_of_the_robot_is_reached(at_counter):
+    solution = solve(at_counter.robot, LEFT, (1.2, 0.9, 1.0))
+    assert isinstance(solution, IKSolution) and solution
+    assert solution.position_error < 1e-3 and solution.orientation_error is None
+    assert sorted(solution.joint_positions) == sorted(LEFT_ARM)
+
+
+def test_a_position_and_orientation_are_reached_together(at_counter):
+    robot = at_counter.robot
+    for grasp in (FRONT, TOP):
+        solution = solve(robot, RIGHT, (1.25, 0.6, 0.95), grasp)
+        assert solution and solution.position_error < 1e-3 and solution.orientation_error < 0.01
+        pos, orn = forward_pose(robot, RIGHT, solution.joint_positions)
+        assert math.dist(pos, (1.25, 0.6, 0.95)) == pytest.approx(solution.position_error)
+        assert angle_between(orn, grasp) < 0.01
+
+
+def test_orientations_follow_the_robot_base(scene):
+    robot = scene.robot
+    yaw = (0.0, 0.0, 1.0, 0.0)  # turned around, facing -x
+    robot.set_position_and_orientation((-0.3, 1.0, 0.0), yaw)
+    grasp = quat_multiply(yaw, FRONT)
+    solution = solve(robot, LEFT, (-0.8, 1.0, 0.95), grasp)
+    assert solution and solution.orientation_error < 0.01
+
+
+def test_joint_limits_are_respected(at_counter):
+    robot = at_counter.robot
+    for target in [(1.2, 0.9, 1.0), (1.5, 0.2, 0.6), (0.9, 1.4, 1.4)]:
+        solution = solve(robot, LEFT, target)
+        for name, value in solution.joint_positions.items():
+            joint = robot.joint(name)
+            if joint.limited:
+                assert joint.lower <= value <= joint.upper, name
+
+
+def test_only_the_arm_moves_torso_and_base_stay(at_counter):
+    robot = at_counter.robot
+    solution = solve(robot, LEFT, (1.2, 0.9, 1.0))
+    assert "torso_lift_joint" not in solution.joint_positions
+    robot.set_joint_positions(solution.joint_positions)
+    assert math.dist(robot.get_link_position(LEFT), (1.2, 0.9, 1.0)) < 1e-3
+
+
+def test_the_joints_to_move_can_be_chosen(at_counter):
+    robot = at_counter.robot
+    joints = ["torso_lift_joint", *LEFT_ARM]
+    solution = solve(robot, LEFT, (1.1, 0.9, 1.35), joints=joints)
+    assert solution and set(solution.joint_positions) == set(joints)
+
+
+def test_an_unreachable_target_gives_the_best_configuration_and_its_error(at_counter):
+    solution = solve(at_counter.robot, LEFT, (3.0, 0.7, 1.0))
+    assert not solution
+    assert 1.0 < solution.position_error < 2.5
+    assert sorted(solution.joint_positions) == sorted(LEFT_ARM)
+
+
+def test_the_threshold_decides_success(at_counter):
+    far = (1.35, 0.7, 0.4)  # a little below what the arm reaches
+    best = solve(at_counter.robot, RIGHT, far)
+    assert not best
+    assert solve(at_counter.robot, RIGHT, far, threshold=best.position_error + 0.01)
+
+
+def test_solve_is_deterministic_bitwise(at_counter):
+    robot = at_counter.robot
+    first = solve(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
+    second = solve(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
+    assert first == second
+    unreachable = [solve(robot, LEFT, (1.3, 0.6, 1.9)) for _ in range(2)]
+    assert unreachable[0] == unreachable[1]
+
+
+def test_solve_leaves_the_world_untouched(at_counter):
+    before = fingerprint(at_counter)
+    solve(at_counter.robot, LEFT, (1.2, 0.9, 1.0), TOP)
+    solve(at_counter.robot, RIGHT, (3.0, 0.0, 1.0))
+    assert fingerprint(at_counter) == before
+
+
+def test_unknown_links_and_joints_are_reported(scene):
+    with pytest.raises(KeyError, match="did you mean 'l_gripper_tool_frame'"):
+        solve(scene.robot, "l_gripper_tool_fram", (1, 1, 1))
+    with pytest.raises(KeyError, match="no joint"):
+        solve(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
