@@ -1,0 +1,51 @@
+"""What every process module shares: the robot it drives and the world it acts in."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from ..failures import Failure
+from ..robots import RobotDescription, description_for
+from ..world import BulletWorld, Object
+
+
+@dataclass
+class Robot:
+    """The robot object together with its description."""
+
+    world: BulletWorld
+    body: Object
+    description: RobotDescription
+
+    @classmethod
+    def of(cls, world: BulletWorld) -> "Robot":
+        body = world.robot
+        if body is None:
+            raise Failure("the world has no robot (an object of type 'robot')")
+        description = description_for(body)
+        if description is None:
+            raise Failure(f"no robot description for '{body.name}' ({body.path.name}); "
+                          "add resources/robots/<name>/<name>.yaml")
+        return cls(world, body, description)
+
+    def held_objects(self, arm: str | None = None) -> list[Object]:
+        """Objects attached to a tool frame (of `arm`, or of any arm)."""
+        arms = [self.description.arm(arm)] if arm else list(self.description.arms.values())
+        tool_ids = {self.body.get_link_id(a.tool_frame) for a in arms}
+        return sorted((child for child, att in self.body.attachments.items()
+                       if att.parent is self.body and att.parent_link in tool_ids), key=lambda o: o.name)
+
+    def arm_holding(self, obj: Object) -> str | None:
+        att = self.body.attachments.get(obj)
+        if att is None or att.parent is not self.body:
+            return None
+        return self.description.arm_of_link(self.body.get_link_name(att.parent_link))
+
+
+class ProcessModule:
+    """Executes one kind of resolved designator on a robot. Subclasses implement `execute`."""
+
+    resource: str = ""
+
+    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Any:  # pragma: no cover - interface
+        raise NotImplementedError

@@ -1,0 +1,27 @@
+"""Navigation: teleport the base; fail (and stay put) if the robot would collide."""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..failures import NavigationFailure
+from .base import ProcessModule, Robot
+from .collisions import collisions
+from .registry import process_module
+
+
+@process_module("moving")
+class Navigation(ProcessModule):
+    resource = "base"
+
+    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
+        body = robot.body
+        before = body.get_pose()
+        target = (float(slots["target"][0]), float(slots["target"][1]), before[0][2])
+        body.set_position_and_orientation(target, slots["orientation"])
+        hits = collisions(body, ignore=set(robot.held_objects()))
+        if hits:
+            body.set_position_and_orientation(*before)
+            what = "; ".join(f"{o.name} ({', '.join(f'{a}↔{b}' for a, b in pairs[:3])})" for o, pairs in hits.items())
+            raise NavigationFailure(
+                f"robot cannot stand at ({target[0]:.3f}, {target[1]:.3f}): it would collide with {what}",
+                target=list(target), colliding=[o.name for o in hits])

@@ -1,0 +1,52 @@
+"""Perception: detect a visible object of a type, or look it up in the world state."""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..failures import PerceptionFailure
+from ..reasoning import occluding, visible
+from ..world import Object
+from .base import ProcessModule, Robot
+from .registry import process_module
+
+
+def _of_type(robot: Robot, object_type: str) -> list[Object]:
+    return sorted((o for o in robot.world.objects if o.type == object_type), key=lambda o: o.name)
+
+
+@process_module("detecting")
+class Detecting(ProcessModule):
+    resource = "camera"
+
+    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
+        object_type = slots["object-type"]
+        candidates = _of_type(robot, object_type)
+        if not candidates:
+            raise PerceptionFailure(f"there is no object of type '{object_type}' to see", object_type=object_type)
+        seen = []
+        for obj in candidates:
+            answer = visible(obj, world=robot.world)
+            if answer.visible:
+                seen.append((-answer.fraction, obj.name, obj))
+            else:
+                blockers = [o.name for o in occluding(obj, world=robot.world)]
+                reason = f"{answer.fraction:.0%} visible" + (f", hidden by {', '.join(blockers)}" if blockers else "")
+                seen.append((1.0, obj.name, reason))
+        visible_ones = [s for s in seen if isinstance(s[2], Object)]
+        if visible_ones:
+            return min(visible_ones)[2]
+        details = "; ".join(f"{name}: {reason}" for _, name, reason in seen)
+        raise PerceptionFailure(f"no {object_type} is visible from the robot's camera ({details})",
+                                object_type=object_type)
+
+
+@process_module("world-state-detecting")
+class WorldStateDetecting(ProcessModule):
+    resource = ""
+
+    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
+        object_type = slots["object-type"]
+        candidates = _of_type(robot, object_type)
+        if not candidates:
+            raise PerceptionFailure(f"the world has no object of type '{object_type}'", object_type=object_type)
+        return candidates[0]
