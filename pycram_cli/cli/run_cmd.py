@@ -1,0 +1,204 @@
+"""`pycram run PLAN`: validate and run a plan, showing a live tree, and save its trace."""
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+import click
+from rich.live import Live
+from rich.markup import escape
+
+from ..errors import InputError
+from ..plan import find_plan, parse_assignments, plan_world
+from ..plan.trace import TraceNode, normalised, save
+from . import console
+from .options import gui_option, json_option, wait_for_window
+from .trace_cmd import PLAIN, build_tree, describe_node, find_node
+from .validate_cmd import checker
+
+EXIT_FAILED = 1
+
+
+@checker("plan")
+def _check_plan(path: Path) -> object:
+    from ..plan import load_plan
+
+    return load_plan(path)
+
+
+# -- progress views (observers of a run) ------------------------------------------------------------
+class PlainView:
+    """One line per finished node on stderr (not a terminal, e.g. CI logs)."""
+
+    def started(self, node: TraceNode) -> None:
+        pass
+
+    def finished(self, node: TraceNode) -> None:
+        data = node.to_dict(timing=True)
+        data.pop("children", None)
+        details = describe_node(data)
+        console.err.print(f"{PLAIN.get(node.status, node.status):9} {node.path}" + (f"  {details}" if details else ""),
+                          markup=False, highlight=False)
+
+    def log(self, node: TraceNode, message: str) -> None:
+        pass  # the finished line of the log step shows the message
+
+
+class LiveView:
+    """A live tree of the plan on a terminal: each node with its status, finished subtrees folded."""
+
+    def __init__(self) -> None:
+        self.root: TraceNode | None = None
+        self._last: Any = ""
+        self.live = Live(console=console.err, get_renderable=self.render, refresh_per_second=8, transient=False,
+                         auto_refresh=True, vertical_overflow="crop")
+
+    def render(self) -> Any:
+        if self.root is None:
+            return ""
+        try:
+            self._last = build_tree(self.root.to_dict(timing=True), collapse=True)
+        except RuntimeError:  # the tree changed while it was read: show the previous picture
+            pass
+        return self._last
+
+    def __enter__(self) -> "LiveView":
+        self.live.__enter__()
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.live.refresh()
+        self.live.__exit__(*exc)
+
+    def started(self, node: TraceNode) -> None:
+        if self.root is None and "/" not in node.path:
+            self.root = node
+
+    def finished(self, node: TraceNode) -> None:
+        pass
+
+    def log(self, node: TraceNode, message: str) -> None:
+        self.live.console.print(f"[cyan]log[/] [dim]{escape(node.path)}[/]: {escape(message)}")
+
+
+class QuietView:
+    def started(self, node: TraceNode) -> None:
+        pass
+
+    def finished(self, node: TraceNode) -> None:
+        pass
+
+    def log(self, node: TraceNode, message: str) -> None:
+        pass
+
+
+# -- the command -----------------------------------------------------------------------------------------
+def prepare(plan_file: str, world_file: str | None, params: tuple[str, ...]) -> tuple[Any, Path, dict[str, Any]]:
+    """Every check that needs no simulation: the plan, its world file, the parameters (all problems at once)."""
+    from ..errors import as_list, raise_if_any
+    from ..plan import bind_params, check_plan, parse_plan
+
+    path = find_plan(plan_file)
+    errors: list[InputError] = []
+    plan = parse_plan(path, errors)
+    world_path: Path | None = None
+    try:
+        world_path = plan_world(plan, world_file)
+    except InputError as exc:
+        errors.append(exc)
+    try:
+        check_plan(plan, check_world_file=False)
+    except Exception as exc:  # noqa: BLE001 - InputError(s)
+        errors.extend(as_list(exc))  # type: ignore[arg-type]
+    values: dict[str, Any] = {}
+    try:
+        values = bind_params(plan, parse_assignments(params))
+    except Exception as exc:  # noqa: BLE001 - InputError(s)
+        errors.extend(as_list(exc))  # type: ignore[arg-type]
+    raise_if_any(errors)
+    assert world_path is not None
+    return plan, world_path, values
+
+
+@click.command("run")
+@click.argument("plan_file", metavar="PLAN")
+@click.option("--world", "world_file", metavar="WORLD",
+              help="World file or bundled world name (default: the plan's `world:`, else the kitchen).")
+@click.option("-p", "--param", "params", multiple=True, metavar="NAME=VALUE",
+              help="Set a plan parameter (VALUE is read as YAML: 0.3, [1, 0, 0], milk). Repeatable.")
+@click.option("--trace", "trace_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write the run's trace (JSON) to this file.")
+@json_option
+@gui_option
+@click.pass_context
+def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
+        as_json: bool, gui: bool) -> None:
+    """Validate and run PLAN (a plan file, or the name of a bundled plan).
+
+    Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
+    the plan succeeded, 1 when it failed, 2 for invalid input.
+    """
+    from ..plan import check_plan, run_plan
+    from ..worldfile.loader import load_spec
+    from ..worldfile.spec import parse_world
+
+    plan, world_path, values = prepare(plan_file, world_file, params)
+    spec = parse_world(world_path)
+    world = load_spec(spec, mode="gui" if gui else "direct")
+    try:
+        check_plan(plan, world=world, check_world_file=False)
+        view: Any
+        if as_json:
+            view = QuietView()
+        elif console.err.is_terminal:
+            view = LiveView()
+        else:
+            view = PlainView()
+        if not as_json:
+            console.info(f"running {plan.path} on {world_path}"
+                         + (f" with {', '.join(f'{k}={json.dumps(v)}' for k, v in values.items())}" if values else ""))
+        started = time.perf_counter()
+        if isinstance(view, LiveView):
+            with view:
+                result = run_plan(plan, world, values, view, world_name=world_path.name)
+        else:
+            result = run_plan(plan, world, values, view, world_name=world_path.name)
+        duration = time.perf_counter() - started
+        if trace_file is not None:
+            save(result.trace, trace_file)
+        if as_json:
+            console.emit_json(normalised({"status": result.status, "failure": result.failure,
+                                          "duration": round(duration, 3), "trace": result.trace}))
+        else:
+            _summary(plan, result, duration, trace_file)
+        if gui:
+            wait_for_window(world)
+    finally:
+        world.exit()
+    if not result.succeeded:
+        ctx.exit(EXIT_FAILED)
+
+
+def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None) -> None:
+    name = plan.path.name
+    if result.succeeded:
+        console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
+    else:
+        failure = result.failure or {}
+        node = find_node(result.trace["root"], failure.get("path", ""))
+        where = f" ({plan.path}:{node['source']})" if node and node.get("source") else ""
+        message = (f"plan {name} {result.status} after {duration:.2f} s: {failure.get('type')} at "
+                   f"{failure.get('path')}{where}: {failure.get('message')}")
+        for nested in failure.get("failures") or []:
+            message += f"\n  - {nested.get('type')} at {nested.get('path')}: {nested.get('message')}"
+        if console.out.is_terminal:
+            console.out.print(f"[bold red]✗[/] {escape(message)}")
+        else:
+            console.plain(message)
+    if trace_file is not None:
+        console.info(f"trace written to {trace_file}")
+
+
+COMMANDS = [run]

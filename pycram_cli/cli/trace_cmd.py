@@ -1,0 +1,196 @@
+"""`pycram trace show|diff`: look at saved plan traces and compare them."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import click
+from rich.markup import escape
+from rich.tree import Tree
+
+from ..plan import trace as traces
+from . import console
+
+STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "cancelled": ("⊘", "yellow"),
+         "skipped": ("·", "dim"), "running": ("▶", "cyan"), "pending": ("○", "dim")}
+PLAIN = {"succeeded": "ok", "failed": "FAILED", "cancelled": "cancelled", "skipped": "skipped",
+         "running": "running", "pending": "pending"}
+
+
+def _short(value: Any, limit: int = 70) -> str:
+    text = json.dumps(value, ensure_ascii=False, separators=(", ", ": ")) if not isinstance(value, str) else value
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _slots(values: dict[str, Any]) -> str:
+    return ", ".join(f"{k}={_short(v, 40)}" for k, v in values.items())
+
+
+def describe_node(node: dict[str, Any], timing: bool = True) -> str:
+    """The details shown after a node's label: slots, answers, bound values, failures."""
+    parts: list[str] = []
+    if "designator" in node:
+        data = node["designator"]
+        parts.append(_slots(data.get("resolved") or data.get("slots") or {}))
+    if "query" in node:
+        q = node["query"]
+        parts.append(f"{_slots(q.get('args', {}))} → {_short(q.get('result'))}")
+    if "condition" in node:
+        parts.append(describe_condition(node["condition"]))
+    if "call" in node:
+        parts.append(_slots(node["call"].get("args", {})))
+    if "item" in node:
+        parts.append(f"= {_short(node['item'])}")
+    if "message" in node:
+        parts.append(f"“{node['message']}”")
+    if "caught" in node:
+        parts.append(f"caught {node['caught'].get('type')}")
+    if "retries" in node and node["retries"]:
+        parts.append(f"{node['retries']} retr{'y' if node['retries'] == 1 else 'ies'}")
+    if "bound" in node:
+        parts.append("; ".join(f"${k} = {_short(v, 50)}" for k, v in node["bound"].items()))
+    failure = node.get("failure")
+    if failure and node.get("status") == "failed" and failure.get("path") == node.get("path"):
+        parts.append(f"{failure.get('type')}: {failure.get('message')}")
+    if timing and isinstance(node.get("timing"), dict) and node["timing"].get("duration") is not None:
+        parts.append(f"{node['timing']['duration']:.2f} s")
+    return "  ".join(p for p in parts if p)
+
+
+def describe_condition(record: dict[str, Any]) -> str:
+    holds = record.get("holds", record.get("value"))
+    verdict = "holds" if holds else "does not hold"
+    if "query" in record:
+        q = record["query"]
+        return f"{q.get('name')}({_slots(q.get('args', {}))}) → {_short(q.get('result'))}: {verdict}"
+    if "variable" in record:
+        return f"{record['variable']} = {_short(record.get('value'), 50)}: {verdict}"
+    if "not" in record:
+        return f"not ({describe_condition(record['not'])})"
+    if "equal" in record:
+        a, b = record["equal"]
+        return f"{_short(a, 30)} = {_short(b, 30)}: {verdict}"
+    return verdict
+
+
+def node_label(node: dict[str, Any], rich_markup: bool = True, timing: bool = True) -> str:
+    status = node.get("status", "pending")
+    label = node.get("path", "?").rsplit("/", 1)[-1]
+    details = describe_node(node, timing)
+    if not rich_markup:
+        return f"[{PLAIN.get(status, status)}] {label}" + (f"  {details}" if details else "")
+    icon, style = STYLE.get(status, ("?", ""))
+    text = f"[{style}]{icon}[/] [bold]{escape(label)}[/]"
+    if details:
+        text += f"  [dim]{escape(details)}[/]" if status != "failed" else f"  {escape(details)}"
+    return text
+
+
+def build_tree(root: dict[str, Any], collapse: bool = False, timing: bool = True) -> Tree:
+    """A rich Tree of a trace's nodes; with `collapse`, finished successful subtrees are folded."""
+    tree = Tree(node_label(root, timing=timing), guide_style="dim")
+    _add(tree, root, collapse, timing)
+    return tree
+
+
+def _add(tree: Tree, node: dict[str, Any], collapse: bool, timing: bool) -> None:
+    children = node.get("children") or []
+    if collapse and node.get("status") in ("succeeded", "skipped") and children and node.get("path") != "body":
+        tree.add(f"[dim]… {len(children)} step{'s' if len(children) != 1 else ''}[/]")
+        return
+    pending = 0
+    for child in children:
+        if collapse and child.get("status") == "pending":
+            pending += 1  # upcoming steps are summed up in one line
+            continue
+        branch = tree.add(node_label(child, timing=timing))
+        _add(branch, child, collapse, timing)
+    if pending:
+        tree.add(f"[dim]○ {pending} more step{'s' if pending != 1 else ''}[/]")
+
+
+def plain_lines(node: dict[str, Any], depth: int = 0, timing: bool = True) -> list[str]:
+    lines = ["  " * depth + node_label(node, rich_markup=False, timing=timing)]
+    for child in node.get("children") or []:
+        lines.extend(plain_lines(child, depth + 1, timing))
+    return lines
+
+
+def find_node(root: dict[str, Any], path: str) -> dict[str, Any] | None:
+    if root.get("path") == path:
+        return root
+    for child in root.get("children") or []:
+        if path == child.get("path") or path.startswith(f"{child.get('path')}/"):
+            return find_node(child, path)
+    return None
+
+
+def state_rows(state: dict[str, Any]) -> list[tuple[str, ...]]:
+    rows = []
+    for name, obj in (state.get("objects") or {}).items():
+        position = ", ".join(f"{v:.3f}" for v in obj.get("position", []))
+        joints = ", ".join(f"{k}={v:.3f}" for k, v in (obj.get("joints") or {}).items())
+        rows.append((name, obj.get("type", ""), f"({position})", joints or "-"))
+    return rows
+
+
+@click.group()
+def trace() -> None:
+    """Show saved plan traces and compare them."""
+
+
+@trace.command("show")
+@click.argument("file", type=click.Path(path_type=Path))
+@click.option("--no-timing", is_flag=True, help="Leave durations out.")
+def show(file: Path, no_timing: bool) -> None:
+    """Print the trace in FILE as a tree, then the world's final state."""
+    data = traces.load(file)
+    timing = not no_timing
+    status = data.get("status", "?")
+    header = f"{data.get('plan')} on {data.get('world')}: {status}"
+    if data.get("params"):
+        header += "  (" + ", ".join(f"{k}={_short(v, 30)}" for k, v in data["params"].items()) + ")"
+    if console.out.is_terminal:
+        console.out.print(f"[bold]{escape(header)}[/]")
+        console.out.print(build_tree(data["root"], timing=timing))
+    else:
+        console.plain(header)
+        for line in plain_lines(data["root"], timing=timing):
+            console.plain(line)
+    failure = data.get("failure")
+    if failure:
+        console.plain(f"failure: {failure.get('type')} at {failure.get('path')}: {failure.get('message')}")
+    attachments = (data.get("final_state") or {}).get("attachments") or []
+    rows = state_rows(data.get("final_state") or {})
+    if rows:
+        console.table("final state", ["object", "type", "position", "joints"], rows)
+    for att in attachments:
+        console.plain(f"attached: {att['child']} to {att['parent']} ({att['parent_link']})")
+
+
+@trace.command("diff")
+@click.argument("a", type=click.Path(path_type=Path))
+@click.argument("b", type=click.Path(path_type=Path))
+@click.option("--atol", type=click.FloatRange(min=0), default=1e-3, show_default=True,
+              help="Numbers closer than this are equal.")
+@click.option("--json", "as_json", is_flag=True, help="The differences as JSON on stdout.")
+@click.pass_context
+def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -> None:
+    """Compare traces A and B, ignoring timings; exit 0 when they match, 1 when they differ."""
+    first, second = traces.load(a), traces.load(b)
+    found = traces.diff(first, second, atol)
+    if as_json:
+        console.emit_json({"same": not found, "atol": atol,
+                           "differences": [d.to_dict() for d in found]})
+    elif not found:
+        console.success(f"{a} and {b} match (atol {atol:g})")
+    else:
+        for difference in found:
+            console.plain(str(difference))
+        console.plain(f"{len(found)} difference{'s' if len(found) != 1 else ''} (A = {a}, B = {b})")
+    if found:
+        ctx.exit(1)
+
+
+COMMANDS = [trace]

@@ -1,0 +1,231 @@
+"""Values in a plan: `$name` references, string interpolation, attribute access and scopes.
+
+A string that is exactly a reference (`$obj`, `$blockers.0.type`) evaluates to the bound
+value itself (an Object, a list, a number...). A string that merely contains references
+(`"$object is not stable"`, `"${object}s"`) is interpolated into a string. `$$` is a
+literal dollar sign.
+
+Scopes are function scopes, like Python's: plan parameters are global and read-only;
+every call of a subplan (and the plan body) gets its own frame of local variables, into
+which `as:`, `for_each` and `set` bind.
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any, Iterator, Mapping
+
+from ..failures import Failure
+
+NAME = r"[A-Za-z_][A-Za-z0-9_-]*"
+PATH = rf"{NAME}(?:\.[A-Za-z0-9_-]+)*"
+REFERENCE = re.compile(rf"^\$({PATH})$")
+INTERPOLATION = re.compile(rf"\$\$|\$\{{({PATH})\}}|\$({PATH})")
+IDENTIFIER = re.compile(rf"^{NAME}$")
+
+
+@dataclass(frozen=True)
+class Ref:
+    """One `$name.attr.attr` reference."""
+
+    name: str
+    attrs: tuple[str, ...]
+
+    @classmethod
+    def parse(cls, text: str) -> "Ref":
+        head, *rest = text.split(".")
+        return cls(head, tuple(rest))
+
+    def __str__(self) -> str:
+        return "$" + ".".join((self.name, *self.attrs))
+
+
+def is_reference(value: Any) -> bool:
+    """Whether `value` is only known at run time (it is or contains a `$reference`)."""
+    return bool(references(value))
+
+
+def references(value: Any) -> list[Ref]:
+    """Every reference inside `value` (strings, lists and mappings, recursively)."""
+    found: list[Ref] = []
+    _collect(value, found)
+    return found
+
+
+def _collect(value: Any, found: list[Ref]) -> None:
+    if isinstance(value, str):
+        for match in INTERPOLATION.finditer(value):
+            text = match.group(1) or match.group(2)
+            if text:
+                found.append(Ref.parse(text))
+    elif isinstance(value, Mapping):
+        for item in value.values():
+            _collect(item, found)
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            _collect(item, found)
+
+
+class UnboundVariable(Failure):
+    """A `$variable` that has no value at run time (bound in a branch that did not run)."""
+
+
+@dataclass(frozen=True)
+class FailureInfo:
+    """What a `catch` handler sees as `$failure`: `.type`, `.message`, `.path`."""
+
+    type: str
+    message: str
+    path: str
+    error: Failure
+
+    def __str__(self) -> str:
+        return f"{self.type}: {self.message}"
+
+
+class Frame:
+    """Variables of one plan invocation; globals (the plan's parameters) behind it."""
+
+    def __init__(self, values: Mapping[str, Any] | None = None, parent: "Frame | None" = None) -> None:
+        self.values: dict[str, Any] = dict(values or {})
+        self.parent = parent
+
+    def lookup(self, name: str) -> Any:
+        frame: Frame | None = self
+        while frame is not None:
+            if name in frame.values:
+                return frame.values[name]
+            frame = frame.parent
+        raise UnboundVariable(f"variable ${name} has no value here (it is bound by a step that did not run)")
+
+    def bind(self, name: str, value: Any) -> None:
+        self.values[name] = value
+
+    def names(self) -> Iterator[str]:
+        frame: Frame | None = self
+        while frame is not None:
+            yield from frame.values
+            frame = frame.parent
+
+
+def attribute(value: Any, attr: str, ref: Ref) -> Any:
+    """`value.attr`: list index or `length`, mapping key, Object/failure attribute."""
+    from ..world import Object
+
+    if isinstance(value, Object):
+        table = {"name": lambda o: o.name, "type": lambda o: o.type,
+                 "position": lambda o: list(o.get_position()), "orientation": lambda o: list(o.get_orientation())}
+        if attr in table:
+            return table[attr](value)
+    elif isinstance(value, FailureInfo):
+        if attr in ("type", "message", "path"):
+            return getattr(value, attr)
+    elif isinstance(value, (list, tuple)):
+        if attr == "length":
+            return len(value)
+        if attr.lstrip("-").isdigit():
+            index = int(attr)
+            if -len(value) <= index < len(value):
+                return value[index]
+            raise UnboundVariable(f"{ref}: index {index} is out of range (the list has {len(value)} items)")
+    elif isinstance(value, Mapping):
+        return value.get(attr)  # an absent key reads as null (optional fields of records)
+    raise UnboundVariable(f"{ref}: {display(value)} has no attribute '{attr}'")
+
+
+def lookup(ref: Ref, frame: Frame) -> Any:
+    value = frame.lookup(ref.name)
+    for attr in ref.attrs:
+        value = attribute(value, attr, ref)
+    return value
+
+
+def evaluate(value: Any, frame: Frame) -> Any:
+    """The run-time value of a plan value: references looked up, strings interpolated, recursively."""
+    if isinstance(value, str):
+        whole = REFERENCE.match(value)
+        if whole:
+            return lookup(Ref.parse(whole.group(1)), frame)
+        if "$" not in value:
+            return value
+        return INTERPOLATION.sub(lambda m: _interpolated(m, frame), value)
+    if isinstance(value, Mapping):
+        return {key: evaluate(item, frame) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [evaluate(item, frame) for item in value]
+    return value
+
+
+def _interpolated(match: re.Match[str], frame: Frame) -> str:
+    if match.group(0) == "$$":
+        return "$"
+    return display(lookup(Ref.parse(match.group(1) or match.group(2)), frame))
+
+
+def display(value: Any) -> str:
+    """How a value reads in a message: objects by name, numbers short."""
+    from ..world import Object
+
+    if isinstance(value, Object):
+        return value.name
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(display(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k}: {display(v)}" for k, v in value.items()) + "}"
+    if value is None:
+        return "null"
+    return str(value)
+
+
+def truthy(value: Any) -> bool:
+    """Conditions: false, null, 0, "" and empty lists are false; everything else (objects too) is true."""
+    if value is None:
+        return False
+    if isinstance(value, (list, tuple, dict, str)):
+        return len(value) > 0
+    if isinstance(value, (int, float)):
+        return value != 0
+    return bool(value)
+
+
+def jsonable(value: Any, digits: int = 6) -> Any:
+    """A JSON-friendly, deterministic form of a value: objects by name, floats rounded, tuples as lists."""
+    from ..world import Object
+
+    if isinstance(value, Object):
+        return value.name
+    if isinstance(value, FailureInfo):
+        return {"type": value.type, "message": value.message, "path": value.path}
+    if _is_numpy_number(value):
+        return jsonable(value.item(), digits)
+    if isinstance(value, bool) or value is None or isinstance(value, str):
+        return value
+    if isinstance(value, int):
+        return value
+    if isinstance(value, float):
+        number = float(value)
+        if math.isnan(number) or math.isinf(number):
+            return str(number)
+        rounded = round(number, digits)
+        if rounded == int(rounded) and abs(rounded) < 1e15:
+            rounded = float(int(rounded))
+        return 0.0 if rounded == 0 else rounded
+    if isinstance(value, Mapping):
+        return {str(k): jsonable(v, digits) for k, v in value.items()}
+    if isinstance(value, (list, tuple, set, frozenset)):
+        items = sorted(value, key=str) if isinstance(value, (set, frozenset)) else value
+        return [jsonable(v, digits) for v in items]
+    if hasattr(value, "tolist"):
+        return jsonable(value.tolist(), digits)
+    if hasattr(value, "name") and isinstance(getattr(value, "name"), str):
+        return value.name
+    return str(value)
+
+
+def _is_numpy_number(value: Any) -> bool:
+    return type(value).__module__ == "numpy" and hasattr(value, "item") and isinstance(value.item(), (int, float))

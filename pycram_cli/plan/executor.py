@@ -1,0 +1,391 @@
+"""Running a validated plan on a world: steps, threads, cancellation and the trace.
+
+`run_plan(plan, world, params)` runs the plan body and returns a `RunResult` with the
+status, the failure (if any) and the trace. Each node class knows how to execute itself
+(`Node.execute(ex, tn)`); `Exec` is what it gets: the run, the current variable frame,
+the cancellation token and scheduler key of its thread, and helpers to run child steps
+in sequence (`seq`) or concurrently (`concurrent`).
+"""
+from __future__ import annotations
+
+import contextlib
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Protocol
+
+from ..failures import Failure
+from .context import Frame, evaluate, jsonable
+from .resources import ResourceAnalysis
+from .scheduler import CancelToken, Cancelled, Key, Scheduler
+from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld
+    from .syntax import Node, Plan
+
+MAX_CALL_DEPTH = 64
+
+
+class Observer(Protocol):
+    """Told about every node as it starts and ends (live views). Called from plan threads."""
+
+    def started(self, node: TraceNode) -> None: ...
+
+    def finished(self, node: TraceNode) -> None: ...
+
+    def log(self, node: TraceNode, message: str) -> None: ...
+
+
+class InternalError(Exception):
+    """A bug inside a step (not a plan failure); carried out of branch threads and re-raised."""
+
+
+@dataclass
+class RunResult:
+    status: str                       # "succeeded" or "failed" (or "cancelled" when interrupted)
+    failure: dict[str, Any] | None
+    trace: dict[str, Any]
+    duration: float
+    value: Any = None
+    steps: int = 0
+    error: BaseException | None = field(default=None, repr=False)
+
+    @property
+    def succeeded(self) -> bool:
+        return self.status == "succeeded"
+
+
+class Run:
+    """One execution of a plan on a world."""
+
+    def __init__(self, plan: "Plan", world: "BulletWorld", params: Mapping[str, Any],
+                 observer: Observer | None = None, world_name: str | None = None) -> None:
+        self.plan = plan
+        self.world = world
+        self.params = dict(params)
+        self.observer = observer
+        self.world_name = world_name
+        self.scheduler = Scheduler()
+        self.token = CancelToken(notify=self.scheduler.wake)
+        self.resources = ResourceAnalysis(plan)
+        self.globals = Frame(self.params)
+        self.root = TraceNode("body", "seq", plan.where)
+        self.t0 = time.perf_counter()
+        self._observer_lock = threading.Lock()
+
+    def now(self) -> float:
+        return time.perf_counter() - self.t0
+
+    def notify(self, event: str, node: TraceNode, *args: Any) -> None:
+        if self.observer is None:
+            return
+        with self._observer_lock:
+            with contextlib.suppress(Exception):
+                getattr(self.observer, event)(node, *args)
+
+    def cancel(self, reason: str = "interrupted") -> None:
+        self.token.cancel(reason)
+
+    def execute(self) -> RunResult:
+        ex = Exec(self, Frame(parent=self.globals), self.token, ())
+        status, failure, value, error = "succeeded", None, None, None
+        try:
+            value = ex.run_body(self.plan.body, self.root, self.plan.where)
+        except Failure as exc:
+            status, failure = "failed", failure_record(exc, self.root.path)
+        except Cancelled as exc:
+            status, failure = "cancelled", {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
+            error = exc
+        duration = self.now()
+        trace = {
+            "format": FORMAT, "version": VERSION,
+            "plan": self.plan.path.name, "world": self.world_name,
+            "params": jsonable(self.params),
+            "status": status, "failure": failure,
+            "root": self.root.to_dict(timing=True),
+            "final_state": final_state(self.world),
+            "timing": {"duration": duration},
+        }
+        steps = sum(1 for n in self.root.walk() if not n.children and n.status in ("succeeded", "failed"))
+        return RunResult(status, failure, trace, duration, value, steps, error)
+
+
+class Exec:
+    """The execution context of one thread inside one plan invocation."""
+
+    def __init__(self, run: Run, frame: Frame, token: CancelToken, key: Key, depth: int = 0) -> None:
+        self.run = run
+        self.frame = frame
+        self.token = token
+        self.key = key
+        self.depth = depth
+
+    @property
+    def world(self) -> "BulletWorld":
+        return self.run.world
+
+    def derive(self, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
+               depth: int | None = None) -> "Exec":
+        return Exec(self.run, frame if frame is not None else self.frame, token if token is not None else self.token,
+                    key if key is not None else self.key, depth if depth is not None else self.depth)
+
+    def evaluate(self, value: Any) -> Any:
+        return evaluate(value, self.frame)
+
+    # -- leaves -------------------------------------------------------------------------------
+    @contextlib.contextmanager
+    def world_action(self) -> Iterator[None]:
+        """Around anything that touches the world (designators, queries): cancellation check, world lock."""
+        self.token.check()
+        with self.run.world.lock:
+            yield
+
+    def pass_turn(self) -> None:
+        """After a leaf step: let the other branches have their turn (see scheduler.py)."""
+        try:
+            self.run.scheduler.pass_turn(self.key, self.token)
+        except Cancelled:
+            pass  # the step itself is done; the next step sees the cancellation
+
+    def sleep(self, seconds: float) -> None:
+        self.token.check()
+        self.run.scheduler.sleep(self.key, self.token, seconds)
+
+    def log(self, tn: TraceNode, message: str) -> None:
+        self.run.notify("log", tn, message)
+
+    # -- one step ------------------------------------------------------------------------------
+    def step(self, node: "Node", tn: TraceNode) -> Any:
+        """Run one node, recording its status, bound value and failure in `tn`."""
+        self.token.check()
+        tn.status, tn.started = "running", self.run.now()
+        self.run.notify("started", tn)
+        try:
+            value = node.execute(self, tn)
+            if node.bind:
+                self.frame.bind(node.bind, value)
+                tn.info["bound"] = {node.bind: jsonable(value)}
+            tn.status = "succeeded"
+            if node.LEAF:
+                self.pass_turn()
+            return value
+        except Failure as exc:
+            if getattr(exc, "plan_path", None) is None:
+                exc.plan_path = tn.path  # type: ignore[attr-defined]
+            tn.status, tn.failure = "failed", failure_record(exc, tn.path)
+            raise
+        except Cancelled:
+            tn.status = "cancelled"
+            _mark(tn, "cancelled")
+            raise
+        except InternalError:
+            tn.status = "failed"
+            raise
+        except Exception as exc:  # a bug in a node: never leave the trace half written
+            tn.status = "failed"
+            tn.failure = {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": tn.path}
+            raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}") from exc
+        finally:
+            tn.duration = self.run.now() - (tn.started or 0.0)
+            self.run.notify("finished", tn)
+
+    def prepare(self, nodes: list["Node"], tn: TraceNode) -> list[TraceNode]:
+        """Trace nodes (pending) for a list of steps, labelled `index:label`."""
+        return [tn.child(f"{i}:{node.label()}", node.head, node.where) for i, node in enumerate(nodes)]
+
+    def seq(self, nodes: list["Node"], tn: TraceNode) -> Any:
+        """Run steps one after another; a failure skips the rest. The value is the last step's."""
+        children = self.prepare(nodes, tn)
+        value = None
+        try:
+            for node, child in zip(nodes, children):
+                value = self.step(node, child)
+        except Cancelled:
+            close_pending(children, "cancelled")
+            raise
+        finally:
+            close_pending(children, "skipped")
+        return value
+
+    def run_body(self, nodes: list["Node"], tn: TraceNode, where: Any = None) -> Any:
+        """The plan body: a seq whose trace node is `tn` itself."""
+        tn.status, tn.started = "running", self.run.now()
+        self.run.notify("started", tn)
+        try:
+            value = self.seq(nodes, tn)
+            tn.status = "succeeded"
+            return value
+        except Failure as exc:
+            tn.status, tn.failure = "failed", failure_record(exc, tn.path)
+            raise
+        except Cancelled:
+            tn.status = "cancelled"
+            raise
+        except BaseException:
+            tn.status = "failed"
+            raise
+        finally:
+            tn.duration = self.run.now() - (tn.started or 0.0)
+            self.run.notify("finished", tn)
+
+    # -- concurrency ---------------------------------------------------------------------------
+    def concurrent(self, nodes: list["Node"], tn: TraceNode, policy: "Policy") -> Any:
+        """Run steps in threads of their own, deciding the outcome with `policy` (par, pursue, try_all)."""
+        children = self.prepare(nodes, tn)
+        scheduler = self.run.scheduler
+        tokens = [self.token.child() for _ in nodes]
+        outcome = Outcome(policy, tokens)
+        keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes))
+        threads = []
+        for i, (node, child, key, token) in enumerate(zip(nodes, children, keys, tokens)):
+            branch = self.derive(token=token, key=key)
+            threads.append(threading.Thread(target=branch._branch, args=(i, node, child, outcome),
+                                            name=f"pycram {child.path}", daemon=True))
+        started: list[threading.Thread] = []
+        try:
+            for thread in threads:
+                thread.start()
+                started.append(thread)
+            for thread in threads:
+                thread.join()
+        except BaseException:  # interrupted (Ctrl-C) or a thread could not start: stop every branch
+            for token in tokens:
+                token.cancel("interrupted")
+            for i, thread in enumerate(threads):
+                if thread not in started:
+                    outcome.report(i, ("cancelled", None))
+                    scheduler.finish(keys[i])
+            for thread in started:
+                thread.join()
+            raise
+        for child in children:
+            if child.status in ("pending", "running"):
+                child.status = "cancelled"
+        scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
+        return outcome.result(self, children)
+
+    def _branch(self, index: int, node: "Node", tn: TraceNode, outcome: "Outcome") -> None:
+        result: tuple[str, Any] = ("cancelled", None)
+        try:
+            self.run.scheduler.acquire(self.key, self.token)
+            result = ("succeeded", self.step(node, tn))
+        except Failure as exc:
+            result = ("failed", exc)
+        except Cancelled:
+            if tn.status == "pending":
+                tn.status = "cancelled"
+            result = ("cancelled", None)
+        except BaseException as exc:  # noqa: BLE001 - carried to the parent thread
+            result = ("error", exc)
+        finally:
+            outcome.report(index, result)
+            self.run.scheduler.finish(self.key)
+
+
+def close_pending(children: list[TraceNode], status: str) -> None:
+    """Steps that never started: `skipped` after a failure or success, `cancelled` after a cancellation."""
+    for child in children:
+        if child.status == "pending":
+            child.status = status
+
+
+def _mark(tn: TraceNode, status: str) -> None:
+    """Children still pending or running when their parent was cancelled are cancelled too."""
+    for child in tn.children:
+        if child.status in ("pending", "running"):
+            child.status = status
+            _mark(child, status)
+
+
+# -- outcomes of concurrent nodes ------------------------------------------------------------------
+@dataclass(frozen=True)
+class Policy:
+    """When a concurrent node is decided: on the first failure (par), first end (pursue), first success (try_all)."""
+
+    name: str
+    decides: Callable[[str], bool]
+
+
+PAR = Policy("par", lambda status: status == "failed")
+PURSUE = Policy("pursue", lambda status: status in ("succeeded", "failed"))
+TRY_ALL = Policy("try_all", lambda status: status == "succeeded")
+
+
+class Outcome:
+    """Collects what each branch ended with; the deciding branch cancels its siblings at once."""
+
+    def __init__(self, policy: Policy, tokens: list[CancelToken]) -> None:
+        self.policy = policy
+        self.tokens = tokens
+        self.results: dict[int, tuple[str, Any]] = {}
+        self.decided: int | None = None
+        self._lock = threading.Lock()
+
+    def report(self, index: int, result: tuple[str, Any]) -> None:
+        cancel = False
+        with self._lock:
+            self.results[index] = result
+            status = result[0]
+            if self.decided is None and (status == "error" or self.policy.decides(status)):
+                self.decided = index
+                cancel = True
+        if cancel:
+            for i, token in enumerate(self.tokens):
+                if i != index:
+                    token.cancel(f"{self.policy.name} decided by branch {index}")
+
+    def result(self, ex: Exec, children: list[TraceNode]) -> Any:
+        errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
+        if errors:
+            error = errors[0]
+            raise error if isinstance(error, InternalError) else InternalError(f"{type(error).__name__}: {error}")
+        ordered = [self.results.get(i, ("cancelled", None)) for i in range(len(self.tokens))]
+        if self.policy is PAR:
+            if self.decided is not None:
+                raise ordered[self.decided][1]
+            return [value for _, value in ordered]
+        if self.policy is PURSUE:
+            if self.decided is None:
+                raise Cancelled("pursue: every branch was cancelled")
+            status, value = ordered[self.decided]
+            if status == "failed":
+                raise value
+            return value
+        # try_all
+        if self.decided is not None:
+            return ordered[self.decided][1]
+        failures = [value for status, value in ordered if status == "failed"]
+        raise combined_failure(failures, "try_all", children)
+
+
+def combined_failure(failures: list[Failure], what: str, children: list[TraceNode]) -> Failure:
+    """One failure for several alternatives that all failed: of their most specific common type."""
+    from ..failures import Failure as Base
+
+    if not failures:
+        return Base(f"{what}: no alternative could run")
+    common = type(failures[0])
+    while not all(isinstance(f, common) for f in failures):
+        common = common.__mro__[1]
+        if not issubclass(common, Base):
+            common = Base
+            break
+    parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
+    error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
+    error.failures = failures  # type: ignore[attr-defined]
+    return error
+
+
+def run_plan(plan: "Plan", world: "BulletWorld", params: Mapping[str, Any] | None = None,
+             observer: Observer | None = None, world_name: str | None = None) -> RunResult:
+    """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`)."""
+    from .params import bind_params
+
+    values = bind_params(plan, params or {})
+    run = Run(plan, world, values, observer, world_name)
+    try:
+        return run.execute()
+    except KeyboardInterrupt:
+        run.cancel("interrupted")
+        raise

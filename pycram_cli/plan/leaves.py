@@ -1,0 +1,519 @@
+"""Leaf steps: motion designators, reasoning queries, call, fail, assert, log, set, wait.
+
+    - moving: {target: [0.65, 0.7, 0]}            any motion designator with its slots (`as:` binds its
+      as: ...                                     result, e.g. the object `detecting` found)
+    - stable: {object: $obj}                      any reasoning query; as a step it only records its
+      as: ok                                      answer (`as:` binds it: true/false or a list of objects)
+    - call: fetch                                 run a subplan; args positional (list) or by name
+      args: {object: milk}                        (`as:` binds the subplan's `returns` value)
+    - fail: PerceptionFailure                     raise a failure (`fail: $failure` re-raises a caught one)
+      message: "no $object here"
+    - assert: {stable: {object: $obj}}            a condition that must hold, else the failure is raised
+      failure: ReasoningFailure                   (default ReasoningFailure; default message says what failed)
+      message: "$obj is not stable"
+    - log: "fetching $object"                     a message in the trace and on the console
+    - set: {target: [1, 0.5, 0.9]}                bind variables
+    - wait: 0.5                                   sleep (seconds); cancellable at once
+
+A condition (for `if`, `unless`, `assert`) is a `$variable`, true/false, a query
+mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
+`{equal: [a, b]}` (objects compare by name), or `{not: condition}`.
+"""
+from __future__ import annotations
+
+import types
+from typing import TYPE_CHECKING, Any
+
+from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
+from ..failures import FAILURES, Failure, failure_class
+from ..schema import describe
+from ..yamlsource import LList, LMap
+from .context import FailureInfo, display, is_reference, jsonable, truthy
+from .syntax import Node, Parser, node_family, node_type, plain
+
+if TYPE_CHECKING:
+    from .executor import Exec
+    from .trace import TraceNode
+    from .validate import Validator
+
+
+# -- the registries of the other layers ------------------------------------------------------
+def designator_types() -> dict[str, Any]:
+    from ..designators import DESIGNATORS
+
+    return DESIGNATORS
+
+
+def queries() -> dict[str, Any]:
+    try:
+        from ..reasoning import QUERIES  # type: ignore[attr-defined]
+    except ImportError:  # reasoning not built yet: queries are unknown node types
+        return {}
+    return QUERIES
+
+
+def _perform() -> Any:
+    from .. import designators
+
+    function = getattr(designators, "perform", None)
+    if function is None or isinstance(function, types.ModuleType):
+        from ..designators.perform import perform as function  # type: ignore[no-redef]
+    return function
+
+
+def _run_query() -> Any:
+    from ..reasoning import run_query  # type: ignore[attr-defined]
+
+    return run_query
+
+
+def _as_failure(exc: BaseException, what: str) -> Failure:
+    """Errors raised inside a designator or query that are not plan failures (bad run-time values)."""
+    if isinstance(exc, (InputError, InputErrors)):
+        message = "; ".join(e.message + (f" ({e.suggestion})" if e.suggestion else "")
+                            for e in (exc.errors if isinstance(exc, InputErrors) else [exc]))
+    else:
+        message = f"{type(exc).__name__}: {exc}"
+    return Failure(f"{what}: {message}")
+
+
+def _problems_where(slots: Any, slot: str | None, fallback: Location) -> Location:
+    if isinstance(slots, LMap) and slot is not None and slot in slots:
+        return slots.loc(slot, True)
+    return fallback
+
+
+def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) -> LMap | None:
+    if value is None:
+        empty = LMap()
+        empty.where, empty.key_where, empty.value_where = where, {}, {}
+        return empty
+    if not isinstance(value, LMap):
+        parser.error(f"expected the {what} of '{head}' as a mapping, got {describe(value)}", where, key=head,
+                     suggestion=f"e.g. {head}: {{name: value}}")
+        return None
+    return value
+
+
+# -- motion designators -------------------------------------------------------------------------------
+@node_family("designator", lambda: designator_types().keys())
+class DesignatorStep(Node):
+    BINDS = True
+    LEAF = True
+    DOC = "perform a motion designator through its process module"
+
+    def __init__(self, head: str, where: Location, slots: LMap) -> None:
+        super().__init__(head, where)
+        self.slots = slots
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        slots = _mapping(step[head], step.loc(head, True), head, parser, "slots")
+        return None if slots is None else cls(head, step.loc(head), slots)
+
+    def check(self, v: "Validator") -> None:
+        from ..designators import check_designator
+
+        for problem in check_designator(self.head, plain(self.slots), is_reference):
+            v.error(problem.message, _problems_where(self.slots, problem.slot, self.where),
+                    key=problem.slot or self.head, suggestion=problem.suggestion)
+        v.refs(self.slots, self.slots.where)
+        v.objects(self.head, self.slots)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        from ..designators import check_designator
+
+        values = ex.evaluate(self.slots)
+        tn.info["designator"] = {"slots": jsonable(values)}
+        problems = check_designator(self.head, jsonable(values))
+        if problems:
+            raise Failure(f"{self.head}: " + "; ".join(p.message for p in problems))
+        perform = _perform()
+        with ex.world_action():
+            try:
+                performed = perform(ex.world, self.head, values)
+            except Failure:
+                raise
+            except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+                raise _as_failure(exc, self.head) from exc
+            tn.info["designator"] = {**tn.info["designator"], "resolved": jsonable(performed.resolved)}
+        return performed.result
+
+
+# -- reasoning queries --------------------------------------------------------------------------------------
+def query_problems(name: str, args: Any) -> list[str]:
+    try:
+        from ..reasoning import check_query_args  # type: ignore[attr-defined]
+    except ImportError:
+        return []
+    return list(check_query_args(name, plain(args), is_reference))
+
+
+def query_problem_where(message: str, args: LMap) -> Location:
+    """Point at the argument a query problem names (`... parameter 'arm' ...`), else at the arguments."""
+    import re
+
+    match = re.search(r"parameter '([^']+)'", message)
+    if match and match.group(1) in args:
+        return args.loc(match.group(1), value="has no parameter" not in message)
+    return args.where
+
+
+def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
+    """Run a query with evaluated arguments; its value and the record for the trace."""
+    values = ex.evaluate(args)
+    run_query = _run_query()
+    with ex.world_action():
+        try:
+            answer = run_query(ex.world, name, values)
+        except Failure:
+            raise
+        except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+            raise _as_failure(exc, name) from exc
+    record = {"name": name, "args": jsonable(answer.args), "result": jsonable(answer.result),
+              "details": jsonable(answer.details)}
+    return answer.value, record
+
+
+@node_family("query", lambda: queries().keys())
+class QueryStep(Node):
+    BINDS = True
+    LEAF = True
+    DOC = "ask a reasoning query; records the answer (bind it with `as`)"
+
+    def __init__(self, head: str, where: Location, args: LMap) -> None:
+        super().__init__(head, where)
+        self.args = args
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        args = _mapping(step[head], step.loc(head, True), head, parser, "arguments")
+        return None if args is None else cls(head, step.loc(head), args)
+
+    def check(self, v: "Validator") -> None:
+        for message in query_problems(self.head, self.args):
+            v.error(message, query_problem_where(message, self.args), key=self.head)
+        v.refs(self.args, self.args.where)
+        v.query_objects(self.head, self.args)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        value, record = ask(ex, self.head, self.args)
+        record.pop("name")
+        tn.info["query"] = record
+        return value
+
+
+# -- conditions ------------------------------------------------------------------------------------------------
+class Condition:
+    """`$variable`, true/false, a query mapping, {equal: [a, b]}, or {not: condition}."""
+
+    def __init__(self, kind: str, where: Location, value: Any = None, name: str = "",
+                 inner: "Condition | None" = None) -> None:
+        self.kind, self.where, self.value, self.name, self.inner = kind, where, value, name, inner
+
+    @classmethod
+    def parse(cls, value: Any, where: Location, key: str, parser: Parser) -> "Condition | None":
+        if isinstance(value, bool):
+            return cls("literal", where, value)
+        if isinstance(value, str) and value.startswith("$"):
+            from .context import REFERENCE
+
+            if not REFERENCE.match(value):
+                parser.error(f"expected a variable like $name or $name.attr, got '{value}'", where, key=key)
+                return None
+            return cls("variable", where, value)
+        if isinstance(value, LMap) and len(value) == 1:
+            (head, args), = value.items()
+            if head == "not":
+                inner = cls.parse(args, value.loc("not", True), key, parser)
+                return None if inner is None else cls("not", where, inner=inner)
+            if head == "equal":
+                if not isinstance(args, LList) or len(args) != 2:
+                    parser.error(f"expected two values to compare, e.g. {{equal: [$o, spoon]}}, got {describe(args)}",
+                                 value.loc("equal", True), key="equal")
+                    return None
+                return cls("equal", value.loc("equal", True), plain(args))
+            if head in queries():
+                mapping = _mapping(args, value.loc(head, True), head, parser, "arguments")
+                return None if mapping is None else cls("query", where, mapping, name=head)
+            parser.error(f"unknown query '{head}' in a condition", value.loc(head), key=key,
+                         suggestion=did_you_mean(str(head), [*queries(), "not", "equal"])
+                         or f"queries: {', '.join(queries())}")
+            return None
+        parser.error(f"expected a condition: a $variable, true/false, a query like {{stable: {{object: $obj}}}}, "
+                     f"{{equal: [a, b]}} or {{not: ...}}, got {describe(value)}", where, key=key)
+        return None
+
+    def check(self, v: "Validator") -> None:
+        if self.kind == "variable":
+            v.refs(self.value, self.where)
+        elif self.kind == "query":
+            for message in query_problems(self.name, self.value):
+                v.error(message, query_problem_where(message, self.value), key=self.name)
+            v.refs(self.value, self.value.where)
+            v.query_objects(self.name, self.value)
+        elif self.kind == "not" and self.inner is not None:
+            self.inner.check(v)
+        elif self.kind == "equal":
+            v.refs(self.value, self.where)
+
+    def text(self) -> str:
+        if self.kind == "literal":
+            return "true" if self.value else "false"
+        if self.kind == "variable":
+            return self.value
+        if self.kind == "not" and self.inner is not None:
+            return f"not {self.inner.text()}"
+        if self.kind == "equal":
+            return f"{display(self.value[0])} = {display(self.value[1])}"
+        args = ", ".join(f"{k}={display(v)}" for k, v in self.value.items())
+        return f"{self.name}({args})"
+
+    def evaluate(self, ex: "Exec", tn: "TraceNode") -> bool:
+        holds, record = self._evaluate(ex)
+        tn.info["condition"] = record
+        return holds
+
+    def _evaluate(self, ex: "Exec") -> tuple[bool, dict[str, Any]]:
+        if self.kind == "literal":
+            return bool(self.value), {"value": bool(self.value)}
+        if self.kind == "variable":
+            value = ex.evaluate(self.value)
+            return truthy(value), {"variable": self.value, "value": jsonable(value), "holds": truthy(value)}
+        if self.kind == "not" and self.inner is not None:
+            holds, record = self.inner._evaluate(ex)
+            return not holds, {"not": record, "holds": not holds}
+        if self.kind == "equal":
+            values = [jsonable(ex.evaluate(v)) for v in self.value]
+            holds = values[0] == values[1]
+            return holds, {"equal": values, "holds": holds}
+        value, record = ask(ex, self.name, self.value)
+        record["holds"] = truthy(value)
+        return truthy(value), {"query": record, "holds": truthy(value)}
+
+
+# -- call -----------------------------------------------------------------------------------------------------------
+@node_type("call")
+class CallStep(Node):
+    KEYS = ("args",)
+    BINDS = True
+    DOC = "run a subplan with arguments (positional list or by name)"
+
+    def __init__(self, head: str, where: Location, name: str | None, args: Any, args_where: Location) -> None:
+        super().__init__(head, where)
+        self.name = name
+        self.args = args
+        self.args_where = args_where
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        name = parser.string(step[head], step.loc(head, True), head)
+        args = step.get("args")
+        if args is not None and not isinstance(args, (LList, LMap)):
+            parser.error(f"expected the arguments as a list or a mapping, got {describe(args)}", step.loc("args", True),
+                         key="args")
+            args = None
+        return cls(head, step.loc(head), name, args, step.loc("args", True) if "args" in step else step.loc(head))
+
+    def label(self) -> str:
+        return f"call {self.name}"
+
+    def check(self, v: "Validator") -> None:
+        v.check_call(self)
+        if self.args is not None:
+            v.refs(self.args, self.args_where)
+
+    def bound_args(self, ex: "Exec") -> dict[str, Any]:
+        sub = ex.run.plan.plans[self.name or ""]
+        values: dict[str, Any] = {}
+        if isinstance(self.args, list):
+            for param, value in zip(sub.params, self.args):
+                values[param.name] = ex.evaluate(value)
+        elif isinstance(self.args, dict):
+            for key, value in self.args.items():
+                values[key] = ex.evaluate(value)
+        for param in sub.params:
+            if param.name not in values:
+                values[param.name] = param.default
+        return values
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        from .context import Frame
+        from .executor import MAX_CALL_DEPTH
+
+        sub = ex.run.plan.plans[self.name or ""]
+        values = self.bound_args(ex)
+        tn.info["call"] = {"plan": self.name, "args": jsonable(values)}
+        if ex.depth >= MAX_CALL_DEPTH:
+            raise Failure(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (endless recursion?)")
+        inner = ex.derive(frame=Frame(values, parent=ex.run.globals), depth=ex.depth + 1)
+        value = inner.seq(sub.body, tn)
+        return inner.evaluate(sub.returns) if sub.has_returns else None
+
+
+# -- fail and assert ------------------------------------------------------------------------------------------------
+def _failure_type(name: str) -> type[Failure]:
+    cls = failure_class(name)
+    if cls is None:
+        raise Failure(f"fail: unknown failure type '{name}' (known: {', '.join(FAILURES)})")
+    return cls
+
+
+@node_type("fail")
+class FailStep(Node):
+    LEAF = True
+    KEYS = ("message",)
+    DOC = "raise a failure of a type, with a message (`fail: $failure` re-raises a caught failure)"
+
+    def __init__(self, head: str, where: Location, kind: Any, message: Any, kind_where: Location,
+                 message_where: Location) -> None:
+        super().__init__(head, where)
+        self.kind, self.message, self.kind_where, self.message_where = kind, message, kind_where, message_where
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        kind = parser.string(step[head], step.loc(head, True), head)
+        message = step.get("message")
+        if "message" in step:
+            parser.string(message, step.loc("message", True), "message")
+        return cls(head, step.loc(head), kind, message, step.loc(head, True), step.loc("message", True))
+
+    def check(self, v: "Validator") -> None:
+        if isinstance(self.kind, str) and not is_reference(self.kind):
+            v.failure_type(self.kind, self.kind_where, "fail")
+        v.refs(self.kind, self.kind_where)
+        if self.message is not None:
+            v.refs(self.message, self.message_where)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        kind = ex.evaluate(self.kind)
+        if isinstance(kind, FailureInfo):
+            tn.info["rethrow"] = kind.path
+            raise kind.error
+        message = display(ex.evaluate(self.message)) if self.message is not None else f"{kind} raised by the plan"
+        raise _failure_type(str(kind))(message)
+
+
+@node_type("assert")
+class AssertStep(Node):
+    LEAF = True
+    KEYS = ("failure", "message")
+    DOC = "check a condition; raise a failure (default ReasoningFailure) when it does not hold"
+
+    def __init__(self, head: str, where: Location, condition: Condition, kind: str, message: Any,
+                 kind_where: Location, message_where: Location) -> None:
+        super().__init__(head, where)
+        self.condition, self.kind, self.message, self.kind_where = condition, kind, message, kind_where
+        self.message_where = message_where
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        condition = Condition.parse(step[head], step.loc(head, True), head, parser)
+        kind = "ReasoningFailure"
+        if "failure" in step:
+            kind = parser.string(step["failure"], step.loc("failure", True), "failure") or kind
+        if "message" in step:
+            parser.string(step["message"], step.loc("message", True), "message")
+        if condition is None:
+            return None
+        return cls(head, step.loc(head), condition, kind, step.get("message"), step.loc("failure", True),
+                   step.loc("message", True))
+
+    def check(self, v: "Validator") -> None:
+        self.condition.check(v)
+        v.failure_type(self.kind, self.kind_where, "failure")
+        if self.message is not None:
+            v.refs(self.message, self.message_where)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        if not self.condition.evaluate(ex, tn):
+            message = (display(ex.evaluate(self.message)) if self.message is not None
+                       else f"assertion failed: {self.condition.text()} does not hold")
+            raise _failure_type(self.kind)(message)
+        return True
+
+
+# -- log, set, wait -------------------------------------------------------------------------------------------------
+@node_type("log")
+class LogStep(Node):
+    LEAF = True
+    DOC = "write a message ($variables are filled in) to the trace and the console"
+
+    def __init__(self, head: str, where: Location, message: Any, message_where: Location) -> None:
+        super().__init__(head, where)
+        self.message, self.message_where = message, message_where
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        return cls(head, step.loc(head), plain(step[head]), step.loc(head, True))
+
+    def check(self, v: "Validator") -> None:
+        v.refs(self.message, self.message_where)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        message = display(ex.evaluate(self.message))
+        tn.info["message"] = message
+        ex.log(tn, message)
+        return None
+
+
+@node_type("set")
+class SetStep(Node):
+    LEAF = True
+    DOC = "bind variables to values"
+
+    def __init__(self, head: str, where: Location, values: LMap) -> None:
+        super().__init__(head, where)
+        self.values = values
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        values = _mapping(step[head], step.loc(head, True), head, parser, "variables")
+        if values is None:
+            return None
+        for name in values:
+            parser.identifier(name, values.loc(name), head)
+        return cls(head, step.loc(head), values)
+
+    def check(self, v: "Validator") -> None:
+        v.refs(self.values, self.values.where)
+        for name in self.values:
+            v.define(str(name), self.values.loc(name))
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        values = {name: ex.evaluate(value) for name, value in self.values.items()}
+        for name, value in values.items():
+            ex.frame.bind(name, value)
+        tn.info["bound"] = jsonable(values)
+        return None
+
+
+@node_type("wait")
+class WaitStep(Node):
+    LEAF = True
+    DOC = "sleep for some seconds (other branches go on; cancellation wakes it at once)"
+
+    def __init__(self, head: str, where: Location, seconds: Any, value_where: Location) -> None:
+        super().__init__(head, where)
+        self.seconds, self.value_where = seconds, value_where
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        seconds = step[head]
+        if not is_reference(seconds) and (isinstance(seconds, bool) or not isinstance(seconds, (int, float))
+                                           or seconds < 0):
+            parser.error(f"expected a number of seconds (0 or more), got {describe(seconds)}", step.loc(head, True),
+                         key=head)
+            return None
+        return cls(head, step.loc(head), seconds, step.loc(head, True))
+
+    def check(self, v: "Validator") -> None:
+        v.refs(self.seconds, self.value_where)
+
+    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+        seconds = ex.evaluate(self.seconds)
+        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or seconds < 0:
+            raise Failure(f"wait: expected a number of seconds, got {display(seconds)}")
+        tn.info["seconds"] = jsonable(seconds)
+        ex.sleep(float(seconds))
+        return None

@@ -1,0 +1,201 @@
+"""Cancellation tokens and the deterministic turn scheduler behind `par`, `pursue` and `try_all`.
+
+Every branch of a concurrent node runs in its own thread. The threads share one world
+(one PyBullet client), so world actions cannot truly overlap; what must not happen is
+that the *order* in which branches act depends on how the operating system schedules
+threads, because then the same plan on the same world could end differently.
+
+So plan code runs under a *turn*: at any moment at most one thread of a run executes
+plan steps. A thread keeps the turn until it finishes a leaf step (a designator, a
+query, a log, ...), then passes it on round-robin, in the order of the branches' keys
+(their index paths in the plan tree). A thread gives the turn up while it waits for its
+branches to end, while it sleeps in `wait`, and before it starts when it must wait for
+an earlier sibling that uses the same resource (arm, base, head) to finish. Sleeping is
+the only thing whose wake-up time depends on the clock; every other hand-over is a
+function of the plan alone, so traces are identical however threads interleave.
+"""
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from typing import Callable, Iterable
+
+Key = tuple[int, ...]
+POLL = 0.05  # seconds between checks of a cancellation while waiting (wake-ups are also notified)
+
+
+class Cancelled(BaseException):
+    """A branch was cancelled. Not a Failure: no handler or retry catches it."""
+
+
+class CancelToken:
+    """Cancelled when it or any ancestor is cancelled. Checked before every step."""
+
+    def __init__(self, parent: "CancelToken | None" = None, notify: Callable[[], None] | None = None) -> None:
+        self._event = threading.Event()
+        self._lock = threading.Lock()
+        self._children: list[CancelToken] = []
+        self._notify = notify if notify is not None else (parent._notify if parent is not None else None)
+        self.reason = ""
+        if parent is not None:
+            parent._adopt(self)
+
+    def _adopt(self, child: "CancelToken") -> None:
+        with self._lock:
+            self._children.append(child)
+            cancelled = self._event.is_set()
+        if cancelled:
+            child.cancel(self.reason)
+
+    def child(self) -> "CancelToken":
+        return CancelToken(self)
+
+    def cancel(self, reason: str = "") -> None:
+        with self._lock:
+            if self._event.is_set():
+                return
+            self.reason = reason
+            self._event.set()
+            children = list(self._children)
+        for child in children:
+            child.cancel(reason)
+        if self._notify is not None:
+            self._notify()
+
+    @property
+    def cancelled(self) -> bool:
+        return self._event.is_set()
+
+    def check(self) -> None:
+        if self._event.is_set():
+            raise Cancelled(self.reason)
+
+    def sleep(self, seconds: float) -> None:
+        """Sleep, waking at once (with Cancelled) if cancelled meanwhile."""
+        if self._event.wait(max(0.0, seconds)):
+            raise Cancelled(self.reason)
+
+
+READY, JOINING, WAITING, SLEEPING = "ready", "joining", "waiting", "sleeping"
+
+
+@dataclass
+class _Entry:
+    state: str = READY
+    waits_for: set[Key] = field(default_factory=set)
+    live_children: int = 0
+
+
+class Scheduler:
+    """Hands the turn from thread to thread in a deterministic order (see the module docstring)."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._entries: dict[Key, _Entry] = {(): _Entry()}
+        self._holder: Key | None = ()
+        self._pointer: Key = ()
+
+    def wake(self) -> None:
+        with self._cond:
+            self._cond.notify_all()
+
+    # -- choosing the next thread ---------------------------------------------------
+    def _next(self) -> Key | None:
+        ready = sorted(k for k, e in self._entries.items() if e.state == READY)
+        if not ready:
+            return None
+        for key in ready:
+            if key > self._pointer:
+                return key
+        return ready[0]
+
+    def _hand_over(self, key: Key) -> None:
+        if self._holder == key:
+            self._holder = None
+            self._pointer = key
+        self._cond.notify_all()
+
+    # -- the turn -----------------------------------------------------------------------
+    def acquire(self, key: Key, token: CancelToken) -> None:
+        """Wait until it is `key`'s turn; raises Cancelled (without the turn) if cancelled first."""
+        with self._cond:
+            while True:
+                if token.cancelled:
+                    raise Cancelled(token.reason)
+                if self._holder == key:
+                    return
+                if self._holder is None and self._next() == key:
+                    self._holder = key
+                    return
+                self._cond.wait(POLL)
+
+    def holds(self, key: Key) -> bool:
+        with self._cond:
+            return self._holder == key
+
+    def pass_turn(self, key: Key, token: CancelToken) -> None:
+        """After a leaf step: let the next thread have a turn, then wait for ours again."""
+        with self._cond:
+            if self._holder != key:
+                return
+            others = any(e.state == READY for k, e in self._entries.items() if k != key)
+            if not others:
+                self._pointer = key
+                return
+            self._hand_over(key)
+        self.acquire(key, token)
+
+    def sleep(self, key: Key, token: CancelToken, seconds: float) -> None:
+        """Give the turn up while sleeping; the only hand-over that depends on the clock."""
+        with self._cond:
+            self._entries[key].state = SLEEPING
+            self._hand_over(key)
+        try:
+            token.sleep(seconds)
+        finally:
+            with self._cond:
+                self._entries[key].state = READY
+                self._cond.notify_all()
+        self.acquire(key, token)
+
+    # -- branches -------------------------------------------------------------------------
+    def spawn(self, parent: Key, count: int, waits_for: dict[int, Iterable[int]]) -> list[Key]:
+        """Register `count` branches of `parent` (which gives its turn up until they have all finished).
+
+        Branch j does not become ready before every branch in `waits_for[j]` has finished.
+        """
+        keys = [parent + (i,) for i in range(count)]
+        with self._cond:
+            for i, key in enumerate(keys):
+                waits = {parent + (j,) for j in waits_for.get(i, ())}
+                self._entries[key] = _Entry(state=WAITING if waits else READY, waits_for=waits)
+            entry = self._entries[parent]
+            entry.live_children = count
+            if count:
+                entry.state = JOINING
+                if self._holder == parent:
+                    self._holder = None
+                self._pointer = parent
+            self._cond.notify_all()
+        return keys
+
+    def finish(self, key: Key) -> None:
+        """A branch has ended (however); its turn, if held, passes on."""
+        with self._cond:
+            self._hand_over(key)
+            self._entries.pop(key, None)
+            for entry in self._entries.values():
+                if key in entry.waits_for:
+                    entry.waits_for.discard(key)
+                    if not entry.waits_for and entry.state == WAITING:
+                        entry.state = READY
+            parent = self._entries.get(key[:-1])
+            if parent is not None:
+                parent.live_children -= 1
+                if parent.live_children <= 0 and parent.state == JOINING:
+                    parent.state = READY
+            self._cond.notify_all()
+
+    def active(self) -> int:
+        with self._cond:
+            return len(self._entries)

@@ -1,0 +1,198 @@
+"""Static checks of a parsed plan, all reported together with file, line and column.
+
+Unknown node and designator types and unknown keys are found while parsing; here:
+unknown or missing designator slots and ill-formed slot values, query arguments,
+failure type names, undefined variables (or ones used before they are bound), calls
+of undefined subplans, wrong argument counts or names, and — when a world is given —
+object names that are not in it.
+
+Scopes are function scopes: the plan's parameters are visible everywhere; a subplan's
+parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure` in
+`catch`) are visible in the steps after the binding, in declaration order.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable
+
+from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..failures import ALIASES, FAILURES, failure_class
+from ..yamlsource import LList, LMap
+from .context import references
+from .syntax import Node, Plan, parse_plan
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld
+    from .leaves import CallStep
+
+
+class Validator:
+    def __init__(self, plan: Plan, world: "BulletWorld | None" = None) -> None:
+        self.plan = plan
+        self.world = world
+        self.errors: list[InputError] = []
+        self.globals = {p.name: p.where for p in plan.params}
+        self.defined: dict[str, Location] = {}
+        self.later: dict[str, Location] = {}
+
+    def error(self, message: str, where: Location, key: str | None = None, suggestion: str | None = None) -> None:
+        self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
+
+    # -- the whole plan --------------------------------------------------------------------
+    def check(self) -> None:
+        for name, sub in self.plan.plans.items():
+            self._body(sub.body, {p.name: p.where for p in sub.params})
+            if sub.has_returns:
+                self.refs(sub.returns, sub.returns_where, "returns")
+        self._body(self.plan.body, {})
+
+    def _body(self, steps: list[Node], params: dict[str, Location]) -> None:
+        self.defined = dict(params)
+        self.later = {}
+        for node in steps:
+            for step in node.walk():
+                for name, where in bindings(step):
+                    self.later.setdefault(name, where)
+        self.check_steps(steps)
+
+    def check_steps(self, steps: Iterable[Node]) -> None:
+        for node in steps:
+            node.check(self)
+            if node.bind:
+                self.define(node.bind, node.bind_where)
+
+    def define(self, name: str, where: Location) -> None:
+        self.defined.setdefault(name, where)
+
+    # -- references ---------------------------------------------------------------------------
+    def refs(self, value: Any, where: Location, key: str | None = None) -> None:
+        """Every `$name` inside `value` must be bound by now (located at the innermost value)."""
+        if isinstance(value, LMap):
+            for k, item in value.items():
+                self.refs(item, value.loc(k, True), str(k))
+            return
+        if isinstance(value, LList):
+            for index, item in enumerate(value):
+                self.refs(item, value.loc(index), key)
+            return
+        for ref in references(value):
+            if ref.name in self.defined or ref.name in self.globals or ref.name in self.plan.lost_names:
+                continue
+            if ref.name in self.later:
+                bound = self.later[ref.name]
+                self.error(f"variable ${ref.name} is used before it is bound (at line {bound.line})", where, key=key)
+            else:
+                known = [*self.defined, *self.globals]
+                self.error(f"undefined variable ${ref.name}", where, key=key,
+                           suggestion=_suggest(ref.name, known, "$"))
+
+    # -- names -----------------------------------------------------------------------------------
+    def failure_type(self, name: str, where: Location, key: str) -> None:
+        if failure_class(name) is None:
+            self.error(f"unknown failure type '{name}'", where, key=key,
+                       suggestion=did_you_mean(name, [*FAILURES, *ALIASES]) or f"failure types: {', '.join(FAILURES)}")
+
+    def check_call(self, call: "CallStep") -> None:
+        if call.name is None:
+            return
+        sub = self.plan.plans.get(call.name)
+        if sub is None and call.name in self.plan.lost_plans:
+            return
+        if sub is None:
+            self.error(f"undefined subplan '{call.name}'", call.where, key="call",
+                       suggestion=did_you_mean(call.name, self.plan.plans)
+                       or (f"subplans: {', '.join(self.plan.plans)}" if self.plan.plans else "define it under 'plans:'"))
+            return
+        names = [p.name for p in sub.params]
+        required = [p.name for p in sub.params if p.required]
+        signature = f"{call.name}({', '.join(names)})"
+        given: list[str] = []
+        if isinstance(call.args, LList):
+            if len(call.args) > len(names):
+                self.error(f"too many arguments: {signature} takes {len(names)}, got {len(call.args)}",
+                           call.args_where, key="args")
+            given = names[:len(call.args)]
+        elif isinstance(call.args, LMap):
+            for key in call.args:
+                if key not in names:
+                    self.error(f"{signature} has no parameter '{key}'", call.args.loc(key), key="args",
+                               suggestion=did_you_mean(str(key), names))
+            given = [k for k in call.args if k in names]
+        missing = [name for name in required if name not in given]
+        if missing:
+            self.error(f"missing argument{'s' if len(missing) > 1 else ''} {', '.join(missing)}: "
+                       f"{signature} needs {len(required)}, got {len(given)}", call.args_where, key="args")
+
+    def objects(self, head: str, slots: LMap) -> None:
+        """With a world: literal object names in designator slots must name objects in it."""
+        from ..designators import DESIGNATORS
+
+        spec = DESIGNATORS.get(head)
+        if spec is not None:
+            kinds = {s.name: s.kind for s in spec.slots}
+            self._objects(slots, [k for k, kind in kinds.items() if kind in ("object", "position-or-object")])
+
+    def query_objects(self, name: str, args: LMap) -> None:
+        """With a world: literal object names in query arguments must name objects in it."""
+        from .leaves import queries
+
+        spec = queries().get(name)
+        if spec is not None:
+            self._objects(args, [p.name for p in spec.params if p.kind in ("object", "target")])
+
+    def _objects(self, slots: LMap, object_slots: list[str]) -> None:
+        if self.world is None:
+            return
+        names = [o.name for o in self.world.objects]
+        for slot_name, value in slots.items():
+            if slot_name not in object_slots or not isinstance(value, str) or references(value):
+                continue
+            if value not in names:
+                self.error(f"'{slot_name}': the world has no object '{value}'", slots.loc(slot_name, True),
+                           key=str(slot_name), suggestion=did_you_mean(value, names))
+
+
+def bindings(node: Node) -> list[tuple[str, Location]]:
+    """The variables a node binds (for 'used before it is bound' hints)."""
+    from .decorators import ForEach, Try
+    from .leaves import SetStep
+
+    found = [(node.bind, node.bind_where)] if node.bind else []
+    if isinstance(node, ForEach) and node.var:
+        found.append((node.var, node.var_where))
+    elif isinstance(node, SetStep):
+        found.extend((str(name), node.values.loc(name)) for name in node.values)
+    elif isinstance(node, Try) and node.handlers:
+        found.append(("failure", node.handlers[0][1]))
+    return found
+
+
+def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
+    hint = did_you_mean(name, known)
+    if hint:
+        return hint.replace("'", f"'{prefix}", 1)
+    return None
+
+
+def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file: bool = True,
+               errors: list[InputError] | None = None) -> Plan:
+    """Raise every static problem of `plan` (and the `errors` found before) together; return it when there is none."""
+    validator = Validator(plan, world)
+    validator.errors.extend(errors or [])
+    if check_world_file and plan.world is not None:
+        from .params import find_world
+
+        try:
+            find_world(plan.world, plan.path.parent, plan.world_where)
+        except InputError as exc:
+            validator.errors.append(exc)
+    validator.check()
+    raise_if_any(validator.errors)
+    return plan
+
+
+def load_plan(path: str | Path, world: "BulletWorld | None" = None, check_world_file: bool = True) -> Plan:
+    """Parse and check a plan file; every problem is reported together with file, line and column."""
+    errors: list[InputError] = []
+    plan = parse_plan(path, errors)
+    return check_plan(plan, world, check_world_file, errors)

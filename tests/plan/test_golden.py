@@ -1,0 +1,40 @@
+"""Every plan in plans/ behaves as its golden trace records (tests/golden/<plan>.trace.json).
+
+When a change of behaviour is intended, regenerate the golden traces on purpose and review
+their diff:  python -m pycram_cli.plan.golden --update [PLAN...]   (see docs/plans.md)
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from pycram_cli.plan import golden
+
+REPO = Path(__file__).resolve().parents[2]
+GOLDEN = REPO / "tests" / "golden"
+PLANS = golden.bundled_plans(REPO / "plans")
+HOW = "python -m pycram_cli.plan.golden --update"
+
+
+def test_every_plan_has_a_golden_trace():
+    missing = [p.stem for p in PLANS if not golden.golden_path(p, GOLDEN).is_file()]
+    assert not missing, f"no golden trace for {', '.join(missing)}: create it with `{HOW} {' '.join(missing)}`"
+
+
+def test_no_golden_trace_without_its_plan():
+    plans = {p.stem for p in PLANS}
+    orphans = [g.name for g in GOLDEN.glob("*.trace.json") if g.name[:-len(".trace.json")] not in plans]
+    assert not orphans, f"golden traces of plans that no longer exist: {', '.join(orphans)}"
+
+
+@pytest.mark.parametrize("plan", PLANS, ids=[p.stem for p in PLANS])
+def test_plan_matches_its_golden_trace(plan):
+    if not golden.golden_path(plan, GOLDEN).is_file():
+        pytest.skip("no golden trace yet (see test_every_plan_has_a_golden_trace)")
+    differences = golden.check(plan, GOLDEN)
+    assert not differences, (
+        f"{plan.name} no longer behaves as tests/golden/{plan.stem}.trace.json records:\n"
+        + "\n".join(f"  {d}" for d in differences[:40])
+        + ("\n  ..." if len(differences) > 40 else "")
+        + f"\nif this change is intended: {HOW} {plan.stem}")
