@@ -33,7 +33,7 @@ POSITIONAL: dict[str, tuple[str, ...]] = {
 
 #: option -> parameter name
 OPTIONS = {"--arm": "arm", "--grasp": "grasp", "--from": "from", "--exclude-type": "exclude-type",
-           "--threshold": "threshold"}
+           "--threshold": "threshold", "--link": "link"}
 
 
 def _usage() -> str:
@@ -177,11 +177,13 @@ def describe(answer: QueryAnswer) -> str:
               help="Leave objects of this type out of blocking (repeatable).")
 @click.option("--threshold", type=float, metavar="NUMBER",
               help="visible: fraction of pixels (0.8); reachable/blocking: distance in m (0.01).")
+@click.option("--link", metavar="LINK", help="supporting: only count support by this link of the first object.")
 @json_option
 def query(query_name: str, values: tuple[str, ...], world_file: str | None, arm: str | None, grasp: str | None,
-          from_: str | None, exclude_type: tuple[str, ...], threshold: float | None, as_json: bool) -> None:
+          from_: str | None, exclude_type: tuple[str, ...], threshold: float | None, link: str | None,
+          as_json: bool) -> None:
     args = build_args(query_name, values, {"--arm": arm, "--grasp": grasp, "--from": from_,
-                                           "--exclude-type": exclude_type, "--threshold": threshold})
+                                           "--exclude-type": exclude_type, "--threshold": threshold, "--link": link})
     path = resolve_world_path(world_file)
     from ..worldfile.loader import load_world
 

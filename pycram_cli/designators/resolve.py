@@ -9,10 +9,10 @@ import math
 from typing import Any, Callable, Mapping, Sequence
 
 from ..errors import InputError, Location, did_you_mean
-from ..failures import ManipulationFailure, ReachabilityFailure
+from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..process_modules.arms import GRASP_ORDER, reach
 from ..process_modules.base import Robot
-from ..process_modules.manipulation import grasp_orientation, grasp_point
+from ..process_modules.manipulation import grasp_orientation, grasp_target
 from ..world import Object
 
 Resolver = Callable[[Robot, Mapping[str, Any]], dict[str, Any]]
@@ -42,23 +42,41 @@ def _free_arms(robot: Robot, preferred: str | None) -> list[str]:
     return [a for a in arms if preferred or not robot.held_objects(a)]
 
 
-def choose_arm_and_grasp(robot: Robot, position_of: Callable[[Any], Sequence[float]], arm: str | None,
+def choose_arm_and_grasp(robot: Robot, position_of: Callable[[str, Any], Sequence[float] | None], arm: str | None,
                          grasp: Any, what: str) -> tuple[str, Any]:
-    """The first arm (in description order) and grasp (front, top, left, right) whose IK succeeds."""
+    """The first arm (in description order) and grasp (front, top, left, right) that can hold it and whose IK succeeds.
+
+    `position_of(arm, grasp)` gives the tool position for a grasp, or None when that arm cannot hold it that way.
+    """
     grasps = [grasp] if grasp is not None else list(GRASP_ORDER)
     best: tuple[float, str, Any] | None = None
+    holdable = False
     for candidate_arm in _free_arms(robot, arm):
         for candidate in grasps:
-            solution = reach(robot, candidate_arm, position_of(candidate), grasp_orientation(robot, candidate))
+            position = position_of(candidate_arm, candidate)
+            if position is None:
+                continue
+            holdable = True
+            solution = reach(robot, candidate_arm, position, grasp_orientation(robot, candidate))
             if solution.success:
                 return candidate_arm, candidate
             if best is None or solution.position_error < best[0]:
                 best = (solution.position_error, candidate_arm, candidate)
     if best is None:
-        raise ReachabilityFailure(f"no free arm to reach {what}")
+        if not _free_arms(robot, arm):
+            raise GripperFailure(f"no free gripper to take {what}: both hold something")
+        if not holdable:
+            raise GripperFailure(f"no gripper can hold {what} with " + (f"a {grasp} grasp" if isinstance(grasp, str) else "any grasp")
+                                 + " (too wide between the fingers)")
+        raise ReachabilityFailure(f"no arm can reach {what}")
     grasp_text = f" with a {best[2]} grasp" if isinstance(best[2], str) else ""
     raise ReachabilityFailure(f"no arm can reach {what}: best is the {best[1]} arm{grasp_text}, "
                               f"{best[0] * 100:.1f} cm away", position_error=best[0])
+
+
+def _grasp_position(robot: Robot, arm: str, obj: Object, grasp: Any) -> Sequence[float] | None:
+    target = grasp_target(robot, arm, obj, grasp)
+    return None if target is None else target[0]
 
 
 @resolver("moving")
@@ -72,7 +90,7 @@ def _pick_up(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
     obj = the_object(robot, slots["object"], "object")
     arm, grasp = slots.get("arm"), slots.get("grasp")
     if arm is None or grasp is None:
-        arm, grasp = choose_arm_and_grasp(robot, lambda g: grasp_point(obj, g), arm, grasp, obj.name)
+        arm, grasp = choose_arm_and_grasp(robot, lambda a, g: _grasp_position(robot, a, obj, g), arm, grasp, obj.name)
     return {"object": obj, "arm": arm, "grasp": grasp}
 
 
@@ -101,7 +119,7 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
         distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
     arm = slots.get("arm")
     if arm is None:
-        arm, _ = choose_arm_and_grasp(robot, lambda g: part.get_link_position(handle), None, "front", f"the handle {handle}")
+        arm, _ = choose_arm_and_grasp(robot, lambda a, g: part.get_link_position(handle), None, "front", f"the handle {handle}")
     return {"drawer-handle": handle, "drawer-joint": joint_name, "part-of": part, "distance": float(distance), "arm": arm}
 
 

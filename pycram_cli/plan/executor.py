@@ -141,12 +141,6 @@ class Exec:
         with self.run.world.lock:
             yield
 
-    def pass_turn(self) -> None:
-        """After a leaf step: let the other branches have their turn (see scheduler.py)."""
-        try:
-            self.run.scheduler.pass_turn(self.key, self.token)
-        except Cancelled:
-            pass  # the step itself is done; the next step sees the cancellation
 
     def sleep(self, seconds: float) -> None:
         self.token.check()
@@ -159,6 +153,8 @@ class Exec:
     def step(self, node: "Node", tn: TraceNode) -> Any:
         """Run one node, recording its status, bound value and failure in `tn`."""
         self.token.check()
+        if node.LEAF:  # the turn passes between leaves (see scheduler.py)
+            self.run.scheduler.before_leaf(self.key, self.token)
         tn.status, tn.started = "running", self.run.now()
         self.run.notify("started", tn)
         try:
@@ -168,7 +164,7 @@ class Exec:
                 tn.info["bound"] = {node.bind: jsonable(value)}
             tn.status = "succeeded"
             if node.LEAF:
-                self.pass_turn()
+                self.run.scheduler.leaf_done(self.key)
             return value
         except Failure as exc:
             if getattr(exc, "plan_path", None) is None:

@@ -6,8 +6,10 @@ that the *order* in which branches act depends on how the operating system sched
 threads, because then the same plan on the same world could end differently.
 
 So plan code runs under a *turn*: at any moment at most one thread of a run executes
-plan steps. A thread keeps the turn until it finishes a leaf step (a designator, a
-query, a log, ...), then passes it on round-robin, in the order of the branches' keys
+plan steps. A thread keeps the turn until it has finished a leaf step (a designator, a
+query, a log, ...) and is about to start another one; then it passes the turn on
+round-robin (a branch whose leaf ended it reports its outcome first, so a deciding
+success or failure cancels its siblings before they take another step), in the order of the branches' keys
 (their index paths in the plan tree). A thread gives the turn up while it waits for its
 branches to end, while it sleeps in `wait`, and before it starts when it must wait for
 an earlier sibling that uses the same resource (arm, base, head) to finish. Sleeping is
@@ -94,6 +96,7 @@ class Scheduler:
         self._entries: dict[Key, _Entry] = {(): _Entry()}
         self._holder: Key | None = ()
         self._pointer: Key = ()
+        self._due: set[Key] = set()
 
     def wake(self) -> None:
         with self._cond:
@@ -132,6 +135,19 @@ class Scheduler:
     def holds(self, key: Key) -> bool:
         with self._cond:
             return self._holder == key
+
+    def leaf_done(self, key: Key) -> None:
+        """`key` finished a leaf step: it passes the turn before its next one."""
+        with self._cond:
+            self._due.add(key)
+
+    def before_leaf(self, key: Key, token: CancelToken) -> None:
+        """`key` is about to start a leaf step: if it has had its go, let the others have theirs first."""
+        with self._cond:
+            if key not in self._due:
+                return
+            self._due.discard(key)
+        self.pass_turn(key, token)
 
     def pass_turn(self, key: Key, token: CancelToken) -> None:
         """After a leaf step: let the next thread have a turn, then wait for ours again."""
@@ -183,6 +199,7 @@ class Scheduler:
         """A branch has ended (however); its turn, if held, passes on."""
         with self._cond:
             self._hand_over(key)
+            self._due.discard(key)
             self._entries.pop(key, None)
             for entry in self._entries.values():
                 if key in entry.waits_for:

@@ -6,14 +6,19 @@ from typing import Any, Mapping, Sequence
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..world import Object
-from ..world.pose import compose, invert, quat_multiply, yaw_quaternion
+from ..robots.objects import grasp_points, special_grasps
+from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from .arms import move_tool, reach, set_gripper
 from .base import ProcessModule, Robot
 from .registry import process_module
 
 
-def grasp_point(obj: Object, grasp: str | Sequence[float]) -> tuple[float, float, float]:
-    """Where the tool frame goes to hold `obj`: its middle, or just below its top for a top grasp."""
+def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> tuple[float, float, float, float]:
+    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())  # type: ignore[arg-type]
+
+
+def _generic_point(obj: Object, grasp: str | Sequence[float]) -> tuple[float, float, float]:
+    """The middle of the object's box, or just below its top for a top grasp."""
     lo, hi = obj.get_aabb()
     centre = [(a + b) / 2 for a, b in zip(lo, hi)]
     if grasp == "top":
@@ -21,8 +26,41 @@ def grasp_point(obj: Object, grasp: str | Sequence[float]) -> tuple[float, float
     return (centre[0], centre[1], centre[2])
 
 
-def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> tuple[float, float, float, float]:
-    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())  # type: ignore[arg-type]
+def grip_width(robot: Robot, obj: Object, grasp: str | Sequence[float]) -> float:
+    """How wide `obj` is between the fingers for a grasp: its box measured along the tool frame's y axis."""
+    closing = quat_to_matrix(grasp_orientation(robot, grasp))[:, 1]
+    lo, hi = obj.get_aabb()
+    return float(sum(abs(closing[k]) * (hi[k] - lo[k]) for k in range(3)))
+
+
+def grasp_candidates(robot: Robot, obj: Object, grasp: str | Sequence[float]) -> list[tuple[tuple[float, float, float], float]]:
+    """(tool position, width between the fingers) for each way to hold `obj` with `grasp`, nearest first."""
+    if special_grasps(obj.type):
+        points = grasp_points(obj.type, grasp) if isinstance(grasp, str) else ()
+        pose = obj.get_pose()
+        found = [(compose(pose, (point.offset, (0.0, 0.0, 0.0, 1.0)))[0], point.width) for point in points]
+        base = robot.body.get_position()
+        return sorted(found, key=lambda c: (c[0][0] - base[0]) ** 2 + (c[0][1] - base[1]) ** 2)
+    return [(_generic_point(obj, grasp), grip_width(robot, obj, grasp))]
+
+
+def grasp_target(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[tuple[float, float, float], float] | None:
+    """Where the tool frame goes to hold `obj` with `grasp` and the width held, or None if the gripper cannot."""
+    max_width = robot.description.arm(arm).gripper.max_width
+    return next((c for c in grasp_candidates(robot, obj, grasp) if c[1] <= max_width), None)
+
+
+def level(orientation: Sequence[float]) -> tuple[float, float, float, float]:
+    """The object's orientation stood upright: its own z axis up, heading kept.
+
+    Objects rest on their bottom (their origin is the bottom centre), so a placed object
+    stands on it whatever the arm did to it on the way; its heading is that of its x axis
+    (of its y axis when x points up or down).
+    """
+    rotation = quat_to_matrix(orientation)
+    axis = rotation[:, 0] if math.hypot(rotation[0, 0], rotation[1, 0]) > 0.2 else rotation[:, 1]
+    heading = math.atan2(axis[1], axis[0]) - (0.0 if axis is rotation[:, 0] else math.pi / 2)
+    return yaw_quaternion(heading)
 
 
 @process_module("pick-up")
@@ -38,10 +76,19 @@ class PickUp(ProcessModule):
         held = robot.held_objects(arm)
         if held:
             raise GripperFailure(f"the {arm} gripper already holds {held[0].name}", arm=arm)
+        gripper = robot.description.arm(arm).gripper
+        how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
+        target = grasp_target(robot, arm, obj, grasp)
+        if target is None:
+            widths = [w for _, w in grasp_candidates(robot, obj, grasp)]
+            why = (f"it is {min(widths) * 100:.1f} cm wide between the fingers; the gripper opens "
+                   f"{gripper.max_width * 100:.1f} cm") if widths else f"{obj.type} objects are not held that way"
+            raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
+        position, width = target
         set_gripper(robot, arm, "open")
-        move_tool(robot, arm, grasp_point(obj, grasp), grasp_orientation(robot, grasp), f"{obj.name} with a {grasp} grasp"
-                  if isinstance(grasp, str) else obj.name)
-        set_gripper(robot, arm, "closed")
+        move_tool(robot, arm, position, grasp_orientation(robot, grasp), f"{obj.name} with {how}")
+        # close until the fingers touch the object
+        robot.body.set_joint_positions({joint: gripper.angle_for_width(width) for joint in gripper.joints})
         robot.body.attach(obj, parent_link=robot.description.arm(arm).tool_frame)
 
 
@@ -57,7 +104,7 @@ class Place(ProcessModule):
             raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
         att = robot.body.attachments[obj]
         held = invert(att.transform)  # the tool frame seen from the object
-        upright = obj.get_orientation()
+        upright = level(obj.get_orientation())
         best = None
         # keep the object's current orientation, turned about the vertical if that is what it takes
         for turn in (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4):
@@ -65,11 +112,11 @@ class Place(ProcessModule):
             tool = compose((target, orientation), held)
             solution = reach(robot, arm, tool[0], tool[1])
             if solution.success:
-                best = tool
+                best = (tool[0], tool[1], orientation)
                 break
             if best is None or solution.position_error < best[2]:
                 best = (tool[0], tool[1], solution.position_error)
-        if best is None or len(best) == 3:
+        if best is None or not isinstance(best[2], tuple):
             error = best[2] if best is not None else math.inf
             raise ReachabilityFailure(
                 f"{arm} arm cannot place {obj.name} at ({', '.join(f'{v:.3f}' for v in target)}): "
@@ -77,3 +124,6 @@ class Place(ProcessModule):
         move_tool(robot, arm, best[0], best[1], f"the place pose for {obj.name}")
         robot.body.detach(obj)
         set_gripper(robot, arm, "open")
+        # let go: the object settles exactly at the target, upright as it was held (the arm's
+        # inverse kinematics is only accurate to its tolerance)
+        obj.set_position_and_orientation(target, best[2])

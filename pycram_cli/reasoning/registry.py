@@ -91,7 +91,8 @@ QUERIES: dict[str, QuerySpec] = {q.name: q for q in (
         QueryParam("exclude-type", "types", False, "object types to leave out (e.g. environment)", []), _REACH)),
     QuerySpec("supporting", "Does object a carry object b (b on top of a, touching)?", (
         QueryParam("a", "object", True, "the supporting object's name"),
-        QueryParam("b", "object", True, "the supported object's name"))),
+        QueryParam("b", "object", True, "the supported object's name"),
+        QueryParam("link", "link", False, "only count support by this link of a (e.g. kitchen_island_surface)"))),
 )}
 
 
@@ -125,6 +126,8 @@ def _check_value(param: QueryParam, value: Any) -> str | None:
         return None if _is_number(value) and value > 0 else "expected a positive distance in metres"
     if kind == "fraction":
         return None if _is_number(value) and 0 <= value <= 1 else "expected a fraction between 0 and 1"
+    if kind == "link":
+        return None if isinstance(value, str) and value else "expected a link name"
     if kind == "types":
         ok = (isinstance(value, str) and value) or (isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value))
         return None if ok else "expected an object type or a list of types"
@@ -417,8 +420,13 @@ def _supporting(call: _Call) -> QueryAnswer:
     a, b = call.object("a"), call.object("b")
     if a is b:
         raise _error("supporting", "b", f"supporting needs two different objects, got '{a.name}' twice")
-    points = support_points(a, b)
-    details = {"contacts": [{"link": link, "point": list(point)} for link, point in points]}
+    link = call.get("link")
+    if link is not None:
+        if link not in a.link_names:
+            raise _error("supporting", "link", f"'{a.name}' has no link '{link}'", did_you_mean(str(link), a.link_names))
+        call.resolved["link"] = link
+    points = [(on, point) for on, point in support_points(a, b) if link is None or on == link]
+    details = {"contacts": [{"link": on, "point": list(point)} for on, point in points]}
     return QueryAnswer("supporting", call.resolved, bool(points), details, bool(points))
 
 

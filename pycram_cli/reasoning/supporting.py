@@ -43,6 +43,8 @@ def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> li
         return found
 
 
-def supporting(a: "Object", b: "Object") -> bool:
-    """True when `b` rests on `a`: b above, in contact, the contact roughly horizontal."""
-    return bool(support_points(a, b))
+def supporting(a: "Object", b: "Object", link: str | None = None) -> bool:
+    """True when `b` rests on `a` (on `a`'s link `link`, if given): b above, in contact, the contact roughly horizontal."""
+    if link is not None:
+        a.get_link_id(link)  # an unknown link is an error, not a "no"
+    return any(link is None or on == link for on, _ in support_points(a, b))

@@ -25,6 +25,13 @@ class GripperDescription:
     joints: tuple[str, ...]
     open: float
     closed: float
+    max_width: float = float("inf")  # metres between the fingers when fully open
+
+    def angle_for_width(self, width: float) -> float:
+        """The finger joint value that leaves `width` between the fingers (linear between closed and open)."""
+        if width >= self.max_width or self.max_width == float("inf"):
+            return self.open
+        return self.closed + (self.open - self.closed) * max(width, 0.0) / self.max_width
 
 
 @dataclass(frozen=True)
@@ -98,7 +105,8 @@ def load_description(path: Path) -> RobotDescription:
         gripper = arm["gripper"]
         arms[name] = ArmDescription(
             name=name, joints=tuple(arm["joints"]), tool_frame=arm["tool_frame"], palm_link=arm["palm_link"],
-            gripper=GripperDescription(tuple(gripper["joints"]), float(gripper["open"]), float(gripper["closed"])),
+            gripper=GripperDescription(tuple(gripper["joints"]), float(gripper["open"]), float(gripper["closed"]),
+                                       float(gripper.get("max_width", float("inf")))),
             links=tuple(arm.get("links", ())),
             poses={k: tuple(float(v) for v in vals) for k, vals in arm.get("poses", {}).items()},
         )

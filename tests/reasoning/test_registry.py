@@ -16,7 +16,7 @@ PARAMETERS = {
     "occluding": ["object", "from"],
     "reachable": ["target", "arm", "grasp", "threshold"],
     "blocking": ["target", "arm", "grasp", "exclude-type", "threshold"],
-    "supporting": ["a", "b"],
+    "supporting": ["a", "b", "link"],
 }
 
 

@@ -44,3 +44,16 @@ def test_supporting_changes_nothing(scene):
     before = fingerprint(scene)
     supporting(scene.get_object_by_name("kitchen"), scene.get_object_by_name("milk"))
     assert fingerprint(scene) == before
+
+
+def test_support_can_be_asked_of_one_link(scene):
+    kitchen, milk = scene.get_object_by_name("kitchen"), scene.get_object_by_name("milk")
+    assert supporting(kitchen, milk, link="sink_area_surface")
+    assert not supporting(kitchen, milk, link="kitchen_island_surface")
+
+
+def test_an_unknown_link_is_an_error_not_a_no(scene):
+    import pytest
+
+    with pytest.raises(KeyError, match="did you mean 'sink_area_surface'"):
+        supporting(scene.get_object_by_name("kitchen"), scene.get_object_by_name("milk"), link="sink_area_surfac")
