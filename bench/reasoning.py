@@ -28,12 +28,12 @@ from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
-import pybullet as p
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
-from pycram_cli import load_world  # noqa: E402
+from pycram_cli import load_world  # noqa: E402  (imports pybullet quietly)
+import pybullet as p  # noqa: E402
 from pycram_cli.reasoning import blocking, contact, occluding, reachable, stable, supporting, visible  # noqa: E402
 from pycram_cli.robots import description_for  # noqa: E402
 from pycram_cli.world.pose import quat_multiply  # noqa: E402

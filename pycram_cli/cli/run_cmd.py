@@ -130,11 +130,13 @@ def prepare(plan_file: str, world_file: str | None, params: tuple[str, ...]) -> 
               help="Set a plan parameter (VALUE is read as YAML: 0.3, [1, 0, 0], milk). Repeatable.")
 @click.option("--trace", "trace_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the run's trace (JSON) to this file.")
+@click.option("--render", "render_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write a PNG of the final scene (headless).")
 @json_option
 @gui_option
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
-        as_json: bool, gui: bool) -> None:
+        render_file: Path | None, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
@@ -168,6 +170,10 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         duration = time.perf_counter() - started
         if trace_file is not None:
             save(result.trace, trace_file)
+        if render_file is not None:
+            from ..world.camera import default_camera, render, write_png
+
+            write_png(render_file, render(world, default_camera(world), 960, 720))
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace}))

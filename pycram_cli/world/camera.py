@@ -35,7 +35,7 @@ def default_camera(world: "BulletWorld") -> Camera:
     radius = max(float(np.linalg.norm(hi - lo)) / 2.0, 0.5)
     direction = np.array([-1.0, -1.3, 0.9])
     direction /= np.linalg.norm(direction)
-    eye = centre + direction * radius / math.tan(math.radians(25.0)) * 0.95
+    eye = centre + direction * radius / math.tan(math.radians(25.0)) * 0.8
     return Camera(tuple(eye), tuple(centre))
 
 
