@@ -92,31 +92,7 @@ class Retry(Node):
 
 def _run_part(ex: "Exec", steps: list[Node], tn: "TraceNode") -> Any:
     """A named group of steps (an attempt, a branch, a handler) recorded as one trace node."""
-    from .executor import close_pending
-    from .scheduler import Cancelled
-
-    ex.token.check()
-    tn.status, tn.started = "running", ex.run.now()
-    ex.run.notify("started", tn)
-    try:
-        value = ex.seq(steps, tn)
-        tn.status = "succeeded"
-        return value
-    except Failure as exc:
-        from .trace import failure_record
-
-        tn.status, tn.failure = "failed", failure_record(exc, tn.path)
-        raise
-    except Cancelled:
-        tn.status = "cancelled"
-        close_pending(tn.children, "cancelled")
-        raise
-    except BaseException:
-        tn.status = "failed"
-        raise
-    finally:
-        tn.duration = ex.run.now() - (tn.started or 0.0)
-        ex.run.notify("finished", tn)
+    return ex.run_group(steps, tn)
 
 
 @node_type("try")

@@ -204,8 +204,9 @@ class Exec:
             close_pending(children, "skipped")
         return value
 
-    def run_body(self, nodes: list["Node"], tn: TraceNode, where: Any = None) -> Any:
-        """The plan body: a seq whose trace node is `tn` itself."""
+    def run_group(self, nodes: list["Node"], tn: TraceNode) -> Any:
+        """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
+        self.token.check()
         tn.status, tn.started = "running", self.run.now()
         self.run.notify("started", tn)
         try:
@@ -217,6 +218,7 @@ class Exec:
             raise
         except Cancelled:
             tn.status = "cancelled"
+            close_pending(tn.children, "cancelled")
             raise
         except BaseException:
             tn.status = "failed"
@@ -224,6 +226,10 @@ class Exec:
         finally:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
+
+    def run_body(self, nodes: list["Node"], tn: TraceNode, where: Any = None) -> Any:
+        """The plan body: a group whose trace node is the root."""
+        return self.run_group(nodes, tn)
 
     # -- concurrency ---------------------------------------------------------------------------
     def concurrent(self, nodes: list["Node"], tn: TraceNode, policy: "Policy") -> Any:
