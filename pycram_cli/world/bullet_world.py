@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import time
 from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 import pybullet as p
@@ -51,7 +52,12 @@ class BulletWorld:
             self.mode = mode
             if mode == "gui":
                 BulletWorld._gui_world = self
-                p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
+                with silenced():  # the window's OpenGL set-up prints its driver names from its own thread
+                    p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
+                    deadline = time.monotonic() + 3.0
+                    while p.getDebugVisualizerCamera(physicsClientId=client)[0] <= 0 and time.monotonic() < deadline:
+                        time.sleep(0.02)
+                    time.sleep(0.2)
             BulletWorld._live.append(self)
             BulletWorld.current_world = self
         self.objects: list[Object] = []
