@@ -45,9 +45,17 @@ def grasp_candidates(robot: Robot, obj: Object, grasp: str | Sequence[float]) ->
 
 
 def grasp_target(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[tuple[float, float, float], float] | None:
-    """Where the tool frame goes to hold `obj` with `grasp` and the width held, or None if the gripper cannot."""
-    max_width = robot.description.arm(arm).gripper.max_width
-    return next((c for c in grasp_candidates(robot, obj, grasp) if c[1] <= max_width), None)
+    """Where the tool frame goes to hold `obj` with `grasp` and the width held, or None if the gripper cannot.
+
+    A side grasp (the fingers closing horizontally) needs the object to be as tall as the finger pads;
+    a spoon lying flat is taken from the top.
+    """
+    gripper = robot.description.arm(arm).gripper
+    if grasp != "top" and not special_grasps(obj.type):
+        lo, hi = obj.get_aabb()
+        if hi[2] - lo[2] < gripper.finger_height:
+            return None
+    return next((c for c in grasp_candidates(robot, obj, grasp) if c[1] <= gripper.max_width), None)
 
 
 def level(orientation: Sequence[float]) -> tuple[float, float, float, float]:
@@ -81,8 +89,14 @@ class PickUp(ProcessModule):
         target = grasp_target(robot, arm, obj, grasp)
         if target is None:
             widths = [w for _, w in grasp_candidates(robot, obj, grasp)]
-            why = (f"it is {min(widths) * 100:.1f} cm wide between the fingers; the gripper opens "
-                   f"{gripper.max_width * 100:.1f} cm") if widths else f"{obj.type} objects are not held that way"
+            lo, hi = obj.get_aabb()
+            if widths and min(widths) <= gripper.max_width:
+                why = f"it is {(hi[2] - lo[2]) * 100:.1f} cm tall, lower than the fingers ({gripper.finger_height * 100:.0f} cm)"
+            elif widths:
+                why = (f"it is {min(widths) * 100:.1f} cm wide between the fingers; the gripper opens "
+                       f"{gripper.max_width * 100:.1f} cm")
+            else:
+                why = f"{obj.type} objects are not held that way"
             raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
         position, width = target
         set_gripper(robot, arm, "open")

@@ -26,6 +26,7 @@ class GripperDescription:
     open: float
     closed: float
     max_width: float = float("inf")  # metres between the fingers when fully open
+    finger_height: float = 0.0  # side grasps (front, left, right) need objects at least this tall
 
     def angle_for_width(self, width: float) -> float:
         """The finger joint value that leaves `width` between the fingers (linear between closed and open)."""
@@ -106,7 +107,8 @@ def load_description(path: Path) -> RobotDescription:
         arms[name] = ArmDescription(
             name=name, joints=tuple(arm["joints"]), tool_frame=arm["tool_frame"], palm_link=arm["palm_link"],
             gripper=GripperDescription(tuple(gripper["joints"]), float(gripper["open"]), float(gripper["closed"]),
-                                       float(gripper.get("max_width", float("inf")))),
+                                       float(gripper.get("max_width", float("inf"))),
+                                       float(gripper.get("finger_height", 0.0))),
             links=tuple(arm.get("links", ())),
             poses={k: tuple(float(v) for v in vals) for k, vals in arm.get("poses", {}).items()},
         )

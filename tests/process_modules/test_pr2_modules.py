@@ -196,3 +196,35 @@ def test_bad_slots_are_input_errors_naming_the_slot(world):
         perform(world, "pick-up", {"objekt": "milk"})
     with pytest.raises(InputError, match="no object 'mlk' \\(did you mean 'milk'\\?\\)"):
         perform(world, "pick-up", {"object": "mlk"})
+
+
+def test_pick_up_chooses_a_grasp_the_gripper_can_hold(world):
+    perform(world, "moving", COUNTER)
+    cereal = perform(world, "pick-up", {"object": "cereal", "arm": "right"})
+    assert cereal.resolved["grasp"] in ("left", "right")  # 19 cm wide from the front: taken across its 7 cm depth
+    bowl = perform(world, "pick-up", {"object": "bowl", "arm": "left"})
+    assert bowl.resolved["grasp"] == "top"  # by the rim (resources/objects/grasps.yaml)
+
+
+def test_a_grasp_the_gripper_cannot_hold_is_a_gripper_failure(world):
+    perform(world, "moving", COUNTER)
+    with pytest.raises(GripperFailure, match="cannot hold cereal with a front grasp: it is 19.\\d cm wide"):
+        perform(world, "pick-up", {"object": "cereal", "arm": "right", "grasp": "front"})
+    with pytest.raises(GripperFailure, match="cannot hold bowl with a front grasp: bowl objects are not held that way"):
+        perform(world, "pick-up", {"object": "bowl", "arm": "right", "grasp": "front"})
+
+
+def test_a_flat_object_is_taken_from_the_top(world):
+    perform(world, "moving", COUNTER)
+    perform(world, "accessing", DRAWER)
+    with pytest.raises(GripperFailure, match="spoon with a front grasp: it is [0-9.]+ cm tall, lower than the fingers"):
+        perform(world, "pick-up", {"object": "spoon", "arm": "right", "grasp": "front"})
+    assert perform(world, "pick-up", {"object": "spoon", "arm": "right"}).resolved["grasp"] == "top"
+
+
+def test_the_gripper_closes_on_the_object_not_through_it(world):
+    perform(world, "moving", COUNTER)
+    perform(world, "pick-up", {"object": "milk", "arm": "left"})
+    gripper = description_for(world.robot).arm("left").gripper
+    opening = world.robot.get_joint_position(gripper.joints[0])
+    assert gripper.closed < opening < gripper.open
