@@ -83,6 +83,31 @@ class LiveView:
         self.live.console.print(f"[cyan]log[/] [dim]{escape(node.path)}[/]: {escape(message)}")
 
 
+class Paced:
+    """Wraps a view: pauses after each motion designator so that a person can follow it in the window."""
+
+    def __init__(self, view: Any, seconds: float) -> None:
+        self.view, self.seconds = view, seconds
+
+    def started(self, node: TraceNode) -> None:
+        self.view.started(node)
+
+    def finished(self, node: TraceNode) -> None:
+        self.view.finished(node)
+        if "designator" in node.info:
+            time.sleep(self.seconds)
+
+    def log(self, node: TraceNode, message: str) -> None:
+        self.view.log(node, message)
+
+    def __enter__(self) -> "Paced":
+        self.view.__enter__()
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.view.__exit__(*exc)
+
+
 class QuietView:
     def started(self, node: TraceNode) -> None:
         pass
@@ -132,11 +157,13 @@ def prepare(plan_file: str, world_file: str | None, params: tuple[str, ...]) -> 
               help="Write the run's trace (JSON) to this file.")
 @click.option("--render", "render_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a PNG of the final scene (headless).")
+@click.option("--pace", type=click.FloatRange(min=0.0), default=None, metavar="SECONDS",
+              help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
 @json_option
 @gui_option
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
-        render_file: Path | None, as_json: bool, gui: bool) -> None:
+        render_file: Path | None, pace: float | None, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
@@ -162,7 +189,10 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             console.info(f"running {plan.path} on {world_path}"
                          + (f" with {', '.join(f'{k}={json.dumps(v)}' for k, v in values.items())}" if values else ""))
         started = time.perf_counter()
-        if isinstance(view, LiveView):
+        pace = pace if pace is not None else (0.5 if gui else 0.0)
+        if pace > 0:
+            view = Paced(view, pace)
+        if isinstance(view.view if isinstance(view, Paced) else view, LiveView):
             with view:
                 result = run_plan(plan, world, values, view, world_name=world_path.name)
         else:

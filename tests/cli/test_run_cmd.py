@@ -152,3 +152,31 @@ def test_designators_run_on_the_kitchen(tmp_path):
     assert "resolved" in moving
     assert data["trace"]["final_state"]["objects"]["pr2"]["position"][:2] == [0.65, 0.7]
     assert data["trace"]["root"]["children"][3]["message"] == "found milk"
+
+
+def test_pace_slows_a_run_down_so_it_can_be_watched(tmp_path):
+    import time
+
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: kitchen\nbody:\n  - move-arm-joints: {left-arm: park}\n  - move-arm-joints: {right-arm: park}\n")
+    start = time.perf_counter()
+    result = CliRunner().invoke(cli, ["run", str(plan), "--pace", "0.3"])
+    assert result.exit_code == 0, result.output
+    assert time.perf_counter() - start >= 0.6  # two motions, 0.3 s after each
+
+
+def test_render_writes_a_png_of_the_final_scene(tmp_path):
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: kitchen\nbody:\n  - moving: {target: [0.65, 0.7, 0]}\n")
+    out = tmp_path / "after.png"
+    result = CliRunner().invoke(cli, ["run", str(plan), "--render", str(out)])
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes()[:4] == b"\x89PNG"
