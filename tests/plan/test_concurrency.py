@@ -62,7 +62,7 @@ def test_par_children_run_side_by_side(plans, world):
           - par: [{wait: 0.3}, {wait: 0.3}, {wait: 0.3}]
     """, world)
     assert result.status == "succeeded"
-    assert time.perf_counter() - started < 0.75
+    assert time.perf_counter() - started < 0.85  # one after another would take 0.9 s
     waits = [n for p, n in nodes(result.trace).items() if p.endswith(":wait")]
     # their run times overlap
     assert max(n["timing"]["started"] for n in waits) < min(n["timing"]["started"] + n["timing"]["duration"]
