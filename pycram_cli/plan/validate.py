@@ -30,6 +30,7 @@ class Validator:
     def __init__(self, plan: Plan, world: "BulletWorld | None" = None) -> None:
         self.plan = plan
         self.world = world
+        self._robot_checked = False
         self.errors: list[InputError] = []
         self.globals = {p.name: p.where for p in plan.params}
         self.defined: dict[str, Location] = {}
@@ -128,9 +129,24 @@ class Validator:
         from ..designators import DESIGNATORS
 
         spec = DESIGNATORS.get(head)
+        if spec is not None and self.world is not None and not self._robot_checked:
+            self._robot_checked = True  # said once, at the first designator
+            self._robot_for(head, slots)
         if spec is not None:
             kinds = {s.name: s.kind for s in spec.slots}
             self._objects(slots, [k for k, kind in kinds.items() if kind in ("object", "position-or-object")])
+
+    def _robot_for(self, head: str, slots: LMap) -> None:
+        """With a world: designators need a robot with a description."""
+        from ..robots import description_for
+
+        robot = self.world.robot if self.world is not None else None
+        if robot is None:
+            self.error(f"the world has no robot to perform '{head}'", slots.where, key=head,
+                       suggestion="add an object of type robot to the world file")
+        elif description_for(robot) is None:
+            self.error(f"no robot description for '{robot.name}' ({robot.path.name}) to perform '{head}'",
+                       slots.where, key=head, suggestion="add resources/robots/<name>/<name>.yaml for it")
 
     def query_objects(self, name: str, args: LMap) -> None:
         """With a world: literal object names in query arguments must name objects in it."""

@@ -160,3 +160,18 @@ def test_with_a_world_object_names_are_checked_too(tmp_path):
     found = [(p.location.line, p.message, p.suggestion) for p in err.value.errors]
     assert found == [(2, "'object': the world has no object 'mlik'", "did you mean 'milk'?"),
                      (3, "'object': the world has no object 'bowll'", "did you mean 'bowl'?")]
+
+
+def test_designators_need_a_robot_in_the_world(tmp_path):
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    world = tmp_path / "w.yaml"
+    world.write_text("objects:\n  - {name: floor, type: environment, file: environments/floor/floor.urdf}\n")
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: w.yaml\nbody:\n  - log: hello\n  - moving: {target: [0.65, 0.7, 0]}\n  - moving: {target: [0, 0, 0]}\n")
+    result = CliRunner().invoke(cli, ["run", str(plan)])
+    assert result.exit_code == 2
+    assert result.output.count("the world has no robot to perform 'moving'") == 1
+    assert f"{plan}:4:13: moving:" in result.output
