@@ -42,35 +42,10 @@ STEPS = 480  # 2 s at 240 Hz
 
 
 def object_urdf(name: str, directory: Path) -> Path:
-    mesh = OBJECTS / f"{name}.obj"
-    vertices = np.array([[float(v) for v in line.split()[1:4]]
-                         for line in mesh.read_text().splitlines() if line.startswith("v ")])
-    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-    (sx, sy, sz), (cx, cy, cz) = hi - lo, (hi + lo) / 2
-    ixx, iyy, izz = (MASS * (sy**2 + sz**2) / 12, MASS * (sx**2 + sz**2) / 12, MASS * (sx**2 + sy**2) / 12)
-    path = directory / f"{name}.urdf"
-    path.write_text(f"""<?xml version="1.0"?>
-<robot name="{name}">
-  <link name="{name}">
-    <inertial>
-      <origin xyz="{cx:.6f} {cy:.6f} {cz:.6f}" rpy="0 0 0"/>
-      <mass value="{MASS}"/>
-      <inertia ixx="{ixx:.3e}" ixy="0" ixz="0" iyy="{iyy:.3e}" iyz="0" izz="{izz:.3e}"/>
-    </inertial>
-    <visual>
-      <geometry>
-        <mesh filename="{mesh}"/>
-      </geometry>
-    </visual>
-    <collision>
-      <geometry>
-        <mesh filename="{mesh}"/>
-      </geometry>
-    </collision>
-  </link>
-</robot>
-""")
-    return path
+    """The one-link URDF pycram itself makes for a mesh (cached by pycram, not written to `directory`)."""
+    from pycram_cli.world.model_files import mesh_urdf
+
+    return mesh_urdf(OBJECTS / f"{name}.obj", None, mass=MASS)
 
 
 def build_scene(tmp_path: Path, drawer_opening: float = 0.0) -> tuple[int, int, dict[str, int]]:
