@@ -33,7 +33,7 @@ def _baseline_run() -> int:
     from reasoning import Baseline  # bench/reasoning.py
 
     from pycram_cli.process_modules import perception
-    from pycram_cli.reasoning import registry
+    from pycram_cli.reasoning import queries
     from pycram_cli.reasoning.stable import StableAnswer
     from pycram_cli.reasoning.visibility import VisibleAnswer
 
@@ -52,7 +52,7 @@ def _baseline_run() -> int:
         ids = set(np.unique(scene[alone == obj.id]).tolist()) - {obj.id, -1}
         return sorted((obj.world.get_object_by_id(i) for i in ids), key=lambda o: o.name)
 
-    registry.stable, registry.visible, registry.occluding = stable, visible, occluding
+    queries.stable, queries.visible, queries.occluding = stable, visible, occluding
     perception.visible, perception.occluding = visible, occluding
     from pycram_cli.cli.main import cli
 

@@ -1,7 +1,10 @@
 """Where the bundled data lives, both in a source checkout and in an installed package."""
 from __future__ import annotations
 
+import os
 from pathlib import Path
+
+from .errors import InputError, Location, did_you_mean
 
 _PACKAGE = Path(__file__).resolve().parent
 
@@ -37,10 +40,48 @@ def default_world() -> Path:
 
 def cache_dir() -> Path:
     """A per-user folder for generated files (URDFs made from meshes, patched URDFs)."""
-    import os
-
     base = os.environ.get("PYCRAM_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME")
     root = Path(base) if base else Path.home() / ".cache"
     folder = (root / "pycram") if not os.environ.get("PYCRAM_CACHE_DIR") else root
     folder.mkdir(parents=True, exist_ok=True)
     return folder
+
+
+def _names(folder: Path) -> list[str]:
+    return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
+
+
+def _find(value: str, base: Path, bundled_folder: Path) -> Path | None:
+    path = Path(value).expanduser()
+    if path.is_absolute():
+        return path if path.is_file() else None
+    names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]
+    for candidate in [base / n for n in names] + [bundled_folder / n for n in names]:
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def find_world(value: str | None, base: Path | None = None, where: Location | None = None) -> Path:
+    """A world file: a path (relative to `base`, default the current folder) or a bundled world's name.
+
+    None means the default world. Not found: an input error at `where` with a suggestion.
+    """
+    if value is None:
+        return default_world()
+    found = _find(value, base if base is not None else Path.cwd(), worlds_dir())
+    if found is not None:
+        return found
+    names = _names(worlds_dir())
+    raise InputError(f"world file not found: '{value}'", where or Location(value), key="world" if where else None,
+                     suggestion=did_you_mean(value, names) or (f"bundled worlds: {', '.join(names)}" if names else None))
+
+
+def find_plan(value: str, base: Path | None = None) -> Path:
+    """A plan file: a path (relative to `base`, default the current folder) or a bundled plan's name (`set_table`)."""
+    found = _find(value, base if base is not None else Path.cwd(), plans_dir())
+    if found is not None:
+        return found
+    names = _names(plans_dir())
+    raise InputError("plan file not found", Location(value),
+                     suggestion=did_you_mean(value, names) or (f"bundled plans: {', '.join(names)}" if names else None))

@@ -42,7 +42,13 @@ def check_keys(mapping: LMap, allowed: Iterable[str], required: Iterable[str], c
 
 
 def is_number(value: Any) -> bool:
+    """A finite int or float (not a bool)."""
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def is_vector(value: Any, size: int) -> bool:
+    """A list or tuple of exactly `size` finite numbers."""
+    return isinstance(value, (list, tuple)) and len(value) == size and all(is_number(v) for v in value)
 
 
 def number_list(value: Any, size: int | tuple[int, ...], where: Location, key: str,

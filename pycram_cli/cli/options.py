@@ -1,32 +1,22 @@
 """Options and helpers shared by several commands."""
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
-from typing import Callable, TypeVar
+from typing import Callable, Iterator, TypeVar
 
 import click
 
-from ..errors import InputError, Location
-from ..paths import default_world, worlds_dir
+from ..paths import find_world
+from ..world import BulletWorld
+from ..worldfile.loader import load_world
 
 F = TypeVar("F", bound=Callable[..., object])
 
 
 def resolve_world_path(value: str | None) -> Path:
-    """A world file path; a bare name like `kitchen` means a bundled world."""
-    if value is None:
-        return default_world()
-    path = Path(value)
-    if path.exists():
-        return path
-    bundled = worlds_dir() / (value if value.endswith((".yaml", ".yml")) else f"{value}.yaml")
-    if bundled.exists():
-        return bundled
-    from ..errors import did_you_mean
-
-    names = [p.stem for p in worlds_dir().glob("*.yaml")]
-    raise InputError("world file not found", Location(value), suggestion=did_you_mean(value, names)
-                     or (f"bundled worlds: {', '.join(sorted(names))}" if names else None))
+    """A world file path; a bare name like `kitchen` means a bundled world (None: the default world)."""
+    return find_world(value)
 
 
 def json_option(func: F) -> F:
@@ -51,3 +41,19 @@ def wait_for_window(world: object) -> None:
             time.sleep(0.1)
     except KeyboardInterrupt:
         pass
+
+
+def world_option(func: F) -> F:
+    return click.option("--world", "world_file", metavar="WORLD",
+                        help="World file or bundled world name (default: kitchen).")(func)  # type: ignore[return-value]
+
+
+@contextlib.contextmanager
+def open_world(value: str | None, mode: str = "direct") -> Iterator[tuple[BulletWorld, Path]]:
+    """Load a world file (or bundled world) for one command; it exits when the command is done."""
+    path = resolve_world_path(value)
+    world = load_world(path, mode=mode)
+    try:
+        yield world, path
+    finally:
+        world.exit()

@@ -8,13 +8,15 @@ attachments, bitwise). Answers are dataclasses that are truthy when the answer i
     visible(bottle).fraction          # seen from the robot's camera
     reachable(milk, robot, "r_gripper_tool_frame", grasp="front")
 
-`QUERIES` and `run_query` answer the same queries by name with JSON-friendly results, for
-plans and `pycram query`.
+Each query is declared once (`query.QuerySpec`: parameters, runner, answer sentence) in
+`queries.py`; `QUERIES` and `run_query` answer them by name with JSON-friendly results, for
+plans and `pycram query`. A new query is a module with its `declare_query(...)`, imported here.
 """
+from . import queries  # noqa: F401  (declares the design's seven queries)
 from .contact import ContactAnswer, contact
 from .ik import IKSolution, solve
+from .query import QUERIES, Call, QueryAnswer, QueryParam, QuerySpec, check_query_args, declare_query, run_query
 from .reachability import ReachableAnswer, blocking, reachable
-from .registry import QUERIES, QueryAnswer, QueryParam, QuerySpec, check_query_args, run_query
 from .stable import StableAnswer, stable
 from .supporting import supporting
 from .visibility import VisibleAnswer, occluding, visible
@@ -22,5 +24,5 @@ from .visibility import VisibleAnswer, occluding, visible
 __all__ = [
     "stable", "contact", "visible", "occluding", "reachable", "blocking", "supporting",
     "StableAnswer", "ContactAnswer", "VisibleAnswer", "ReachableAnswer", "IKSolution", "solve",
-    "QUERIES", "QuerySpec", "QueryParam", "QueryAnswer", "run_query", "check_query_args",
+    "QUERIES", "QuerySpec", "QueryParam", "QueryAnswer", "Call", "run_query", "check_query_args", "declare_query",
 ]

@@ -1,4 +1,8 @@
-"""Robot descriptions: the robot-specific knowledge (arms, frames, poses) kept as data."""
-from .description import ArmDescription, RobotDescription, description_for, load_description
+"""Robot descriptions (arms, frames, poses, resources: robot knowledge as data) and object knowledge."""
+from .description import (ArmDescription, CameraDescription, GripperDescription, HeadDescription, RobotDescription,
+                          assign_description, bundled_descriptions, check_description, description_for,
+                          find_description, load_description)
 
-__all__ = ["ArmDescription", "RobotDescription", "description_for", "load_description"]
+__all__ = ["ArmDescription", "CameraDescription", "GripperDescription", "HeadDescription", "RobotDescription",
+           "assign_description", "bundled_descriptions", "check_description", "description_for", "find_description",
+           "load_description"]

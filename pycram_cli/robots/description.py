@@ -1,36 +1,60 @@
-"""Robot descriptions read from `resources/robots/<name>/<name>.yaml`.
+"""Robot descriptions: everything robot-specific, kept as data in a YAML file.
 
-Everything a process module or a reasoning query needs to know about a particular robot
-(joint names, tool and camera frames, park poses, gripper joints, grasp orientations)
-lives in that file, so that another robot is added with data, not code.
+Which arms a robot has (any number, any names), their joints, tool frames, grippers and
+named poses, the grasp orientations, the camera, head and torso, whether the base can
+drive, which physical resources steps may share, and which process module serves a
+designator: process modules, reasoning queries and plan validation read all of it from
+here, so a new robot is added with data, not code (docs/robots.md).
+
+A robot object finds its description (`find_description`):
+1. the file named by `description:` on the robot in the world file;
+2. `<urdf stem>.yaml` beside the robot's URDF (a user's own robot);
+3. a bundled description (`resources/robots/*/*.yaml`) whose `name` is the URDF's robot
+   name (so the real PR2's URDF gets our PR2 description), then the URDF's file name.
+A broken description is an input error naming its file, line and key.
 """
 from __future__ import annotations
 
 import functools
+import math
+import weakref
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Sequence
 
-import yaml
-
+from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..paths import resources_dir
+from ..schema import check_keys, describe, expect, is_number, number_list, quaternion
+from ..world.model_files import ModelInfo, describe_model
+from ..world.pose import check_quaternion, quat_multiply
+from ..yamlsource import LList, LMap, load_yaml
 
 if TYPE_CHECKING:
     from ..world import Object
 
+DESCRIPTION_KEYS = ("name", "urdf", "base_link", "mobile", "torso", "camera", "head", "arms", "grasps",
+                    "resources", "process_modules")
+ARM_KEYS = ("joints", "tool_frame", "palm_link", "gripper", "links", "poses")
+GRIPPER_KEYS = ("joints", "open", "closed", "max_width", "finger_height")
+CAMERA_KEYS = ("frame", "horizontal_fov", "vertical_fov", "near", "far")
+HEAD_KEYS = ("pan_joint", "tilt_joint", "pan_link", "tilt_link")
+TORSO_KEYS = ("joint", "default")
+#: the roles a step can drive besides the arms (each arm is a role of its own: `arm:<name>`)
+ROLES = ("base", "head")
+
 
 @dataclass(frozen=True)
 class GripperDescription:
-    joints: tuple[str, ...]
-    open: float
-    closed: float
-    max_width: float = float("inf")  # metres between the fingers when fully open
+    joints: tuple[str, ...] = ()
+    open: float = 0.0
+    closed: float = 0.0
+    max_width: float = math.inf  # metres between the fingers when fully open
     finger_height: float = 0.0  # side grasps (front, left, right) need objects at least this tall
 
     def angle_for_width(self, width: float) -> float:
         """The finger joint value that leaves `width` between the fingers (linear between closed and open)."""
-        if width >= self.max_width or self.max_width == float("inf"):
+        if width >= self.max_width or self.max_width == math.inf:
             return self.open
         return self.closed + (self.open - self.closed) * max(width, 0.0) / self.max_width
 
@@ -40,10 +64,13 @@ class ArmDescription:
     name: str
     joints: tuple[str, ...]
     tool_frame: str
-    palm_link: str
-    gripper: GripperDescription
-    links: tuple[str, ...]
+    palm_link: str = ""
+    gripper: GripperDescription = field(default_factory=GripperDescription)
+    links: tuple[str, ...] = ()
     poses: dict[str, tuple[float, ...]] = field(default_factory=dict)
+
+    def owns_link(self, link: str) -> bool:
+        return link == self.tool_frame or link in self.links
 
 
 @dataclass(frozen=True)
@@ -66,14 +93,18 @@ class HeadDescription:
 @dataclass(frozen=True)
 class RobotDescription:
     name: str
-    urdf: Path
+    path: Path  # the description file
     base_link: str
-    camera: CameraDescription
-    head: HeadDescription
     arms: dict[str, ArmDescription]
-    grasps: dict[str, tuple[float, float, float, float]]
+    grasps: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    camera: CameraDescription | None = None
+    head: HeadDescription | None = None
     torso_joint: str | None = None
     torso_default: float = 0.0
+    mobile: bool = True
+    urdf: Path | None = None
+    resources: dict[str, str] = field(default_factory=dict)  # role -> the resource it drives
+    process_modules: dict[str, str] = field(default_factory=dict)  # designator -> process module name
 
     def arm(self, name: str) -> ArmDescription:
         try:
@@ -81,79 +112,320 @@ class RobotDescription:
         except KeyError:
             raise KeyError(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
 
-    def grasp_orientation(self, grasp: str | tuple[float, ...] | list[float],
-                          base_orientation: tuple[float, float, float, float]) -> tuple[float, float, float, float]:
-        """World orientation of the tool frame for a named grasp (relative to the base) or a world quaternion."""
-        from ..world.pose import check_quaternion, quat_multiply
+    def resource(self, role: str) -> str:
+        """The physical resource a role drives (`base`, `head`, `arm:<name>`); roles share one when the description says so."""
+        return self.resources.get(role, role)
 
+    def grasp_orientation(self, grasp: str | Sequence[float],
+                          base_orientation: Sequence[float]) -> tuple[float, float, float, float]:
+        """World orientation of the tool frame for a named grasp (relative to the base) or a world quaternion."""
         if isinstance(grasp, str):
             if grasp not in self.grasps:
-                raise KeyError(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps)})")
+                raise KeyError(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps) or 'none'})")
             return quat_multiply(base_orientation, self.grasps[grasp])
         return check_quaternion(grasp, "grasp")
 
     def arm_of_link(self, link: str) -> str | None:
         for arm in self.arms.values():
-            if link in arm.links:
+            if arm.owns_link(link):
                 return arm.name
         return None
 
+    def joint_names(self) -> list[tuple[str, str]]:
+        """Every joint the description names, with the key that names it (checked against the model)."""
+        names: list[tuple[str, str]] = []
+        if self.torso_joint:
+            names.append((self.torso_joint, "torso.joint"))
+        if self.head is not None:
+            names += [(self.head.pan_joint, "head.pan_joint"), (self.head.tilt_joint, "head.tilt_joint")]
+        for arm in self.arms.values():
+            names += [(j, f"arms.{arm.name}.joints") for j in arm.joints]
+            names += [(j, f"arms.{arm.name}.gripper.joints") for j in arm.gripper.joints]
+        return names
 
-def load_description(path: Path) -> RobotDescription:
-    data = yaml.safe_load(path.read_text())
-    arms = {}
-    for name, arm in data["arms"].items():
-        gripper = arm["gripper"]
-        arms[name] = ArmDescription(
-            name=name, joints=tuple(arm["joints"]), tool_frame=arm["tool_frame"], palm_link=arm["palm_link"],
-            gripper=GripperDescription(tuple(gripper["joints"]), float(gripper["open"]), float(gripper["closed"]),
-                                       float(gripper.get("max_width", float("inf"))),
-                                       float(gripper.get("finger_height", 0.0))),
-            links=tuple(arm.get("links", ())),
-            poses={k: tuple(float(v) for v in vals) for k, vals in arm.get("poses", {}).items()},
-        )
-    cam = data["camera"]
-    torso = data.get("torso") or {}
-    return RobotDescription(
-        name=data["name"], urdf=(path.parent / data["urdf"]).resolve(), base_link=data["base_link"],
-        camera=CameraDescription(cam["frame"], float(cam["horizontal_fov"]), float(cam["vertical_fov"]),
-                                 float(cam.get("near", 0.05)), float(cam.get("far", 6.0))),
-        head=HeadDescription(**data["head"]), arms=arms,
-        grasps={k: tuple(float(x) for x in v) for k, v in data.get("grasps", {}).items()},  # type: ignore[misc]
-        torso_joint=torso.get("joint"), torso_default=float(torso.get("default", 0.0)),
-    )
-
-
-@functools.lru_cache(maxsize=None)
-def _bundled() -> dict[str, RobotDescription]:
-    found = {}
-    for path in sorted((resources_dir() / "robots").glob("*/*.yaml")):
-        try:
-            desc = load_description(path)
-        except (KeyError, TypeError, yaml.YAMLError):
-            continue
-        found[desc.name] = desc
-    return found
+    def link_names(self) -> list[tuple[str, str]]:
+        names = [(self.base_link, "base_link")]
+        if self.camera is not None:
+            names.append((self.camera.frame, "camera.frame"))
+        if self.head is not None:
+            names += [(link, f"head.{key}") for key, link in (("pan_link", self.head.pan_link),
+                                                               ("tilt_link", self.head.tilt_link)) if link]
+        for arm in self.arms.values():
+            names.append((arm.tool_frame, f"arms.{arm.name}.tool_frame"))
+            if arm.palm_link:
+                names.append((arm.palm_link, f"arms.{arm.name}.palm_link"))
+            names += [(link, f"arms.{arm.name}.links") for link in arm.links]
+        return names
 
 
-def _urdf_robot_name(path: Path) -> str | None:
+# -- reading a description ---------------------------------------------------------------------
+
+
+class _Reader:
+    """Checks one description file, collecting every problem with its place."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.errors: list[InputError] = []
+
+    def error(self, message: str, where: Location, key: str, suggestion: str | None = None) -> None:
+        self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
+
+    def mapping(self, data: LMap, key: str, allowed: Sequence[str], required: Sequence[str]) -> LMap | None:
+        value = data.get(key)
+        if not isinstance(value, LMap):
+            self.error(f"expected a mapping, got {describe(value)}", data.loc(key, True), key)
+            return None
+        check_keys(value, allowed, required, key, self.errors)
+        return value
+
+    def name(self, data: LMap, key: str, required: bool = True) -> str:
+        if key not in data:
+            return ""
+        value = data[key]
+        if not isinstance(value, str) or not value:
+            self.error(f"expected a name, got {describe(value)}", data.loc(key, True), key)
+            return ""
+        return value
+
+    def number(self, data: LMap, key: str, default: float, positive: bool = False) -> float:
+        if key not in data:
+            return default
+        value = data[key]
+        if not is_number(value) or (positive and value <= 0):
+            self.error(f"expected {'a positive' if positive else 'a'} number, got {describe(value)}",
+                       data.loc(key, True), key)
+            return default
+        return float(value)
+
+    def names(self, data: LMap, key: str) -> tuple[str, ...]:
+        if key not in data:
+            return ()
+        value = data[key]
+        if not isinstance(value, LList) or not all(isinstance(v, str) and v for v in value):
+            self.error(f"expected a list of names, got {describe(value)}", data.loc(key, True), key)
+            return ()
+        return tuple(value)
+
+    def gripper(self, arm: LMap, arm_name: str) -> GripperDescription:
+        if "gripper" not in arm or arm["gripper"] is None:
+            return GripperDescription()
+        data = self.mapping(arm, "gripper", GRIPPER_KEYS, ("joints", "open", "closed"))
+        if data is None:
+            return GripperDescription()
+        return GripperDescription(self.names(data, "joints"), self.number(data, "open", 0.0),
+                                  self.number(data, "closed", 0.0), self.number(data, "max_width", math.inf, True),
+                                  self.number(data, "finger_height", 0.0))
+
+    def poses(self, arm: LMap, joints: tuple[str, ...]) -> dict[str, tuple[float, ...]]:
+        if "poses" not in arm:
+            return {}
+        value = arm["poses"]
+        if not isinstance(value, LMap):
+            self.error(f"expected a mapping of pose name to joint values, got {describe(value)}", arm.loc("poses", True),
+                       "poses")
+            return {}
+        poses = {}
+        for name, values in value.items():
+            numbers = number_list(values, len(joints), value.loc(name, True), f"poses.{name}", self.errors) \
+                if joints else None
+            if numbers is not None:
+                poses[str(name)] = tuple(numbers)
+        return poses
+
+    def arm(self, arms: LMap, name: str) -> ArmDescription | None:
+        data = arms[name]
+        if not isinstance(data, LMap):
+            self.error(f"arm '{name}': expected a mapping with joints and tool_frame, got {describe(data)}",
+                       arms.loc(name, True), f"arms.{name}")
+            return None
+        check_keys(data, ARM_KEYS, ("joints", "tool_frame"), f"arm '{name}'", self.errors)
+        joints = self.names(data, "joints")
+        if "joints" in data and not joints and isinstance(data["joints"], LList):
+            self.error("an arm needs at least one joint", data.loc("joints", True), "joints")
+        return ArmDescription(name=str(name), joints=joints, tool_frame=self.name(data, "tool_frame"),
+                              palm_link=self.name(data, "palm_link"), gripper=self.gripper(data, str(name)),
+                              links=self.names(data, "links"), poses=self.poses(data, joints))
+
+    def read(self) -> RobotDescription:
+        data = load_yaml(self.path)
+        if not isinstance(data, LMap):
+            raise InputError("a robot description must be a mapping with name, base_link and arms",
+                             Location(str(self.path), 1, 1))
+        check_keys(data, DESCRIPTION_KEYS, ("name", "base_link", "arms"), "the robot description", self.errors)
+        name = self.name(data, "name")
+        base_link = self.name(data, "base_link")
+        mobile = True
+        if "mobile" in data and expect(data["mobile"], bool, data.loc("mobile", True), "mobile", self.errors):
+            mobile = data["mobile"]
+        urdf = None
+        if "urdf" in data and self.name(data, "urdf"):
+            urdf = (self.path.parent / data["urdf"]).resolve()
+            if not urdf.is_file():
+                self.error(f"file not found: {data['urdf']} (relative to {self.path.parent})", data.loc("urdf", True),
+                           "urdf")
+                urdf = None
+        arms: dict[str, ArmDescription] = {}
+        if "arms" in data:
+            raw = data["arms"]
+            if not isinstance(raw, LMap):
+                self.error(f"expected a mapping of arm name to arm, got {describe(raw)}", data.loc("arms", True), "arms")
+            else:
+                for arm_name in raw:
+                    arm = self.arm(raw, arm_name)
+                    if arm is not None:
+                        arms[arm.name] = arm
+        camera = None
+        if "camera" in data and data["camera"] is not None:
+            cam = self.mapping(data, "camera", CAMERA_KEYS, ("frame", "horizontal_fov", "vertical_fov"))
+            if cam is not None:
+                camera = CameraDescription(self.name(cam, "frame"), self.number(cam, "horizontal_fov", 1.0, True),
+                                           self.number(cam, "vertical_fov", 0.75, True), self.number(cam, "near", 0.05, True),
+                                           self.number(cam, "far", 6.0, True))
+        head = None
+        if "head" in data and data["head"] is not None:
+            raw_head = self.mapping(data, "head", HEAD_KEYS, ("pan_joint", "tilt_joint"))
+            if raw_head is not None:
+                head = HeadDescription(self.name(raw_head, "pan_joint"), self.name(raw_head, "tilt_joint"),
+                                       self.name(raw_head, "pan_link"), self.name(raw_head, "tilt_link"))
+        torso_joint, torso_default = None, 0.0
+        if "torso" in data and data["torso"] is not None:
+            torso = self.mapping(data, "torso", TORSO_KEYS, ("joint",))
+            if torso is not None:
+                torso_joint = self.name(torso, "joint") or None
+                torso_default = self.number(torso, "default", 0.0)
+        grasps: dict[str, tuple[float, float, float, float]] = {}
+        if "grasps" in data:
+            raw_grasps = data["grasps"]
+            if not isinstance(raw_grasps, LMap):
+                self.error(f"expected a mapping of grasp name to quaternion, got {describe(raw_grasps)}",
+                           data.loc("grasps", True), "grasps")
+            else:
+                for grasp, value in raw_grasps.items():
+                    q = quaternion(value, raw_grasps.loc(grasp, True), f"grasps.{grasp}", self.errors)
+                    if q is not None:
+                        grasps[str(grasp)] = (q[0], q[1], q[2], q[3])
+        resources = self.string_map(data, "resources", [*ROLES, *(f"arm:{a}" for a in arms)])
+        modules = self.string_map(data, "process_modules", None)
+        raise_if_any(self.errors)
+        return RobotDescription(name=name, path=self.path, base_link=base_link, arms=arms, grasps=grasps, camera=camera,
+                                head=head, torso_joint=torso_joint, torso_default=torso_default, mobile=mobile,
+                                urdf=urdf, resources=resources, process_modules=modules)
+
+    def string_map(self, data: LMap, key: str, allowed_keys: list[str] | None) -> dict[str, str]:
+        if key not in data or data[key] is None:
+            return {}
+        value = data[key]
+        if not isinstance(value, LMap):
+            self.error(f"expected a mapping of names, got {describe(value)}", data.loc(key, True), key)
+            return {}
+        result = {}
+        for k, v in value.items():
+            if allowed_keys is not None and k not in allowed_keys:
+                self.error(f"unknown role '{k}' (roles: {', '.join(allowed_keys)})", value.loc(k), f"{key}.{k}",
+                           did_you_mean(str(k), allowed_keys))
+                continue
+            if not isinstance(v, str) or not v:
+                self.error(f"expected a name, got {describe(v)}", value.loc(k, True), f"{key}.{k}")
+                continue
+            result[str(k)] = v
+        return result
+
+
+@functools.lru_cache(maxsize=64)
+def _load_cached(path: Path, mtime_ns: int) -> RobotDescription:
+    return _Reader(path).read()
+
+
+def load_description(path: str | Path) -> RobotDescription:
+    """Read and check a description file; InputError(s) with file, line and key on problems."""
+    path = Path(path).resolve()
+    try:
+        mtime = path.stat().st_mtime_ns
+    except OSError:
+        raise InputError("robot description not found", Location(str(path))) from None
+    return _load_cached(path, mtime)
+
+
+def check_against_model(desc: RobotDescription, model: ModelInfo, model_path: Path) -> list[InputError]:
+    """Names in the description that the robot's model does not have (each at the description's file)."""
+    errors: list[InputError] = []
+    where = Location(str(desc.path))
+    for joint, key in desc.joint_names():
+        if joint not in model.joints:
+            errors.append(InputError(f"the model {model_path.name} has no joint '{joint}'", where, key=key,
+                                     suggestion=did_you_mean(joint, model.joints)))
+    for link, key in desc.link_names():
+        if link not in model.links:
+            errors.append(InputError(f"the model {model_path.name} has no link '{link}'", where, key=key,
+                                     suggestion=did_you_mean(link, model.links)))
+    return errors
+
+
+# -- finding the description of a robot -----------------------------------------------------------
+
+
+def bundled_paths() -> list[Path]:
+    """The bundled description files (`resources/robots/<name>/<name>.yaml`)."""
+    return sorted(p for p in (resources_dir() / "robots").glob("*/*.yaml") if p.stem == p.parent.name)
+
+
+def bundled_descriptions() -> list[RobotDescription]:
+    """Every bundled description (a broken one is an input error, not skipped)."""
+    return [load_description(path) for path in bundled_paths()]
+
+
+def _bundled_by_name(name: str) -> RobotDescription | None:
+    for path in bundled_paths():
+        desc = load_description(path)
+        if desc.name == name:
+            return desc
+    return None
+
+
+def urdf_robot_name(path: Path) -> str | None:
     if path.suffix.lower() != ".urdf":
         return None
     try:
         for _, element in ET.iterparse(path, events=("start",)):
             return element.get("name") if element.tag == "robot" else None
-    except ET.ParseError:
+    except (ET.ParseError, OSError):
         return None
     return None
 
 
+def find_description(model_path: Path, explicit: Path | None = None) -> RobotDescription | None:
+    """The description of the robot loaded from `model_path` (see the module docstring for the order)."""
+    if explicit is not None:
+        return load_description(explicit)
+    beside = model_path.with_suffix(".yaml")
+    if model_path.suffix.lower() == ".urdf" and beside.is_file():
+        return load_description(beside)
+    name = urdf_robot_name(model_path)
+    return (_bundled_by_name(name) if name else None) or _bundled_by_name(model_path.stem)
+
+
+def check_description(desc: RobotDescription, model_path: Path) -> None:
+    """Raise the description's names that the robot model lacks (InputErrors)."""
+    try:
+        model = describe_model(model_path)
+    except Exception:  # noqa: BLE001 - an unreadable model is reported where the model is named
+        return
+    raise_if_any(check_against_model(desc, model, model_path))
+
+
+_ASSIGNED: "weakref.WeakKeyDictionary[Object, RobotDescription | None]" = weakref.WeakKeyDictionary()
+
+
+def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
+    """Give a robot object its description (the world loader does, for `description:` in a world file)."""
+    _ASSIGNED[obj] = desc
+
+
 def description_for(obj: "Object") -> RobotDescription | None:
-    """The description of a robot object: matched by its URDF's robot name (then its file name)."""
-    cached = getattr(obj, "_description", False)
-    if cached is not False:
-        return cached  # type: ignore[return-value]
-    known = _bundled()
-    name = _urdf_robot_name(obj.path) or obj.path.stem
-    desc = known.get(name) or known.get(obj.path.stem)
-    obj._description = desc  # type: ignore[attr-defined]
+    """The description of a robot object: assigned by the loader, else found by `find_description`."""
+    if obj in _ASSIGNED:
+        return _ASSIGNED[obj]
+    desc = find_description(obj.path)
+    _ASSIGNED[obj] = desc
     return desc

@@ -6,8 +6,8 @@ from pathlib import Path
 from typing import Iterator
 
 from ..errors import InputError, Location
-
 from ..paths import default_world
+from ..robots import assign_description
 from ..world import BulletWorld, Object
 from .spec import WorldSpec, parse_world
 
@@ -32,6 +32,8 @@ def load_spec(spec: WorldSpec, mode: str = "direct") -> BulletWorld:
                                             world=world, color=item.color, fixed=item.fixed, mass=item.mass)
                 if item.joints:
                     objects[item.name].set_joint_positions(item.joints)
+                if item is spec.robot:
+                    assign_description(objects[item.name], spec.robot_description)
         for item in spec.objects:
             for att in item.attach:
                 with _reported_at(item.where):

@@ -12,6 +12,7 @@
         attach: [{to: pr2, parent_link: r_gripper_tool_frame}]   # optional; this object follows `to`
         fixed: false                  # optional; robots and environments are fixed by default
         mass: 0.5                     # optional, kg, meshes
+        description: my_robot.yaml    # optional, robots: the robot description (default: beside the URDF, bundled)
 """
 from __future__ import annotations
 
@@ -20,14 +21,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..errors import InputError, InputErrors, Location, as_list, did_you_mean, raise_if_any
 from ..paths import resources_dir
+from ..robots import RobotDescription, find_description
+from ..robots.description import check_against_model
 from ..schema import check_keys, expect, is_number, number_list, quaternion
 from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model
 from ..yamlsource import LList, LMap, load_yaml
 
 WORLD_KEYS = ("description", "gravity", "objects")
-OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "color", "joints", "attach", "fixed", "mass")
+OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "color", "joints", "attach", "fixed", "mass",
+               "description")
 OBJECT_REQUIRED = ("name", "type", "file")
 ATTACH_KEYS = ("to", "parent_link", "child_link")
 MODEL_SUFFIXES = {".urdf", *MESH_SUFFIXES}
@@ -52,6 +56,7 @@ class ObjectSpec:
     attach: list[AttachSpec] = field(default_factory=list)
     fixed: bool | None = None
     mass: float | None = None
+    description: Path | None = None  # an explicit robot description file
     file_text: str = ""
     where: Location = field(default_factory=Location)
 
@@ -62,6 +67,12 @@ class WorldSpec:
     gravity: list[float]
     objects: list[ObjectSpec]
     description: str = ""
+    robot: ObjectSpec | None = None  # the world's robot: the first object of type robot
+    robot_description: "RobotDescription | None" = None
+
+    @property
+    def object_names(self) -> list[str]:
+        return [o.name for o in self.objects]
 
 
 def search_dirs(base: Path) -> list[Path]:
@@ -132,8 +143,25 @@ def parse_world(path: Path) -> WorldSpec:
         first_seen[spec.name] = spec.where
         objects.append(spec)
     _check_attachments(objects, models, errors)
+    robot = next((o for o in objects if o.type == "robot"), None)
+    robot_description = _robot_description(robot, models.get(robot.name), errors) if robot is not None else None
     raise_if_any(errors)
-    return WorldSpec(path, gravity, objects, description if isinstance(description, str) else "")
+    return WorldSpec(path, gravity, objects, description if isinstance(description, str) else "", robot,
+                     robot_description)
+
+
+def _robot_description(robot: ObjectSpec, model: ModelInfo | None, errors: list[InputError]) -> RobotDescription | None:
+    """The robot's description, checked against its model; problems are reported at the description's file."""
+    if model is None:
+        return None
+    try:
+        desc = find_description(robot.file, robot.description)
+        if desc is not None:
+            raise_if_any(check_against_model(desc, model, robot.file))
+        return desc
+    except (InputError, InputErrors) as exc:
+        errors.extend(as_list(exc))
+        return None
 
 
 def _parse_object(item: Any, where: Location, base: Path, errors: list[InputError],
@@ -181,6 +209,13 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
             models[name] = info
         except Exception as exc:  # noqa: BLE001 - any parse failure is the user's file
             errors.append(InputError(f"cannot read model file {resolved.name}: {exc}", item.loc("file", True), key="file"))
+    if "description" in item and expect(item["description"], str, item.loc("description", True), "description", errors):
+        found = resolve_file(item["description"], base)
+        if found is None:
+            errors.append(InputError(f"robot description not found: '{item['description']}' (looked in {base} and the "
+                                     "bundled resources)", item.loc("description", True), key="description"))
+        else:
+            spec.description = found
     if "joints" in item:
         spec.joints = _parse_joints(item["joints"], item.loc("joints", True), info, errors)
     if "attach" in item:

@@ -80,7 +80,7 @@ def test_a_negative_answer_still_exits_zero():
     (["contact", "kitchen"], "missing arguments: expected 2 (a, b), got 1"),
     (["stable", "milk", "bowl"], "too many arguments"),
     (["stable", "milk", "--arm", "left"], "option --arm does not apply to 'stable'"),
-    (["reachable", "milk", "--arm", "middle"], "unknown arm 'middle' (arms: left, right)"),
+    (["reachable", "milk", "--arm", "middle"], "robot 'pr2' has no arm 'middle' (arms: left, right)"),
     (["reachable", "milk", "--grasp", "side"], "unknown grasp 'side'"),
     (["visible", "milk", "--from", "head_tilt_lnk"], "did you mean 'head_tilt_link'?"),
     (["visible", "milk", "--world", "kitchn"], "world file not found"),

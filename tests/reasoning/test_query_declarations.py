@@ -97,7 +97,7 @@ def test_blocking_can_leave_out_several_types(scene):
     ("visble", {"object": "bottle"}, "unknown query 'visble' (did you mean 'visible'?)"),
     ("contact", {"a": "kitchen"}, "missing parameter 'b'"),
     ("contact", {"a": "kitchen", "b": "milk", "c": "x"}, "no parameter 'c'"),
-    ("reachable", {"target": "milk", "arm": "middle"}, "unknown arm 'middle' (arms: left, right)"),
+    ("reachable", {"target": "milk", "arm": "middle"}, "robot 'pr2' has no arm 'middle' (arms: left, right)"),
     ("reachable", {"target": "milk", "grasp": "side"}, "unknown grasp 'side' (grasps: front, top, left, right"),
     ("reachable", {"target": "milk", "threshold": -1}, "expected a positive distance"),
     ("visible", {"object": "milk", "from": "head_tilt_lnk"}, "did you mean 'head_tilt_link'?"),

@@ -1,0 +1,240 @@
+"""Parameter kinds: how a value of a designator slot or a query parameter is written and checked.
+
+One set of kinds serves designator slots and query parameters alike. A kind knows
+
+* `doc`: how the value is written, for people (the `pycram designators` table, query help);
+* `check(value, robots)`: the problem with a literal value, or None, found without running
+  anything. Robot-dependent kinds (arms, grasps, poses) ask `robots`, what is known of the
+  robot the value is meant for: the world's robot, every bundled robot when no world is
+  known, or nothing;
+* `from_text(text)`: the value a command-line string stands for (`1.3,0.6,1` is a position);
+* `names_object`: whether a literal string names an object of the world (checked against
+  the world's objects when one is known).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
+
+from .schema import is_number, is_vector
+
+if TYPE_CHECKING:
+    from .robots import RobotDescription
+
+
+@dataclass(frozen=True)
+class Robots:
+    """What static checks know of the robot a value is meant for.
+
+    `descriptions` holds the world's robot (one), every bundled robot (when the plan names
+    no world), or nothing; with `known` false the robot-dependent checks are skipped.
+    """
+
+    descriptions: tuple["RobotDescription", ...] = ()
+    known: bool = False
+
+    @property
+    def label(self) -> str:
+        names = [d.name for d in self.descriptions]
+        return names[0] if len(names) == 1 else " or ".join(names) if names else "the robot"
+
+    def _union(self, values: Callable[["RobotDescription"], Iterable[str]]) -> list[str]:
+        seen: list[str] = []
+        for desc in self.descriptions:
+            for value in values(desc):
+                if value not in seen:
+                    seen.append(value)
+        return seen
+
+    def arms(self) -> list[str]:
+        return self._union(lambda d: d.arms)
+
+    def grasps(self) -> list[str]:
+        return self._union(lambda d: d.grasps)
+
+    def poses(self, arm: str | None = None) -> list[str]:
+        return self._union(lambda d: [p for a in d.arms.values() if arm in (None, a.name) for p in a.poses])
+
+
+NOTHING_KNOWN = Robots()
+
+
+def parse_vector(text: str, size: int) -> list[float] | None:
+    """`"1.3,0.6,1.0"` -> [1.3, 0.6, 1.0]; None unless `text` is `size` comma-separated finite numbers."""
+    parts = [s.strip() for s in text.split(",")]
+    if len(parts) != size:
+        return None
+    try:
+        values = [float(s) for s in parts]
+    except ValueError:
+        return None
+    return values if all(math.isfinite(v) for v in values) else None
+
+
+def _quaternion_problem(value: Any) -> str | None:
+    if not is_vector(value, 4):
+        return "expected a quaternion [x, y, z, w]" + (" (got 3 numbers)" if is_vector(value, 3) else "")
+    norm = math.sqrt(sum(v * v for v in value))
+    return None if abs(norm - 1) <= 1e-3 else f"quaternion must have unit length, got norm {norm:.4g}"
+
+
+def _name(value: Any) -> bool:
+    return isinstance(value, str) and bool(value)
+
+
+def _is_object(value: Any) -> bool:
+    """An Object of a world (duck-typed: this module sits below the world layer)."""
+    return hasattr(value, "world") and hasattr(value, "id") and hasattr(value, "name")
+
+
+def _one_of(value: Any, allowed: Sequence[str], what: str, robots: Robots) -> str | None:
+    if not robots.known or not robots.descriptions:
+        return None
+    if value in allowed:
+        return None
+    listed = ", ".join(allowed) if allowed else "none"
+    return f"{robots.label} has no {what} '{value}' ({what}s: {listed})"
+
+
+# -- the checks --------------------------------------------------------------------------------
+
+
+def _position(value: Any, robots: Robots) -> str | None:
+    return None if is_vector(value, 3) else "expected a position [x, y, z]"
+
+
+def _quaternion(value: Any, robots: Robots) -> str | None:
+    return _quaternion_problem(value)
+
+
+def _object(value: Any, robots: Robots) -> str | None:
+    return None if _name(value) or _is_object(value) else "expected an object name"
+
+
+def _target(value: Any, robots: Robots) -> str | None:
+    if _name(value) or _is_object(value) or is_vector(value, 3):
+        return None
+    if isinstance(value, (list, tuple)) and len(value) == 2 and is_vector(value[0], 3) and is_vector(value[1], 4):
+        return None  # a pose (position, orientation), from Python
+    return "expected an object name or a position [x, y, z]"
+
+
+def _arm(value: Any, robots: Robots) -> str | None:
+    if not _name(value):
+        return "expected an arm name" + (f" ({', '.join(robots.arms())})" if robots.known and robots.arms() else "")
+    return _one_of(value, robots.arms(), "arm", robots)
+
+
+def _grasp(value: Any, robots: Robots) -> str | None:
+    if isinstance(value, (list, tuple)):
+        return _quaternion_problem(value)
+    if not _name(value):
+        grasps = robots.grasps()
+        return f"expected {('one of ' + ', '.join(grasps)) if grasps else 'a grasp name'} or a quaternion [x, y, z, w]"
+    return _one_of(value, robots.grasps(), "grasp", robots)
+
+
+def _number(value: Any, robots: Robots) -> str | None:
+    return None if is_number(value) else "expected a number"
+
+
+def _distance(value: Any, robots: Robots) -> str | None:
+    return None if is_number(value) and value > 0 else "expected a positive distance in metres"
+
+
+def _fraction(value: Any, robots: Robots) -> str | None:
+    return None if is_number(value) and 0 <= value <= 1 else "expected a fraction between 0 and 1"
+
+
+def _plain_name(value: Any, robots: Robots) -> str | None:
+    return None if _name(value) else "expected a name"
+
+
+def _types(value: Any, robots: Robots) -> str | None:
+    ok = _name(value) or (isinstance(value, (list, tuple)) and all(_name(v) for v in value))
+    return None if ok else "expected an object type or a list of types"
+
+
+def _camera(value: Any, robots: Robots) -> str | None:
+    return None if _name(value) or is_vector(value, 3) else "expected a link name or a position [x, y, z]"
+
+
+def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | None:
+    if isinstance(value, str) and value:
+        poses = robots.poses(arm)
+        if robots.known and robots.descriptions and value not in poses:
+            whose = f"the {arm} arm of {robots.label}" if arm else robots.label
+            return f"{whose} has no pose '{value}' (poses: {', '.join(poses) or 'none'})"
+        return None
+    if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):
+        return None
+    if isinstance(value, Mapping) and value and all(isinstance(k, str) and is_number(v) for k, v in value.items()):
+        return None
+    return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value"
+
+
+def _arm_configs(value: Any, robots: Robots) -> str | None:
+    if not isinstance(value, Mapping) or not value:
+        return "expected a mapping of arm name to configuration, e.g. {left: park}"
+    for arm, config in value.items():
+        problem = _arm(arm, robots) or _arm_config(config, robots, str(arm))
+        if problem:
+            return f"{arm}: {problem}"
+    return None
+
+
+# -- reading values from the command line ---------------------------------------------------------
+
+
+def _text(text: str) -> Any:
+    return text
+
+
+def _vector_or_name(size: int) -> Callable[[str], Any]:
+    def read(text: str) -> Any:
+        vector = parse_vector(text, size)
+        return vector if vector is not None else text
+
+    return read
+
+
+def _float_or_text(text: str) -> Any:
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+@dataclass(frozen=True)
+class Kind:
+    name: str
+    doc: str
+    check: Callable[[Any, Robots], str | None]
+    from_text: Callable[[str], Any] = field(default=_text)
+    names_object: bool = False
+
+
+KINDS: dict[str, Kind] = {k.name: k for k in (
+    Kind("position", "[x, y, z] in metres, world frame", _position, _vector_or_name(3)),
+    Kind("quaternion", "[x, y, z, w], unit length", _quaternion, _vector_or_name(4)),
+    Kind("object", "an object name (or a $variable bound to an object)", _object, names_object=True),
+    Kind("target", "an object name or a position [x, y, z]", _target, _vector_or_name(3), names_object=True),
+    Kind("arm", "an arm of the robot (its description names them, e.g. left or right)", _arm),
+    Kind("grasp", "a grasp of the robot (e.g. front, top, left, right) or a quaternion [x, y, z, w]", _grasp,
+         _vector_or_name(4)),
+    Kind("number", "a number", _number, _float_or_text),
+    Kind("distance", "a positive distance in metres", _distance, _float_or_text),
+    Kind("fraction", "a fraction between 0 and 1", _fraction, _float_or_text),
+    Kind("joint", "a joint name of the part-of object", _plain_name),
+    Kind("link", "a link name", _plain_name),
+    Kind("object-type", "an object type, e.g. milk", _plain_name),
+    Kind("types", "an object type or a list of types", _types),
+    Kind("camera", "a link of the robot or a position [x, y, z]", _camera, _vector_or_name(3)),
+    Kind("arm-config", "a named pose (park), joint values in order, or {joint: value}", _arm_config),
+    Kind("arm-configs", "{arm: configuration}, each a named pose, joint values, or {joint: value}", _arm_configs),
+)}
+
+
+def kind(name: str) -> Kind:
+    return KINDS[name]
