@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
+from .errors import did_you_mean
 from .schema import is_number, is_vector
 
 if TYPE_CHECKING:
@@ -93,8 +94,13 @@ def _one_of(value: Any, allowed: Sequence[str], what: str, robots: Robots) -> st
         return None
     if value in allowed:
         return None
-    listed = ", ".join(allowed) if allowed else "none"
-    return f"{robots.label} has no {what} '{value}' ({what}s: {listed})"
+    return f"{robots.label} has no {what} '{value}' ({_hint(value, allowed, what)})"
+
+
+def _hint(value: Any, allowed: Sequence[str], what: str) -> str:
+    """`did you mean 'x'?` when a name is close, else the list of names."""
+    close = did_you_mean(str(value), allowed)
+    return close or f"{what}s: {', '.join(allowed) if allowed else 'none'}"
 
 
 # -- the checks --------------------------------------------------------------------------------
@@ -165,7 +171,7 @@ def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | Non
         poses = robots.poses(arm)
         if robots.known and robots.descriptions and value not in poses:
             whose = f"the {arm} arm of {robots.label}" if arm else robots.label
-            return f"{whose} has no pose '{value}' (poses: {', '.join(poses) or 'none'})"
+            return f"{whose} has no pose '{value}' ({_hint(value, poses, 'pose')})"
         return None
     if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):
         return None

@@ -52,11 +52,12 @@ def input_errors(errors: Sequence[InputError]) -> None:
 
 
 def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
-    grid = Table(title=title, show_lines=False, header_style="bold")
+    """A table of plain text: every cell is escaped, so `[x, y, z]` is shown, not taken for markup."""
+    grid = Table(title=_escape(title) if title else None, show_lines=False, header_style="bold")
     for column in columns:
-        grid.add_column(column, overflow="fold")
+        grid.add_column(_escape(column), overflow="fold")
     for row in rows:
-        grid.add_row(*(str(c) for c in row))
+        grid.add_row(*(_escape(str(c)) for c in row))
     out.print(grid)
 
 

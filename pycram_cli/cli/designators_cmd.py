@@ -1,20 +1,20 @@
-"""`pycram designators [TYPE]`: the reference for every motion designator and its slots."""
+"""`pycram designators [TYPE]`: the reference for every motion designator and its slots, from their declarations."""
 from __future__ import annotations
 
 import click
 
-from ..designators.slots import KINDS
-from ..designators.spec import DESIGNATORS, DesignatorType
+from ..designators import DESIGNATORS, Designator
 from ..errors import InputError, Location, did_you_mean
+from ..kinds import KINDS
 from . import console
 from .options import json_option
 
 
-def _as_dict(spec: DesignatorType) -> dict[str, object]:
+def _as_dict(spec: Designator) -> dict[str, object]:
     return {
-        "type": spec.name, "doc": spec.doc, "resource": spec.resource,
-        "one_of": list(spec.one_of),
-        "slots": [{"name": s.name, "required": s.required, "kind": s.kind, "kind_doc": KINDS[s.kind].description,
+        "type": spec.name, "doc": spec.doc, "resource": spec.resource, "process_module": spec.module,
+        "one_of": list(spec.one_of), "needs": list(spec.needs),
+        "slots": [{"name": s.name, "required": s.required, "kind": s.kind, "kind_doc": KINDS[s.kind].doc,
                    "default": s.default, "doc": s.doc} for s in spec.slots],
     }
 
@@ -35,7 +35,7 @@ def designators(type_name: str | None, as_json: bool) -> None:
         rows = []
         for slot in spec.slots:
             need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
-            rows.append((slot.name, need, KINDS[slot.kind].description, slot.default or "-", slot.doc))
+            rows.append((slot.name, need, KINDS[slot.kind].doc, slot.default or "-", slot.doc))
         console.table(f"{spec.name} — {spec.doc}", ["slot", "", "value", "default", "meaning"], rows)
         if spec.one_of:
             console.plain(f"  give at least one of: {', '.join(spec.one_of)}")

@@ -1,17 +1,15 @@
-"""Motion designators: symbolic descriptions of motions, checked, resolved and performed."""
-from __future__ import annotations
+"""Motion designators: symbolic descriptions of motions, each declared once, checked, resolved and performed.
 
-from typing import Any, Mapping
-
+A designator is one `Designator` declaration (slots and their kinds, inference, the roles it
+drives, its default process module) in a module of its own family, imported here; plan
+validation, the scheduler's resources, `pycram designators` and `perform` are generated from
+`DESIGNATORS`. A new designator is a module with its `declare_designator(...)`, imported here.
+"""
+from . import arms, manipulation, navigation, perception  # noqa: F401  (declare the design's eleven designators)
+from .declaration import (ANY_ARM, DESIGNATORS, Designator, Slot, SlotProblem, check_designator, declare_designator,
+                          drives, drives_arm, robot_resources)
+from .perform import perform
 from .result import Performed
-from .spec import DESIGNATORS, DesignatorType, Slot, SlotProblem, check_designator
 
-
-def perform(world: Any, designator: str, slots: Mapping[str, Any]) -> Performed:
-    """Perform one motion designator with the world's robot (see `designators.perform`)."""
-    from .perform import perform as _perform  # process modules load on first use
-
-    return _perform(world, designator, slots)
-
-
-__all__ = ["DESIGNATORS", "DesignatorType", "Performed", "Slot", "SlotProblem", "check_designator", "perform"]
+__all__ = ["ANY_ARM", "DESIGNATORS", "Designator", "Performed", "Slot", "SlotProblem", "check_designator",
+           "declare_designator", "drives", "drives_arm", "perform", "robot_resources"]

@@ -1,29 +1,32 @@
-"""Performing one designator on a world: check, resolve its slots, run its process module."""
+"""Performing one designator on a world: check its slots once, resolve them, run its process module."""
 from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ..errors import InputError, InputErrors, Location
+from ..errors import InputError, Location, raise_if_any
+from ..jsonable import jsonable
+from ..kinds import Robots
+from ..process_modules import Robot, choose
 from ..world import BulletWorld, Object
-from .resolve import RESOLVERS, jsonable
+from .declaration import DESIGNATORS, check_designator
 from .result import Performed
-from .spec import check_designator
 
 
 def perform(world: BulletWorld, designator: str, slots: Mapping[str, Any]) -> Performed:
     """Perform one motion designator with the world's robot; raises a Failure when the motion fails.
 
         perform(world, "pick-up", {"object": "milk", "arm": "right"})
-    """
-    from ..process_modules import Robot, choose
 
-    problems = check_designator(designator, slots, is_reference=lambda v: isinstance(v, Object))
-    if problems:
-        raise InputErrors([InputError(p.message, Location(f"designator {designator}"), key=p.slot, suggestion=p.suggestion)
-                           for p in problems])
+    Bad slot values (checked against the robot's description) raise InputError(s).
+    """
     robot = Robot.of(world)
+    problems = check_designator(designator, slots, is_reference=lambda v: isinstance(v, Object),
+                                robots=Robots((robot.description,), True))
+    raise_if_any([InputError(p.message, Location(f"designator {designator}"), key=p.slot, suggestion=p.suggestion)
+                  for p in problems])
+    spec = DESIGNATORS[designator]
     with world.lock:
-        resolved = RESOLVERS[designator](robot, slots)
-        module = choose(designator, robot.description.name)
+        resolved = spec.resolve(robot, slots)
+        module = choose(designator, spec.module, robot.description)
         result = module.execute(robot, resolved)
-    return Performed(designator, jsonable(resolved), result)
+    return Performed(designator, jsonable(resolved, drop_none=True), result)

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..failures import ALIASES, FAILURES, failure_class
+from ..kinds import KINDS
 from ..yamlsource import LList, LMap
 from .context import references
 from .syntax import Node, Plan, parse_plan
@@ -134,7 +135,7 @@ class Validator:
             self._robot_for(head, slots)
         if spec is not None:
             kinds = {s.name: s.kind for s in spec.slots}
-            self._objects(slots, [k for k, kind in kinds.items() if kind in ("object", "position-or-object")])
+            self._objects(slots, [k for k, kind in kinds.items() if KINDS[kind].names_object])
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""

@@ -31,7 +31,6 @@ def contents_of(part: Object, link: int) -> list[Object]:
 
 @process_module("accessing")
 class Accessing(ProcessModule):
-    resource = "arm"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         part: Object = slots["part-of"]
@@ -40,7 +39,7 @@ class Accessing(ProcessModule):
         arm = slots["arm"]
         start = part.get_joint_position(joint.name)
         goal = min(joint.upper, joint.lower + float(slots["distance"])) if joint.limited else start + float(slots["distance"])
-        orientation = grasp_orientation(robot, "front")
+        orientation = grasp_orientation(robot, next(iter(robot.description.grasps)))  # the first grasp pulls handles
         set_gripper(robot, arm, "open")
         move_tool(robot, arm, part.get_link_position(handle), orientation, f"the handle {handle}")
         set_gripper(robot, arm, "closed")

@@ -11,9 +11,6 @@ from ..world import JointLimitError
 from .base import ProcessModule, Robot
 from .registry import process_module
 
-GRASP_ORDER = ("front", "top", "left", "right")
-
-
 def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
     tool = robot.description.arm(arm).tool_frame
     return solve(robot.body, tool, position, orientation)
@@ -59,25 +56,33 @@ def arm_configuration(robot: Robot, arm: str, config: Any) -> dict[str, float]:
     return dict(zip(desc.joints, (float(v) for v in config)))
 
 
-@process_module("move-arm-joints")
+def arm_configs(slots: Mapping[str, Any]) -> dict[str, Any]:
+    """Configuration by arm name from `arms: {arm: config}` and the design's `<arm>-arm: config` slots."""
+    configs: dict[str, Any] = dict(slots.get("arms") or {})
+    for key, config in slots.items():
+        if key.endswith("-arm") and config is not None:
+            configs[key[: -len("-arm")]] = config
+    return configs
+
+
+@process_module("arm-joints")
 class MoveArmJoints(ProcessModule):
-    resource = "arms"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         values: dict[str, float] = {}
-        for arm in robot.description.arms:
-            config = slots.get(f"{arm}-arm")
-            if config is not None:
-                values.update(arm_configuration(robot, arm, config))
+        for arm, config in arm_configs(slots).items():
+            if arm not in robot.description.arms:
+                raise ManipulationFailure(f"robot '{robot.description.name}' has no arm '{arm}' "
+                                          f"(arms: {', '.join(robot.description.arms)})")
+            values.update(arm_configuration(robot, arm, config))
         try:
             robot.body.set_joint_positions(values)
         except JointLimitError as exc:
             raise ManipulationFailure(str(exc)) from None
 
 
-@process_module("move-tcp")
+@process_module("tcp")
 class MoveTCP(ProcessModule):
-    resource = "arm"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         target = slots["target"]
@@ -85,7 +90,6 @@ class MoveTCP(ProcessModule):
 
 
 class _Gripper(ProcessModule):
-    resource = "gripper"
     opening = "open"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
@@ -96,12 +100,12 @@ class _Gripper(ProcessModule):
         set_gripper(robot, arm, self.opening)
 
 
-@process_module("opening-gripper")
+@process_module("open-gripper")
 class OpeningGripper(_Gripper):
     opening = "open"
 
 
-@process_module("closing-gripper")
+@process_module("close-gripper")
 class ClosingGripper(_Gripper):
     opening = "closed"
 

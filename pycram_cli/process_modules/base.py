@@ -4,7 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from ..failures import Failure
+from ..errors import InputError, Location
 from ..robots import RobotDescription, description_for
 from ..world import BulletWorld, Object
 
@@ -21,11 +21,13 @@ class Robot:
     def of(cls, world: BulletWorld) -> "Robot":
         body = world.robot
         if body is None:
-            raise Failure("the world has no robot (an object of type 'robot')")
+            raise InputError("the world has no robot (an object of type 'robot')", Location("world"),
+                             suggestion="add an object of type robot to the world file")
         description = description_for(body)
         if description is None:
-            raise Failure(f"no robot description for '{body.name}' ({body.path.name}); "
-                          "add resources/robots/<name>/<name>.yaml")
+            raise InputError(f"no robot description for '{body.name}' ({body.path.name})", Location(str(body.path)),
+                             suggestion=f"write {body.path.with_suffix('.yaml').name} beside it, or name one with "
+                                        "'description:' in the world file (see docs/robots.md)")
         return cls(world, body, description)
 
     def held_objects(self, arm: str | None = None) -> list[Object]:
@@ -44,8 +46,6 @@ class Robot:
 
 class ProcessModule:
     """Executes one kind of resolved designator on a robot. Subclasses implement `execute`."""
-
-    resource: str = ""
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Any:  # pragma: no cover - interface
         raise NotImplementedError

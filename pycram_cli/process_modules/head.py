@@ -60,9 +60,8 @@ def look_at(robot: Robot, target: Sequence[float]) -> None:
             target=list(target))
 
 
-@process_module("looking")
+@process_module("head")
 class MoveHead(ProcessModule):
-    resource = "head"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         look_at(robot, slots["target"])

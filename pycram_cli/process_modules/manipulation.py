@@ -73,7 +73,6 @@ def level(orientation: Sequence[float]) -> tuple[float, float, float, float]:
 
 @process_module("pick-up")
 class PickUp(ProcessModule):
-    resource = "arm"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         obj: Object = slots["object"]
@@ -108,7 +107,6 @@ class PickUp(ProcessModule):
 
 @process_module("place")
 class Place(ProcessModule):
-    resource = "arm"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         obj: Object = slots["object"]

@@ -9,9 +9,8 @@ from .collisions import collisions
 from .registry import process_module
 
 
-@process_module("moving")
+@process_module("navigation")
 class Navigation(ProcessModule):
-    resource = "base"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         body = robot.body

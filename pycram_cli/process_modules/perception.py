@@ -14,9 +14,8 @@ def _of_type(robot: Robot, object_type: str) -> list[Object]:
     return sorted((o for o in robot.world.objects if o.type == object_type), key=lambda o: o.name)
 
 
-@process_module("detecting")
+@process_module("perception")
 class Detecting(ProcessModule):
-    resource = "camera"
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
         object_type = slots["object-type"]
@@ -40,9 +39,8 @@ class Detecting(ProcessModule):
                                 object_type=object_type)
 
 
-@process_module("world-state-detecting")
+@process_module("world-state")
 class WorldStateDetecting(ProcessModule):
-    resource = ""
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
         object_type = slots["object-type"]

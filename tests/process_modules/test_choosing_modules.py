@@ -1,10 +1,14 @@
-"""Process modules are chosen by designator type and robot: a robot's own module wins over the default."""
+"""Process modules are chosen by name: the designator's default, unless the robot's description names another."""
 from __future__ import annotations
+
+import dataclasses
 
 import pytest
 
+from pycram_cli.errors import InputError
 from pycram_cli.process_modules import PROCESS_MODULES, ProcessModule, choose, process_module
 from pycram_cli.process_modules.navigation import Navigation
+from pycram_cli.robots import bundled_descriptions
 
 
 @pytest.fixture
@@ -15,23 +19,30 @@ def registry_snapshot():
     PROCESS_MODULES.update(saved)
 
 
-def test_the_default_modules_serve_any_robot_with_a_description():
-    assert isinstance(choose("moving", "pr2"), Navigation)
-    assert isinstance(choose("moving", "some_other_robot"), Navigation)
+@pytest.fixture
+def pr2():
+    return next(d for d in bundled_descriptions() if d.name == "pr2")
 
 
-def test_a_robot_specific_module_is_chosen_for_that_robot_only(registry_snapshot):
-    @process_module("moving", robot="turtle")
+def test_the_designators_default_module_serves_a_robot_that_names_none(pr2):
+    assert isinstance(choose("moving", "navigation", pr2), Navigation)
+    assert isinstance(choose("moving", "navigation", None), Navigation)
+
+
+def test_a_robot_description_can_name_its_own_module_for_a_designator(registry_snapshot, pr2):
+    @process_module("turtle-navigation")
     class TurtleNavigation(ProcessModule):
-        resource = "base"
-
         def execute(self, robot, slots):  # type: ignore[no-untyped-def]
             return "rolled"
 
-    assert isinstance(choose("moving", "turtle"), TurtleNavigation)
-    assert isinstance(choose("moving", "pr2"), Navigation)
+    turtle = dataclasses.replace(pr2, name="turtle", process_modules={"moving": "turtle-navigation"})
+    assert isinstance(choose("moving", "navigation", turtle), TurtleNavigation)
+    assert isinstance(choose("moving", "navigation", pr2), Navigation)
 
 
-def test_an_unknown_designator_has_no_module():
-    with pytest.raises(LookupError, match="no process module for 'flying'"):
-        choose("flying", "pr2")
+def test_a_module_name_nobody_registered_is_an_input_error_naming_the_description(pr2):
+    flying = dataclasses.replace(pr2, process_modules={"moving": "navigaton"})
+    with pytest.raises(InputError, match="no process module 'navigaton' for 'moving'") as caught:
+        choose("moving", "navigation", flying)
+    assert caught.value.suggestion == "did you mean 'navigation'?"
+    assert caught.value.location.file == str(pr2.path)

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from pycram_cli import load_world
-from pycram_cli.designators import perform
+from pycram_cli.designators import DESIGNATORS, perform
+from pycram_cli.errors import InputError
 from pycram_cli.failures import (GripperFailure, ManipulationFailure, NavigationFailure, PerceptionFailure,
                                  ReachabilityFailure)
 from pycram_cli.process_modules import PROCESS_MODULES
@@ -38,10 +39,10 @@ def tool_position(world, arm):
     return np.array(world.robot.get_link_position(desc.arm(arm).tool_frame))
 
 
-def test_every_designator_has_a_process_module_chosen_by_type():
-    assert {designator for designator, _ in PROCESS_MODULES} == {
-        "moving", "pick-up", "place", "accessing", "looking", "opening-gripper", "closing-gripper", "detecting",
-        "move-tcp", "move-arm-joints", "world-state-detecting"}
+def test_every_designator_names_a_registered_process_module():
+    assert {name: spec.module in PROCESS_MODULES for name, spec in DESIGNATORS.items()} == {
+        name: True for name in ("moving", "pick-up", "place", "accessing", "looking", "opening-gripper",
+                                "closing-gripper", "detecting", "move-tcp", "move-arm-joints", "world-state-detecting")}
 
 
 def test_moving_teleports_the_base_and_keeps_the_orientation_by_default(world):
@@ -66,7 +67,7 @@ def test_move_arm_joints_parks_both_arms_by_name(world):
 
 
 def test_move_arm_joints_with_an_unknown_pose_name_suggests_one(world):
-    with pytest.raises(ManipulationFailure, match="no pose 'parc' \\(did you mean 'park'\\?\\)"):
+    with pytest.raises(InputError, match="no pose 'parc' \\(did you mean 'park'\\?\\)"):
         perform(world, "move-arm-joints", {"left-arm": "parc"})
 
 

@@ -6,6 +6,8 @@ from click.testing import CliRunner
 
 from pycram_cli.cli.main import cli
 from pycram_cli.designators import DESIGNATORS, check_designator
+from pycram_cli.kinds import Robots
+from pycram_cli.robots import bundled_descriptions
 
 DESIGN_SLOTS = {
     "moving": {"target", "orientation"},
@@ -17,7 +19,7 @@ DESIGN_SLOTS = {
     "closing-gripper": {"gripper"},
     "detecting": {"object-type"},
     "move-tcp": {"target", "orientation", "arm"},
-    "move-arm-joints": {"left-arm", "right-arm"},
+    "move-arm-joints": {"arms", "left-arm", "right-arm"},  # arms: {ARM: config}; left-arm/right-arm: the design's names
     "world-state-detecting": {"object-type"},
 }
 
@@ -26,8 +28,12 @@ def test_the_eleven_designators_of_the_design_with_their_slots():
     assert {name: set(spec.slot_names) for name, spec in DESIGNATORS.items()} == DESIGN_SLOTS
 
 
-def messages(type_name, slots):
-    return [(p.message, p.slot, p.suggestion) for p in check_designator(type_name, slots)]
+def messages(type_name, slots, robots=Robots()):
+    return [(p.message, p.slot, p.suggestion) for p in check_designator(type_name, slots, robots=robots)]
+
+
+def pr2() -> Robots:
+    return Robots(tuple(d for d in bundled_descriptions() if d.name == "pr2"), True)
 
 
 def test_a_missing_required_slot_is_named():
@@ -42,12 +48,25 @@ def test_an_unknown_slot_gets_the_closest_valid_name():
 @pytest.mark.parametrize("type_name, slots, expected", [
     ("moving", {"target": [1, 2]}, "slot 'target': expected a position [x, y, z]"),
     ("moving", {"target": [1, 2, 0], "orientation": [0, 0, 1]}, "slot 'orientation': expected a quaternion [x, y, z, w] (got 3 numbers)"),
-    ("pick-up", {"object": "milk", "arm": "middle"}, "slot 'arm': expected one of left, right"),
     ("accessing", {"drawer-joint": "j", "drawer-handle": "h", "part-of": "k", "distance": "far"}, "slot 'distance': expected a number"),
     ("move-arm-joints", {"left-arm": 3}, "slot 'left-arm': expected a named pose"),
 ])
 def test_a_wrong_value_type_is_named(type_name, slots, expected):
     assert any(m.startswith(expected) for m, _, _ in messages(type_name, slots))
+
+
+@pytest.mark.parametrize("type_name, slots, expected", [
+    ("pick-up", {"object": "milk", "arm": "middle"}, "slot 'arm': pr2 has no arm 'middle' (arms: left, right)"),
+    ("pick-up", {"object": "milk", "grasp": "side"}, "slot 'grasp': pr2 has no grasp 'side' (grasps: front, top, left, right)"),
+    ("move-arm-joints", {"left-arm": "parked"}, "slot 'left-arm': pr2 has no pose 'parked' (did you mean 'park'?)"),
+    ("move-arm-joints", {"arms": {"middle": "park"}}, "slot 'arms': middle: pr2 has no arm 'middle'"),
+])
+def test_robot_names_are_checked_against_the_robots_description(type_name, slots, expected):
+    assert any(m.startswith(expected) for m, _, _ in messages(type_name, slots, pr2()))
+
+
+def test_without_a_known_robot_any_arm_name_passes_the_static_check():
+    assert messages("pick-up", {"object": "milk", "arm": "middle"}) == []
 
 
 def test_looking_needs_a_target_or_an_object():
@@ -65,6 +84,7 @@ def test_pycram_designators_documents_every_type_and_slot():
         assert name in result.output
         for slot in slots:
             assert slot in result.output
+    assert "[x, y, z] in metres, world frame" in result.output  # value formats survive the table's markup
 
 
 def test_pycram_designators_json_and_unknown_type():

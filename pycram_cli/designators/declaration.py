@@ -1,0 +1,171 @@
+"""Declaring a motion designator once: its slots, how it is resolved, what it drives, who performs it.
+
+    declare_designator(Designator(
+        "moving", "Drive the robot base to a pose ...",
+        (Slot("target", "position", True, "where the base goes"), ...),
+        resolve=_resolve_moving, module="navigation", uses=drives("base"), needs=("mobile base",)))
+
+Everything else is generated from the declarations in `DESIGNATORS`: plan validation
+(`check_designator`), the scheduler's resources (`Designator.roles`), `pycram designators`,
+and which process module performs it (`module`, unless the robot description names another).
+Slot kinds are shared with query parameters (`pycram_cli.kinds`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Mapping
+
+from ..errors import did_you_mean
+from ..kinds import KINDS, NOTHING_KNOWN, Robots
+
+if TYPE_CHECKING:
+    from ..process_modules import Robot
+    from ..robots import RobotDescription
+
+Resolver = Callable[["Robot", Mapping[str, Any]], dict[str, Any]]
+#: the roles a designator drives, from its literal slot values (None where a value is only known at run time)
+Uses = Callable[[Mapping[str, Any]], frozenset[str]]
+#: a role for "every arm of the robot" (an arm slot left open, or only known at run time)
+ANY_ARM = "arm:*"
+
+
+@dataclass(frozen=True)
+class Slot:
+    name: str
+    kind: str
+    required: bool
+    doc: str
+    default: str | None = None  # how the default is found, for people
+
+
+@dataclass(frozen=True)
+class Designator:
+    """A motion designator type: the design's slots, its inference, its resources, its process module."""
+
+    name: str
+    doc: str
+    slots: tuple[Slot, ...]
+    resolve: Resolver  # fills in defaults and infers what is left open (design §4.6)
+    module: str  # the process module that performs it, unless the robot description names another
+    uses: Uses  # the roles it drives (base, head, arm:<name>), for the scheduler
+    one_of: tuple[str, ...] = ()  # at least one of these slots must be given
+    needs: tuple[str, ...] = ()  # what the robot must have: "mobile base", "head", "camera", "arms"
+    resource: str = ""  # what it drives, for people
+    check: "Callable[[Mapping[str, Any], Robots], list[SlotProblem]] | None" = None  # checks across slots
+
+    def slot(self, name: str) -> Slot | None:
+        return next((s for s in self.slots if s.name == name), None)
+
+    @property
+    def slot_names(self) -> list[str]:
+        return [s.name for s in self.slots]
+
+
+#: every designator by name, filled by `declare_designator` (explicit imports in `designators/__init__.py`)
+DESIGNATORS: dict[str, Designator] = {}
+
+
+def declare_designator(spec: Designator) -> Designator:
+    """Register a designator; its name must be new and every slot's kind known."""
+    if spec.name in DESIGNATORS:
+        raise ValueError(f"designator '{spec.name}' is declared twice")
+    for slot in spec.slots:
+        if slot.kind not in KINDS:
+            raise ValueError(f"designator '{spec.name}', slot '{slot.name}': unknown kind '{slot.kind}'")
+    DESIGNATORS[spec.name] = spec
+    return spec
+
+
+# -- resources ------------------------------------------------------------------------------------
+
+
+def drives(*roles: str) -> Uses:
+    """Always the same roles (`base`, `head`); none for a designator that moves nothing."""
+    fixed = frozenset(roles)
+    return lambda slots: fixed
+
+
+def drives_arm(slot: str) -> Uses:
+    """The arm named in `slot`, or every arm when it is left open or only known at run time."""
+    def uses(slots: Mapping[str, Any]) -> frozenset[str]:
+        value = slots.get(slot)
+        return frozenset({f"arm:{value}"}) if isinstance(value, str) and value else frozenset({ANY_ARM})
+
+    return uses
+
+
+def robot_resources(roles: frozenset[str], description: "RobotDescription | None") -> frozenset[str]:
+    """The robot's physical resources behind some roles (`arm:*` is every arm; shared roles map to one resource)."""
+    arms = list(description.arms) if description is not None else []
+    expanded: set[str] = set()
+    for role in roles:
+        if role == ANY_ARM:
+            expanded |= {f"arm:{a}" for a in arms} or {ANY_ARM}
+        else:
+            expanded.add(role)
+    if description is None:
+        return frozenset(expanded)
+    return frozenset(description.resource(role) for role in expanded)
+
+
+# -- static checks ---------------------------------------------------------------------------------
+
+
+@dataclass
+class SlotProblem:
+    """A problem with one slot (or the designator itself when slot is None)."""
+
+    message: str
+    slot: str | None = None
+    suggestion: str | None = None
+
+
+def _lacks(need: str, desc: "RobotDescription") -> str | None:
+    if need == "mobile base" and not desc.mobile:
+        return "its base cannot move (mobile: false in its description)"
+    if need == "head" and desc.head is None:
+        return "it has no head (no head: in its description)"
+    if need == "camera" and desc.camera is None:
+        return "it has no camera (no camera: in its description)"
+    if need == "arms" and not desc.arms:
+        return "it has no arms"
+    return None
+
+
+def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Callable[[Any], bool] | None = None,
+                     robots: Robots = NOTHING_KNOWN) -> list[SlotProblem]:
+    """Static checks before anything runs: the type exists, slots are known, required ones present, values well-formed,
+    and (when the robot is known) the robot has what the designator needs and the arms, grasps and poses named.
+
+    `is_reference(value)` tells values only known at run time (plan variables); they skip the value check.
+    """
+    spec = DESIGNATORS.get(type_name)
+    if spec is None:
+        return [SlotProblem(f"unknown designator type '{type_name}'", None,
+                            did_you_mean(type_name, DESIGNATORS) or f"known types: {', '.join(DESIGNATORS)}")]
+    problems: list[SlotProblem] = []
+    if robots.known and len(robots.descriptions) == 1:
+        for need in spec.needs:
+            why = _lacks(need, robots.descriptions[0])
+            if why:
+                problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{type_name}': {why}"))
+    for name, value in slots.items():
+        slot = spec.slot(name)
+        if slot is None:
+            problems.append(SlotProblem(f"'{type_name}' has no slot '{name}'", name,
+                                        did_you_mean(name, spec.slot_names) or f"slots: {', '.join(spec.slot_names)}"))
+            continue
+        if is_reference is not None and is_reference(value):
+            continue
+        message = KINDS[slot.kind].check(value, robots)
+        if message:
+            problems.append(SlotProblem(f"slot '{name}': {message}", name))
+    for slot in spec.slots:
+        if slot.required and slot.name not in slots:
+            problems.append(SlotProblem(f"'{type_name}' needs slot '{slot.name}' ({slot.doc})", slot.name))
+    if spec.one_of and not any(name in slots for name in spec.one_of):
+        problems.append(SlotProblem(f"'{type_name}' needs one of the slots {', '.join(spec.one_of)}", None))
+    if spec.check is not None:
+        known = {k: v for k, v in slots.items() if not (is_reference is not None and is_reference(v))}
+        problems.extend(spec.check(known, robots))
+    return problems

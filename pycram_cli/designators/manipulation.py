@@ -1,0 +1,80 @@
+"""`pick-up`, `place` and `accessing`: the designators that take, put down and pull with an arm."""
+from __future__ import annotations
+
+from typing import Any, Mapping, Sequence
+
+from ..errors import InputError, Location, did_you_mean
+from ..failures import ManipulationFailure
+from ..process_modules import Robot
+from ..process_modules.manipulation import grasp_target
+from ..world import Object
+from .declaration import Designator, Slot, declare_designator, drives_arm
+from .inference import choose_arm_and_grasp, the_object
+
+
+def _grasp_position(robot: Robot, arm: str, obj: Object, grasp: Any) -> Sequence[float] | None:
+    target = grasp_target(robot, arm, obj, grasp)
+    return None if target is None else target[0]
+
+
+def _pick_up(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    obj = the_object(robot, slots["object"], "object")
+    arm, grasp = slots.get("arm"), slots.get("grasp")
+    if arm is None or grasp is None:
+        arm, grasp = choose_arm_and_grasp(robot, lambda a, g: _grasp_position(robot, a, obj, g), arm, grasp, obj.name)
+    return {"object": obj, "arm": arm, "grasp": grasp}
+
+
+declare_designator(Designator(
+    "pick-up", "Grasp an object with an arm and attach it to the gripper's tool frame.", (
+        Slot("object", "object", True, "the object to pick up"),
+        Slot("arm", "arm", False, "the arm to use", "an arm that can reach the object (in the description's order)"),
+        Slot("grasp", "grasp", False, "the side to grasp from", "the first of the robot's grasps that works"),
+    ), resolve=_pick_up, module="pick-up", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+
+
+def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    obj = the_object(robot, slots["object"], "object")
+    arm = slots.get("arm") or robot.arm_holding(obj)
+    if arm is None:
+        raise ManipulationFailure(f"cannot place {obj.name}: the robot is not holding it", object=obj.name)
+    return {"object": obj, "target": [float(v) for v in slots["target"]], "arm": arm}
+
+
+declare_designator(Designator(
+    "place", "Bring a held object to a target position, open the gripper and let go.", (
+        Slot("object", "object", True, "the held object"),
+        Slot("target", "position", True, "where the object's origin (its bottom centre) goes"),
+        Slot("arm", "arm", False, "the arm holding the object", "the arm that holds it"),
+    ), resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+
+
+def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    part = the_object(robot, slots["part-of"], "part-of")
+    joint_name, handle = slots["drawer-joint"], slots["drawer-handle"]
+    if joint_name not in part.joint_names:
+        raise InputError(f"'{part.name}' has no joint '{joint_name}'", Location("slot drawer-joint"), key="drawer-joint",
+                         suggestion=did_you_mean(joint_name, [j.name for j in part.movable_joints]))
+    if handle not in part.link_names:
+        raise InputError(f"'{part.name}' has no link '{handle}'", Location("slot drawer-handle"), key="drawer-handle",
+                         suggestion=did_you_mean(handle, part.link_names))
+    joint = part.joint(joint_name)
+    distance = slots.get("distance")
+    if distance is None:
+        distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
+    arm = slots.get("arm")
+    if arm is None:
+        pull = next(iter(robot.description.grasps), None)
+        arm, _ = choose_arm_and_grasp(robot, lambda a, g: part.get_link_position(handle), None, pull,
+                                      f"the handle {handle}")
+    return {"drawer-handle": handle, "drawer-joint": joint_name, "part-of": part, "distance": float(distance), "arm": arm}
+
+
+declare_designator(Designator(
+    "accessing", "Open a drawer: grasp its handle and pull it open by a distance.", (
+        Slot("drawer-handle", "link", True, "the handle link, as named in the URDF"),
+        Slot("drawer-joint", "joint", True, "the drawer's prismatic joint"),
+        Slot("part-of", "object", True, "the object the drawer belongs to (e.g. kitchen)"),
+        Slot("distance", "number", False, "how far to open, in metres", "0.3, or the joint's upper limit if smaller"),
+        Slot("arm", "arm", False, "the arm that pulls", "an arm that can reach the handle (in the description's order)"),
+    ), resolve=_accessing, module="accessing", uses=drives_arm("arm"), needs=("arms",), resource="arm"))

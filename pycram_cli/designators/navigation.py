@@ -1,0 +1,19 @@
+"""`moving`: drive (teleport) the robot base."""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..process_modules import Robot
+from .declaration import Designator, Slot, declare_designator, drives
+
+
+def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    return {"target": [float(v) for v in slots["target"]],
+            "orientation": list(slots.get("orientation") or robot.body.get_orientation())}
+
+
+declare_designator(Designator(
+    "moving", "Drive (teleport) the robot base to a pose; fails if the robot then collides with anything but the floor.", (
+        Slot("target", "position", True, "where the base goes (z is ignored: the base stays on the floor)"),
+        Slot("orientation", "quaternion", False, "base orientation", "the current orientation"),
+    ), resolve=_resolve, module="navigation", uses=drives("base"), needs=("mobile base",), resource="base"))

@@ -1,0 +1,39 @@
+"""`looking`, `detecting` and `world-state-detecting`: the head, the camera and the belief state."""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..process_modules import Robot
+from .declaration import Designator, Slot, declare_designator, drives
+from .inference import the_object
+
+
+def _looking(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    if slots.get("target") is not None:
+        return {"target": [float(v) for v in slots["target"]]}
+    obj = the_object(robot, slots["object"], "object")
+    lo, hi = obj.get_aabb()
+    return {"object": obj, "target": [(a + b) / 2 for a, b in zip(lo, hi)]}
+
+
+declare_designator(Designator(
+    "looking", "Turn the head so that the camera looks at a position or an object.", (
+        Slot("target", "position", False, "the point to look at"),
+        Slot("object", "object", False, "the object to look at", "looks at its position"),
+    ), resolve=_looking, module="head", uses=drives("head"), one_of=("target", "object"), needs=("head", "camera"),
+    resource="head"))
+
+
+def _object_type(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
+    return {"object-type": slots["object-type"]}
+
+
+declare_designator(Designator(
+    "detecting", "Find a visible object of a type with the robot's camera; fails with PerceptionFailure if none is seen.", (
+        Slot("object-type", "object-type", True, "the type of object to find"),
+    ), resolve=_object_type, module="perception", uses=drives("head"), needs=("camera",), resource="camera"))
+
+declare_designator(Designator(
+    "world-state-detecting", "Find an object of a type from the world state, whether visible or not.", (
+        Slot("object-type", "object-type", True, "the type of object to find"),
+    ), resolve=_object_type, module="world-state", uses=drives(), resource="belief"))
