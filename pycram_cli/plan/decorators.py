@@ -25,9 +25,9 @@ from ..errors import Location
 from ..failures import Failure, failure_class
 from ..schema import describe
 from ..yamlsource import LList, LMap
-from .context import FailureInfo, jsonable
+from .context import REFERENCE, FailureInfo, jsonable
 from .leaves import Condition
-from .syntax import Node, Parser, node_type
+from .syntax import Node, Parser, node_type, plain
 
 if TYPE_CHECKING:
     from .executor import Exec
@@ -210,9 +210,6 @@ class ForEach(Node):
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        from .context import REFERENCE
-        from .syntax import plain
-
         items = step[head]
         if not isinstance(items, LList) and not (isinstance(items, str) and REFERENCE.match(items)):
             parser.error(f"expected a list or a $variable holding one, got {describe(items)}", step.loc(head, True),

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Protocol
 
 from ..failures import Failure
 from .context import Frame, evaluate, jsonable
+from .params import bind_params
 from .resources import ResourceAnalysis
 from .scheduler import CancelToken, Cancelled, Key, Scheduler
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
@@ -363,15 +364,13 @@ class Outcome:
 
 def combined_failure(failures: list[Failure], what: str, children: list[TraceNode]) -> Failure:
     """One failure for several alternatives that all failed: of their most specific common type."""
-    from ..failures import Failure as Base
-
     if not failures:
-        return Base(f"{what}: no alternative could run")
+        return Failure(f"{what}: no alternative could run")
     common = type(failures[0])
     while not all(isinstance(f, common) for f in failures):
         common = common.__mro__[1]
-        if not issubclass(common, Base):
-            common = Base
+        if not issubclass(common, Failure):
+            common = Failure
             break
     parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
     error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
@@ -382,8 +381,6 @@ def combined_failure(failures: list[Failure], what: str, children: list[TraceNod
 def run_plan(plan: "Plan", world: "BulletWorld", params: Mapping[str, Any] | None = None,
              observer: Observer | None = None, world_name: str | None = None) -> RunResult:
     """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`)."""
-    from .params import bind_params
-
     values = bind_params(plan, params or {})
     run = Run(plan, world, values, observer, world_name)
     try:

@@ -21,50 +21,23 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 """
 from __future__ import annotations
 
-import types
+import re
 from typing import TYPE_CHECKING, Any
 
+from ..designators import DESIGNATORS, check_designator
+from ..designators.perform import perform  # the function: the package's `perform` name is shadowed by this submodule once it is loaded
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
+from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
-from .context import FailureInfo, display, is_reference, jsonable, truthy
+from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
 from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:
     from .executor import Exec
     from .trace import TraceNode
     from .validate import Validator
-
-
-# -- the registries of the other layers ------------------------------------------------------
-def designator_types() -> dict[str, Any]:
-    from ..designators import DESIGNATORS
-
-    return DESIGNATORS
-
-
-def queries() -> dict[str, Any]:
-    try:
-        from ..reasoning import QUERIES  # type: ignore[attr-defined]
-    except ImportError:  # reasoning not built yet: queries are unknown node types
-        return {}
-    return QUERIES
-
-
-def _perform() -> Any:
-    from .. import designators
-
-    function = getattr(designators, "perform", None)
-    if function is None or isinstance(function, types.ModuleType):
-        from ..designators.perform import perform as function  # type: ignore[no-redef]
-    return function
-
-
-def _run_query() -> Any:
-    from ..reasoning import run_query  # type: ignore[attr-defined]
-
-    return run_query
 
 
 def _as_failure(exc: BaseException, what: str) -> Failure:
@@ -96,7 +69,7 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
 
 
 # -- motion designators -------------------------------------------------------------------------------
-@node_family("designator", lambda: designator_types().keys())
+@node_family("designator", lambda: DESIGNATORS.keys())
 class DesignatorStep(Node):
     BINDS = True
     LEAF = True
@@ -112,8 +85,6 @@ class DesignatorStep(Node):
         return None if slots is None else cls(head, step.loc(head), slots)
 
     def check(self, v: "Validator") -> None:
-        from ..designators import check_designator
-
         for problem in check_designator(self.head, plain(self.slots), is_reference):
             v.error(problem.message, _problems_where(self.slots, problem.slot, self.where),
                     key=problem.slot or self.head, suggestion=problem.suggestion)
@@ -121,14 +92,11 @@ class DesignatorStep(Node):
         v.objects(self.head, self.slots)
 
     def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        from ..designators import check_designator
-
         values = ex.evaluate(self.slots)
         tn.info["designator"] = {"slots": jsonable(values)}
         problems = check_designator(self.head, jsonable(values))
         if problems:
             raise Failure(f"{self.head}: " + "; ".join(p.message for p in problems))
-        perform = _perform()
         with ex.world_action():
             try:
                 performed = perform(ex.world, self.head, values)
@@ -142,17 +110,11 @@ class DesignatorStep(Node):
 
 # -- reasoning queries --------------------------------------------------------------------------------------
 def query_problems(name: str, args: Any) -> list[str]:
-    try:
-        from ..reasoning import check_query_args  # type: ignore[attr-defined]
-    except ImportError:
-        return []
     return list(check_query_args(name, plain(args), is_reference))
 
 
 def query_problem_where(message: str, args: LMap) -> Location:
     """Point at the argument a query problem names (`... parameter 'arm' ...`), else at the arguments."""
-    import re
-
     match = re.search(r"parameter '([^']+)'", message)
     if match and match.group(1) in args:
         return args.loc(match.group(1), value="has no parameter" not in message)
@@ -162,7 +124,6 @@ def query_problem_where(message: str, args: LMap) -> Location:
 def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     """Run a query with evaluated arguments; its value and the record for the trace."""
     values = ex.evaluate(args)
-    run_query = _run_query()
     with ex.world_action():
         try:
             answer = run_query(ex.world, name, values)
@@ -175,7 +136,7 @@ def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     return answer.value, record
 
 
-@node_family("query", lambda: queries().keys())
+@node_family("query", lambda: QUERIES.keys())
 class QueryStep(Node):
     BINDS = True
     LEAF = True
@@ -216,8 +177,6 @@ class Condition:
         if isinstance(value, bool):
             return cls("literal", where, value)
         if isinstance(value, str) and value.startswith("$"):
-            from .context import REFERENCE
-
             if not REFERENCE.match(value):
                 parser.error(f"expected a variable like $name or $name.attr, got '{value}'", where, key=key)
                 return None
@@ -233,12 +192,12 @@ class Condition:
                                  value.loc("equal", True), key="equal")
                     return None
                 return cls("equal", value.loc("equal", True), plain(args))
-            if head in queries():
+            if head in QUERIES:
                 mapping = _mapping(args, value.loc(head, True), head, parser, "arguments")
                 return None if mapping is None else cls("query", where, mapping, name=head)
             parser.error(f"unknown query '{head}' in a condition", value.loc(head), key=key,
-                         suggestion=did_you_mean(str(head), [*queries(), "not", "equal"])
-                         or f"queries: {', '.join(queries())}")
+                         suggestion=did_you_mean(str(head), [*QUERIES, "not", "equal"])
+                         or f"queries: {', '.join(QUERIES)}")
             return None
         parser.error(f"expected a condition: a $variable, true/false, a query like {{stable: {{object: $obj}}}}, "
                      f"{{equal: [a, b]}} or {{not: ...}}, got {describe(value)}", where, key=key)
@@ -338,7 +297,6 @@ class CallStep(Node):
         return values
 
     def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        from .context import Frame
         from .executor import MAX_CALL_DEPTH
 
         sub = ex.run.plan.plans[self.name or ""]

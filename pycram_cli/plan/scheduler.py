@@ -132,10 +132,6 @@ class Scheduler:
                     return
                 self._cond.wait(POLL)
 
-    def holds(self, key: Key) -> bool:
-        with self._cond:
-            return self._holder == key
-
     def leaf_done(self, key: Key) -> None:
         """`key` finished a leaf step: it passes the turn before its next one."""
         with self._cond:
@@ -212,7 +208,3 @@ class Scheduler:
                 if parent.live_children <= 0 and parent.state == JOINING:
                     parent.state = READY
             self._cond.notify_all()
-
-    def active(self) -> int:
-        with self._cond:
-            return len(self._entries)

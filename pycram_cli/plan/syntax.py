@@ -25,9 +25,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
-from ..schema import describe
+from ..schema import check_keys, describe
 from ..yamlsource import LList, LMap, load_yaml, where_of
-from .context import IDENTIFIER
+from .context import IDENTIFIER, references
 
 if TYPE_CHECKING:
     from .executor import Exec
@@ -330,8 +330,6 @@ class Parser:
                 continue
             seen.add(name)
             if has_default:
-                from .context import references
-
                 if references(default):
                     self.error(f"the default of parameter '{name}' cannot use variables", at, key="params")
             result.append(Param(name, _plain(default), not has_default, at))
@@ -378,8 +376,6 @@ def parse_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan
     if not isinstance(data, LMap):
         raise InputError("a plan file must be a mapping with a 'body' (and optionally world, params, plans)",
                          Location(fname, 1, 1))
-    from ..schema import check_keys
-
     check_keys(data, PLAN_KEYS, ("body",), "the plan", parser.errors)
     plan = Plan(path=path, body=[], where=data.where)
     if "description" in data:
@@ -424,8 +420,6 @@ def _parse_subplan(name: Any, value: Any, key_where: Location, where: Location, 
         parser.error(f"subplan '{name}': expected a mapping with params and body, got {describe(value)}", where,
                      key=str(name))
         return None
-    from ..schema import check_keys
-
     check_keys(value, SUBPLAN_KEYS, ("body",), f"subplan '{name}'", parser.errors)
     sub = Subplan(name, [], [], where=key_where)
     if "description" in value:

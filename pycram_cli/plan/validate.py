@@ -16,9 +16,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..designators import DESIGNATORS
 from ..failures import ALIASES, FAILURES, failure_class
+from ..reasoning import QUERIES
+from ..robots import description_for
 from ..yamlsource import LList, LMap
 from .context import references
+from .params import find_world
 from .syntax import Node, Plan, parse_plan
 
 if TYPE_CHECKING:
@@ -126,8 +130,6 @@ class Validator:
 
     def objects(self, head: str, slots: LMap) -> None:
         """With a world: literal object names in designator slots must name objects in it."""
-        from ..designators import DESIGNATORS
-
         spec = DESIGNATORS.get(head)
         if spec is not None and self.world is not None and not self._robot_checked:
             self._robot_checked = True  # said once, at the first designator
@@ -138,8 +140,6 @@ class Validator:
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""
-        from ..robots import description_for
-
         robot = self.world.robot if self.world is not None else None
         if robot is None:
             self.error(f"the world has no robot to perform '{head}'", slots.where, key=head,
@@ -150,9 +150,7 @@ class Validator:
 
     def query_objects(self, name: str, args: LMap) -> None:
         """With a world: literal object names in query arguments must name objects in it."""
-        from .leaves import queries
-
-        spec = queries().get(name)
+        spec = QUERIES.get(name)
         if spec is not None:
             self._objects(args, [p.name for p in spec.params if p.kind in ("object", "target")])
 
@@ -196,8 +194,6 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
     validator = Validator(plan, world)
     validator.errors.extend(errors or [])
     if check_world_file and plan.world is not None:
-        from .params import find_world
-
         try:
             find_world(plan.world, plan.path.parent, plan.world_where)
         except InputError as exc:
