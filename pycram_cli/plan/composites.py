@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 from ..failures import Failure
 from ..yamlsource import LMap
 from .executor import PAR, PURSUE, TRY_ALL, Policy, close_pending, combined_failure
-from .scheduler import Cancelled
+from .runtime import Cancelled
 from .syntax import Node, Parser, node_type
 
 if TYPE_CHECKING:

@@ -18,7 +18,8 @@ from ..failures import Failure
 from .context import Frame, evaluate, jsonable
 from .params import bind_params
 from .resources import ResourceAnalysis
-from .scheduler import CancelToken, Cancelled, Key, Scheduler
+from .runtime import Cancelled
+from .scheduler import CancelToken, Key, Scheduler
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
 
 if TYPE_CHECKING:

@@ -22,12 +22,12 @@ import threading
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
+from .runtime import Cancelled
+
+__all__ = ["Cancelled", "CancelToken", "Key", "Scheduler"]  # Cancelled lives in runtime; re-exported here
+
 Key = tuple[int, ...]
 POLL = 0.05  # seconds between checks of a cancellation while waiting (wake-ups are also notified)
-
-
-class Cancelled(BaseException):
-    """A branch was cancelled. Not a Failure: no handler or retry catches it."""
 
 
 class CancelToken:
