@@ -12,7 +12,7 @@ import contextlib
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Protocol
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Protocol
 
 from ..failures import Failure
 from .context import Frame, evaluate, jsonable
@@ -234,12 +234,12 @@ class Exec:
         return self.run_group(nodes, tn)
 
     # -- concurrency ---------------------------------------------------------------------------
-    def concurrent(self, nodes: list["Node"], tn: TraceNode, policy: "Policy") -> Any:
-        """Run steps in threads of their own, deciding the outcome with `policy` (par, pursue, try_all)."""
+    def concurrent(self, nodes: list["Node"], tn: TraceNode, composite: "Decider") -> Any:
+        """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome."""
         children = self.prepare(nodes, tn)
         scheduler = self.run.scheduler
         tokens = [self.token.child() for _ in nodes]
-        outcome = Outcome(policy, tokens)
+        outcome = Outcome(composite, tokens)
         keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes))
         threads = []
         for i, (node, child, key, token) in enumerate(zip(nodes, children, keys, tokens)):
@@ -303,24 +303,21 @@ def _mark(tn: TraceNode, status: str) -> None:
 
 
 # -- outcomes of concurrent nodes ------------------------------------------------------------------
-@dataclass(frozen=True)
-class Policy:
-    """When a concurrent node is decided: on the first failure (par), first end (pursue), first success (try_all)."""
+class Decider(Protocol):
+    """A concurrent composite (`composites.Concurrent`): it decides when it is decided and what it yields."""
 
-    name: str
-    decides: Callable[[str], bool]
+    head: str
 
+    def decides(self, status: str) -> bool: ...
 
-PAR = Policy("par", lambda status: status == "failed")
-PURSUE = Policy("pursue", lambda status: status in ("succeeded", "failed"))
-TRY_ALL = Policy("try_all", lambda status: status == "succeeded")
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list[TraceNode]) -> Any: ...
 
 
 class Outcome:
     """Collects what each branch ended with; the deciding branch cancels its siblings at once."""
 
-    def __init__(self, policy: Policy, tokens: list[CancelToken]) -> None:
-        self.policy = policy
+    def __init__(self, composite: Decider, tokens: list[CancelToken]) -> None:
+        self.composite = composite
         self.tokens = tokens
         self.results: dict[int, tuple[str, Any]] = {}
         self.decided: int | None = None
@@ -331,13 +328,13 @@ class Outcome:
         with self._lock:
             self.results[index] = result
             status = result[0]
-            if self.decided is None and (status == "error" or self.policy.decides(status)):
+            if self.decided is None and (status == "error" or self.composite.decides(status)):
                 self.decided = index
                 cancel = True
         if cancel:
             for i, token in enumerate(self.tokens):
                 if i != index:
-                    token.cancel(f"{self.policy.name} decided by branch {index}")
+                    token.cancel(f"{self.composite.head} decided by branch {index}")
 
     def result(self, ex: Exec, children: list[TraceNode]) -> Any:
         errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
@@ -345,38 +342,7 @@ class Outcome:
             error = errors[0]
             raise error if isinstance(error, InternalError) else InternalError(f"{type(error).__name__}: {error}")
         ordered = [self.results.get(i, ("cancelled", None)) for i in range(len(self.tokens))]
-        if self.policy is PAR:
-            if self.decided is not None:
-                raise ordered[self.decided][1]
-            return [value for _, value in ordered]
-        if self.policy is PURSUE:
-            if self.decided is None:
-                raise Cancelled("pursue: every branch was cancelled")
-            status, value = ordered[self.decided]
-            if status == "failed":
-                raise value
-            return value
-        # try_all
-        if self.decided is not None:
-            return ordered[self.decided][1]
-        failures = [value for status, value in ordered if status == "failed"]
-        raise combined_failure(failures, "try_all", children)
-
-
-def combined_failure(failures: list[Failure], what: str, children: list[TraceNode]) -> Failure:
-    """One failure for several alternatives that all failed: of their most specific common type."""
-    if not failures:
-        return Failure(f"{what}: no alternative could run")
-    common = type(failures[0])
-    while not all(isinstance(f, common) for f in failures):
-        common = common.__mro__[1]
-        if not issubclass(common, Failure):
-            common = Failure
-            break
-    parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
-    error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
-    error.failures = failures  # type: ignore[attr-defined]
-    return error
+        return self.composite.outcome(ordered, self.decided, children)
 
 
 def run_plan(plan: "Plan", world: "BulletWorld", params: Mapping[str, Any] | None = None,
