@@ -17,17 +17,12 @@ only runs the branches and asks.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any, Sequence
 
 from ..failures import Failure
 from ..yamlsource import LMap
-from .executor import close_pending
-from .runtime import Cancelled
+from .runtime import Cancelled, Record, Runtime, close_pending
 from .syntax import Node, Parser, node_type
-
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
 
 
 class Composite(Node):
@@ -49,21 +44,21 @@ class Composite(Node):
 class Seq(Composite):
     DOC = "run the steps one after another; the first failure fails the sequence"
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         return ex.seq(self.steps, tn)
 
 
 class Concurrent(Composite):
     """Steps run at once, each in a thread of its own; the first branch whose end `decides` decides."""
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         return ex.concurrent(self.steps, tn, self)
 
     def decides(self, status: str) -> bool:
         """Whether a branch that ended with `status` ("succeeded" or "failed") decides the node."""
         raise NotImplementedError
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list["TraceNode"]) -> Any:
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         """The node's value (or raise its failure) from every branch's (status, value or failure), in order.
 
         `decided` is the index of the deciding branch, None when no branch decided.
@@ -78,7 +73,7 @@ class Par(Concurrent):
     def decides(self, status: str) -> bool:
         return status == "failed"
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list["TraceNode"]) -> Any:
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is not None:
             raise results[decided][1]
         return [value for _, value in results]
@@ -91,7 +86,7 @@ class Pursue(Concurrent):
     def decides(self, status: str) -> bool:
         return status in ("succeeded", "failed")
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list["TraceNode"]) -> Any:
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is None:
             raise Cancelled("pursue: every branch was cancelled")
         status, value = results[decided]
@@ -107,7 +102,7 @@ class TryAll(Concurrent):
     def decides(self, status: str) -> bool:
         return status == "succeeded"
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list["TraceNode"]) -> Any:
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is not None:
             return results[decided][1]
         failures = [value for status, value in results if status == "failed"]
@@ -118,7 +113,7 @@ class TryAll(Concurrent):
 class TryInOrder(Composite):
     DOC = "try the steps one after another until one succeeds; fails only when all failed"
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         children = ex.prepare(self.steps, tn)
         failures: list[Failure] = []
         try:
@@ -135,7 +130,7 @@ class TryInOrder(Composite):
             close_pending(children, "skipped")
 
 
-def combined_failure(failures: list[Failure], what: str, children: list["TraceNode"]) -> Failure:
+def combined_failure(failures: list[Failure], what: str, children: Sequence[Record]) -> Failure:
     """One failure for several alternatives that all failed: of their most specific common type."""
     if not failures:
         return Failure(f"{what}: no alternative could run")

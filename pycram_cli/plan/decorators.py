@@ -27,11 +27,10 @@ from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, jsonable
 from .leaves import Condition
+from .runtime import Record, Runtime
 from .syntax import Node, Parser, node_type, plain
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
 
 
@@ -72,7 +71,7 @@ class Retry(Node):
         v.check_steps(self.body)
         v.check_steps(self.recover)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         types = [name for name, _ in self.on] or ["Failure"]
         tn.info["retries"] = 0
         attempt = 1
@@ -90,7 +89,7 @@ class Retry(Node):
             tn.info["retries"] = attempt - 1
 
 
-def _run_part(ex: "Exec", steps: list[Node], tn: "TraceNode") -> Any:
+def _run_part(ex: Runtime, steps: list[Node], tn: Record) -> Any:
     """A named group of steps (an attempt, a branch, a handler) recorded as one trace node."""
     return ex.run_group(steps, tn)
 
@@ -133,7 +132,7 @@ class Try(Node):
             v.define("failure", where)
             v.check_steps(steps)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         try:
             return _run_part(ex, self.body, tn.child("try", "try", self.where))
         except Failure as exc:
@@ -173,7 +172,7 @@ class Conditional(Node):
         v.check_steps(self.then)
         v.check_steps(self.otherwise)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         holds = self.condition.evaluate(ex, tn)
         branch = "then" if holds != self.NEGATE else "else"
         steps = self.then if branch == "then" else self.otherwise
@@ -228,7 +227,7 @@ class ForEach(Node):
             v.define(self.var, self.var_where)
         v.check_steps(self.body)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         items = ex.evaluate(self.items)
         if isinstance(items, (str, dict)) or not hasattr(items, "__iter__"):
             raise Failure(f"for_each: expected a list, got {describe(jsonable(items))}")

@@ -2,9 +2,10 @@
 
 `run_plan(plan, world, params)` runs the plan body and returns a `RunResult` with the
 status, the failure (if any) and the trace. Each node class knows how to execute itself
-(`Node.execute(ex, tn)`); `Exec` is what it gets: the run, the current variable frame,
-the cancellation token and scheduler key of its thread, and helpers to run child steps
-in sequence (`seq`) or concurrently (`concurrent`).
+(`Node.execute(ex, tn)`); `Exec` is the `ex` it gets (it implements `runtime.Runtime`):
+the run, the current variable frame, the cancellation token and scheduler key of its
+thread, and helpers to run child steps in sequence (`seq`) or concurrently
+(`concurrent`, where the composite decides the outcome). `tn` is a `trace.TraceNode`.
 """
 from __future__ import annotations
 
@@ -12,21 +13,17 @@ import contextlib
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterator, Mapping, Protocol
+from typing import Any, Iterator, Mapping, Protocol, cast
 
 from ..failures import Failure
+from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable
 from .params import bind_params
 from .resources import ResourceAnalysis
-from .runtime import Cancelled
+from .runtime import Cancelled, Decider, Record, close_pending
 from .scheduler import CancelToken, Key, Scheduler
+from .syntax import Node, Plan
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
-
-if TYPE_CHECKING:
-    from ..world import BulletWorld
-    from .syntax import Node, Plan
-
-MAX_CALL_DEPTH = 64
 
 
 class Observer(Protocol):
@@ -61,7 +58,7 @@ class RunResult:
 class Run:
     """One execution of a plan on a world."""
 
-    def __init__(self, plan: "Plan", world: "BulletWorld", params: Mapping[str, Any],
+    def __init__(self, plan: Plan, world: BulletWorld, params: Mapping[str, Any],
                  observer: Observer | None = None, world_name: str | None = None) -> None:
         self.plan = plan
         self.world = world
@@ -124,8 +121,16 @@ class Exec:
         self.depth = depth
 
     @property
-    def world(self) -> "BulletWorld":
+    def world(self) -> BulletWorld:
         return self.run.world
+
+    @property
+    def plan(self) -> Plan:
+        return self.run.plan
+
+    @property
+    def globals(self) -> Frame:
+        return self.run.globals
 
     def derive(self, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
                depth: int | None = None) -> "Exec":
@@ -148,12 +153,13 @@ class Exec:
         self.token.check()
         self.run.scheduler.sleep(self.key, self.token, seconds)
 
-    def log(self, tn: TraceNode, message: str) -> None:
-        self.run.notify("log", tn, message)
+    def log(self, tn: Record, message: str) -> None:
+        self.run.notify("log", _own(tn), message)
 
     # -- one step ------------------------------------------------------------------------------
-    def step(self, node: "Node", tn: TraceNode) -> Any:
+    def step(self, node: Node, tn: Record) -> Any:
         """Run one node, recording its status, bound value and failure in `tn`."""
+        tn = _own(tn)
         self.token.check()
         if node.LEAF:  # the turn passes between leaves (see scheduler.py)
             self.run.scheduler.before_leaf(self.key, self.token)
@@ -188,11 +194,11 @@ class Exec:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
 
-    def prepare(self, nodes: list["Node"], tn: TraceNode) -> list[TraceNode]:
+    def prepare(self, nodes: list[Node], tn: Record) -> list[TraceNode]:
         """Trace nodes (pending) for a list of steps, labelled `index:label`."""
-        return [tn.child(f"{i}:{node.label()}", node.head, node.where) for i, node in enumerate(nodes)]
+        return [_own(tn).child(f"{i}:{node.label()}", node.head, node.where) for i, node in enumerate(nodes)]
 
-    def seq(self, nodes: list["Node"], tn: TraceNode) -> Any:
+    def seq(self, nodes: list[Node], tn: Record) -> Any:
         """Run steps one after another; a failure skips the rest. The value is the last step's."""
         children = self.prepare(nodes, tn)
         value = None
@@ -206,8 +212,9 @@ class Exec:
             close_pending(children, "skipped")
         return value
 
-    def run_group(self, nodes: list["Node"], tn: TraceNode) -> Any:
+    def run_group(self, nodes: list[Node], tn: Record) -> Any:
         """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
+        tn = _own(tn)
         self.token.check()
         tn.status, tn.started = "running", self.run.now()
         self.run.notify("started", tn)
@@ -229,12 +236,12 @@ class Exec:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
 
-    def run_body(self, nodes: list["Node"], tn: TraceNode, where: Any = None) -> Any:
+    def run_body(self, nodes: list[Node], tn: TraceNode, where: Any = None) -> Any:
         """The plan body: a group whose trace node is the root."""
         return self.run_group(nodes, tn)
 
     # -- concurrency ---------------------------------------------------------------------------
-    def concurrent(self, nodes: list["Node"], tn: TraceNode, composite: "Decider") -> Any:
+    def concurrent(self, nodes: list[Node], tn: Record, composite: Decider) -> Any:
         """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome."""
         children = self.prepare(nodes, tn)
         scheduler = self.run.scheduler
@@ -269,7 +276,7 @@ class Exec:
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
-    def _branch(self, index: int, node: "Node", tn: TraceNode, outcome: "Outcome") -> None:
+    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome") -> None:
         result: tuple[str, Any] = ("cancelled", None)
         try:
             self.run.scheduler.acquire(self.key, self.token)
@@ -287,11 +294,9 @@ class Exec:
             self.run.scheduler.finish(self.key)
 
 
-def close_pending(children: list[TraceNode], status: str) -> None:
-    """Steps that never started: `skipped` after a failure or success, `cancelled` after a cancellation."""
-    for child in children:
-        if child.status == "pending":
-            child.status = status
+def _own(tn: Record) -> TraceNode:
+    """The runtime only ever gets back the trace nodes it made: a TraceNode (for the type checker)."""
+    return cast(TraceNode, tn)
 
 
 def _mark(tn: TraceNode, status: str) -> None:
@@ -303,16 +308,6 @@ def _mark(tn: TraceNode, status: str) -> None:
 
 
 # -- outcomes of concurrent nodes ------------------------------------------------------------------
-class Decider(Protocol):
-    """A concurrent composite (`composites.Concurrent`): it decides when it is decided and what it yields."""
-
-    head: str
-
-    def decides(self, status: str) -> bool: ...
-
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: list[TraceNode]) -> Any: ...
-
-
 class Outcome:
     """Collects what each branch ended with; the deciding branch cancels its siblings at once."""
 
@@ -345,7 +340,7 @@ class Outcome:
         return self.composite.outcome(ordered, self.decided, children)
 
 
-def run_plan(plan: "Plan", world: "BulletWorld", params: Mapping[str, Any] | None = None,
+def run_plan(plan: Plan, world: BulletWorld, params: Mapping[str, Any] | None = None,
              observer: Observer | None = None, world_name: str | None = None) -> RunResult:
     """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`)."""
     values = bind_params(plan, params or {})

@@ -32,11 +32,10 @@ from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
+from .runtime import Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
 
 
@@ -91,7 +90,7 @@ class DesignatorStep(Node):
         v.refs(self.slots, self.slots.where)
         v.objects(self.head, self.slots)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         values = ex.evaluate(self.slots)
         tn.info["designator"] = {"slots": jsonable(values)}
         problems = check_designator(self.head, jsonable(values))
@@ -121,7 +120,7 @@ def query_problem_where(message: str, args: LMap) -> Location:
     return args.where
 
 
-def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
+def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     """Run a query with evaluated arguments; its value and the record for the trace."""
     values = ex.evaluate(args)
     with ex.world_action():
@@ -157,7 +156,7 @@ class QueryStep(Node):
         v.refs(self.args, self.args.where)
         v.query_objects(self.head, self.args)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         value, record = ask(ex, self.head, self.args)
         record.pop("name")
         tn.info["query"] = record
@@ -228,12 +227,12 @@ class Condition:
         args = ", ".join(f"{k}={display(v)}" for k, v in self.value.items())
         return f"{self.name}({args})"
 
-    def evaluate(self, ex: "Exec", tn: "TraceNode") -> bool:
+    def evaluate(self, ex: Runtime, tn: Record) -> bool:
         holds, record = self._evaluate(ex)
         tn.info["condition"] = record
         return holds
 
-    def _evaluate(self, ex: "Exec") -> tuple[bool, dict[str, Any]]:
+    def _evaluate(self, ex: Runtime) -> tuple[bool, dict[str, Any]]:
         if self.kind == "literal":
             return bool(self.value), {"value": bool(self.value)}
         if self.kind == "variable":
@@ -252,6 +251,9 @@ class Condition:
 
 
 # -- call -----------------------------------------------------------------------------------------------------------
+MAX_CALL_DEPTH = 64  # nested subplan calls before a run gives up (endless recursion)
+
+
 @node_type("call")
 class CallStep(Node):
     KEYS = ("args",)
@@ -282,8 +284,8 @@ class CallStep(Node):
         if self.args is not None:
             v.refs(self.args, self.args_where)
 
-    def bound_args(self, ex: "Exec") -> dict[str, Any]:
-        sub = ex.run.plan.plans[self.name or ""]
+    def bound_args(self, ex: Runtime) -> dict[str, Any]:
+        sub = ex.plan.plans[self.name or ""]
         values: dict[str, Any] = {}
         if isinstance(self.args, list):
             for param, value in zip(sub.params, self.args):
@@ -296,15 +298,13 @@ class CallStep(Node):
                 values[param.name] = param.default
         return values
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        from .executor import MAX_CALL_DEPTH
-
-        sub = ex.run.plan.plans[self.name or ""]
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        sub = ex.plan.plans[self.name or ""]
         values = self.bound_args(ex)
         tn.info["call"] = {"plan": self.name, "args": jsonable(values)}
         if ex.depth >= MAX_CALL_DEPTH:
             raise Failure(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (endless recursion?)")
-        inner = ex.derive(frame=Frame(values, parent=ex.run.globals), depth=ex.depth + 1)
+        inner = ex.derive(frame=Frame(values, parent=ex.globals), depth=ex.depth + 1)
         value = inner.seq(sub.body, tn)
         return inner.evaluate(sub.returns) if sub.has_returns else None
 
@@ -343,7 +343,7 @@ class FailStep(Node):
         if self.message is not None:
             v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         kind = ex.evaluate(self.kind)
         if isinstance(kind, FailureInfo):
             tn.info["rethrow"] = kind.path
@@ -383,7 +383,7 @@ class AssertStep(Node):
         if self.message is not None:
             v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         if not self.condition.evaluate(ex, tn):
             message = (display(ex.evaluate(self.message)) if self.message is not None
                        else f"assertion failed: {self.condition.text()} does not hold")
@@ -408,7 +408,7 @@ class LogStep(Node):
     def check(self, v: "Validator") -> None:
         v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         message = display(ex.evaluate(self.message))
         tn.info["message"] = message
         ex.log(tn, message)
@@ -438,7 +438,7 @@ class SetStep(Node):
         for name in self.values:
             v.define(str(name), self.values.loc(name))
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         values = {name: ex.evaluate(value) for name, value in self.values.items()}
         for name, value in values.items():
             ex.frame.bind(name, value)
@@ -468,7 +468,7 @@ class WaitStep(Node):
     def check(self, v: "Validator") -> None:
         v.refs(self.seconds, self.value_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)
         if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or seconds < 0:
             raise Failure(f"wait: expected a number of seconds, got {display(seconds)}")

@@ -28,10 +28,9 @@ from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..schema import check_keys, describe
 from ..yamlsource import LList, LMap, load_yaml, where_of
 from .context import IDENTIFIER, references
+from .runtime import Record, Runtime
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: these modules import this one
     from .validate import Validator
 
 PLAN_KEYS = ("description", "world", "params", "plans", "body")
@@ -85,7 +84,8 @@ class Node:
         for _, steps in self.parts():
             validator.check_steps(steps)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        """Run the node: `ex` is the runtime of its thread, `tn` its entry in the trace (see runtime.py)."""
         raise NotImplementedError
 
     def __repr__(self) -> str:
