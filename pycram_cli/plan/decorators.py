@@ -125,6 +125,12 @@ class Try(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("try", self.body), *((f"catch {name}", steps) for name, _, steps in self.handlers)]
 
+    def bindings(self) -> list[tuple[str, Location]]:
+        found = super().bindings()
+        if self.handlers:
+            found.append(("failure", self.handlers[0][1]))
+        return found
+
     def check(self, v: "Validator") -> None:
         v.check_steps(self.body)
         for name, where, steps in self.handlers:
@@ -220,6 +226,12 @@ class ForEach(Node):
 
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("do", self.body)]
+
+    def bindings(self) -> list[tuple[str, Location]]:
+        found = super().bindings()
+        if self.var:
+            found.append((self.var, self.var_where))
+        return found
 
     def check(self, v: "Validator") -> None:
         v.refs(self.items, self.items_where)

@@ -32,6 +32,7 @@ from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
+from .resources import ResourceAnalysis, designator_resources
 from .runtime import Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
@@ -82,6 +83,9 @@ class DesignatorStep(Node):
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         slots = _mapping(step[head], step.loc(head, True), head, parser, "slots")
         return None if slots is None else cls(head, step.loc(head), slots)
+
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
+        return designator_resources(self.head, self.slots)
 
     def check(self, v: "Validator") -> None:
         for problem in check_designator(self.head, plain(self.slots), is_reference):
@@ -279,8 +283,11 @@ class CallStep(Node):
     def label(self) -> str:
         return f"call {self.name}"
 
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
+        return analysis.subplan(self.name)
+
     def check(self, v: "Validator") -> None:
-        v.check_call(self)
+        v.check_call(self.name, self.args, self.args_where, self.where)
         if self.args is not None:
             v.refs(self.args, self.args_where)
 
@@ -432,6 +439,9 @@ class SetStep(Node):
         for name in values:
             parser.identifier(name, values.loc(name), head)
         return cls(head, step.loc(head), values)
+
+    def bindings(self) -> list[tuple[str, Location]]:
+        return [*super().bindings(), *((str(name), self.values.loc(name)) for name in self.values)]
 
     def check(self, v: "Validator") -> None:
         v.refs(self.values, self.values.where)

@@ -31,6 +31,7 @@ from .context import IDENTIFIER, references
 from .runtime import Record, Runtime
 
 if TYPE_CHECKING:  # for annotations only: these modules import this one
+    from .resources import ResourceAnalysis
     from .validate import Validator
 
 PLAN_KEYS = ("description", "world", "params", "plans", "body")
@@ -77,6 +78,14 @@ class Node:
         for _, steps in self.parts():
             for step in steps:
                 yield from step.walk()
+
+    def bindings(self) -> list[tuple[str, Location]]:
+        """The variables this node itself binds, with their places (`as:`; subclasses add theirs)."""
+        return [(self.bind, self.bind_where)] if self.bind else []
+
+    def resources(self, analysis: "ResourceAnalysis") -> frozenset[str]:
+        """The robot's resources this node itself uses, not counting its child steps (see resources.py)."""
+        return frozenset()
 
     # -- checking and running -----------------------------------------------------
     def check(self, validator: "Validator") -> None:
