@@ -22,10 +22,10 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 from __future__ import annotations
 
 import re
+from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
-from ..designators import DESIGNATORS, check_designator
-from ..designators.perform import perform  # the function: the package's `perform` name is shadowed by this submodule once it is loaded
+from ..designators import DESIGNATORS, check_designator, perform
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
 from ..reasoning import QUERIES, check_query_args, run_query
@@ -38,6 +38,12 @@ from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
+
+if isinstance(perform, ModuleType):  # pragma: no cover
+    # designators' submodule `perform` replaces the package's perform() function in the package
+    # once it has been loaded (by the first perform); when that happened before this import, take
+    # the submodule's function. (Importing the submodule here would shadow the function for everyone.)
+    perform = perform.perform
 
 
 def _as_failure(exc: BaseException, what: str) -> Failure:
