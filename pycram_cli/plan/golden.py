@@ -23,7 +23,7 @@ from ..worldfile.loader import load_world
 from . import trace as traces
 from .executor import run_plan
 from .params import plan_world
-from .validate import load_plan
+from .language import load_plan
 
 ATOL = 1e-3
 

@@ -15,7 +15,9 @@ A plan file:
 A step is a mapping with exactly one *head* key naming its node type (`seq`, `par`,
 `retry`, `moving`, `stable`, `log`, ...) plus the keys that node type allows. Node types
 register themselves with `@node_type`; motion designators and reasoning queries are node
-families found by name in their own registries. Parsing only builds the tree and reports
+families found by name in their own registries. This module knows no node type: the
+built-in ones are registered by `language.py`, which imports their modules (composites,
+decorators, leaves) and offers `parse_plan`. Parsing only builds the tree and reports
 malformed steps; `validate.py` checks names, variables and calls across the whole plan.
 """
 from __future__ import annotations
@@ -126,12 +128,8 @@ def node_family(name: str, heads: Callable[[], Iterable[str]]) -> Callable[[type
     return register
 
 
-def _load_node_modules() -> None:
-    from . import composites, decorators, leaves  # noqa: F401  (they register their node types)
-
-
 def node_class(head: str) -> type[Node] | None:
-    _load_node_modules()
+    """The registered node class for a head, or None."""
     if head in NODE_TYPES:
         return NODE_TYPES[head]
     for _, heads, cls in FAMILIES:
@@ -141,7 +139,7 @@ def node_class(head: str) -> type[Node] | None:
 
 
 def all_heads() -> list[str]:
-    _load_node_modules()
+    """Every registered head (for suggestions)."""
     names = list(NODE_TYPES)
     for _, heads, _cls in FAMILIES:
         names.extend(heads())
@@ -372,11 +370,12 @@ def _plain(value: Any) -> Any:
 plain = _plain
 
 
-def parse_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan:
-    """Read a plan file into nodes; every structural problem is reported together.
+def read_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan:
+    """Read a plan file into nodes of the registered types; every structural problem is reported together.
 
     With an `errors` list, problems are added to it instead of raised (so that later
-    checks can report theirs in the same go).
+    checks can report theirs in the same go). Use `language.parse_plan`, which has every
+    built-in node type registered.
     """
     path = Path(path)
     data = load_yaml(path)

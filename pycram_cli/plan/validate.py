@@ -12,7 +12,6 @@ parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure`
 """
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
@@ -23,7 +22,7 @@ from ..robots import description_for
 from ..yamlsource import LList, LMap
 from .context import references
 from .params import find_world
-from .syntax import Node, Plan, parse_plan
+from .syntax import Node, Plan
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
@@ -186,10 +185,3 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
     validator.check()
     raise_if_any(validator.errors)
     return plan
-
-
-def load_plan(path: str | Path, world: "BulletWorld | None" = None, check_world_file: bool = True) -> Plan:
-    """Parse and check a plan file; every problem is reported together with file, line and column."""
-    errors: list[InputError] = []
-    plan = parse_plan(path, errors)
-    return check_plan(plan, world, check_world_file, errors)
