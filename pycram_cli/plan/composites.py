@@ -9,20 +9,20 @@
 
 Each takes `as: name` to bind its value: seq and try_in_order the value of the last step run,
 par the list of its steps' values, pursue and try_all the value of the deciding step.
+
+The concurrent composites own their policy (as py_trees' `Parallel` does): `decides(status)`
+says whether a branch ending so decides the node (its siblings are then cancelled), and
+`outcome(...)` turns the branches' results into the node's value or failure. The executor
+only runs the branches and asks.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any, Sequence
 
 from ..failures import Failure
 from ..yamlsource import LMap
-from .executor import PAR, PURSUE, TRY_ALL, Policy, close_pending, combined_failure
-from .scheduler import Cancelled
+from .runtime import Cancelled, Record, Runtime, close_pending
 from .syntax import Node, Parser, node_type
-
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
 
 
 class Composite(Node):
@@ -44,40 +44,76 @@ class Composite(Node):
 class Seq(Composite):
     DOC = "run the steps one after another; the first failure fails the sequence"
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         return ex.seq(self.steps, tn)
 
 
 class Concurrent(Composite):
-    POLICY: Policy = PAR
+    """Steps run at once, each in a thread of its own; the first branch whose end `decides` decides."""
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        return ex.concurrent(self.steps, tn, self.POLICY)
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        return ex.concurrent(self.steps, tn, self)
+
+    def decides(self, status: str) -> bool:
+        """Whether a branch that ended with `status` ("succeeded" or "failed") decides the node."""
+        raise NotImplementedError
+
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+        """The node's value (or raise its failure) from every branch's (status, value or failure), in order.
+
+        `decided` is the index of the deciding branch, None when no branch decided.
+        """
+        raise NotImplementedError
 
 
 @node_type("par")
 class Par(Concurrent):
     DOC = "run the steps at once; all must succeed; the first failure cancels the others"
-    POLICY = PAR
+
+    def decides(self, status: str) -> bool:
+        return status == "failed"
+
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+        if decided is not None:
+            raise results[decided][1]
+        return [value for _, value in results]
 
 
 @node_type("pursue")
 class Pursue(Concurrent):
     DOC = "run the steps at once; the first to end decides (success or failure), the others are cancelled"
-    POLICY = PURSUE
+
+    def decides(self, status: str) -> bool:
+        return status in ("succeeded", "failed")
+
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+        if decided is None:
+            raise Cancelled("pursue: every branch was cancelled")
+        status, value = results[decided]
+        if status == "failed":
+            raise value
+        return value
 
 
 @node_type("try_all")
 class TryAll(Concurrent):
     DOC = "run the steps at once; the first success wins and cancels the others; fails only when all failed"
-    POLICY = TRY_ALL
+
+    def decides(self, status: str) -> bool:
+        return status == "succeeded"
+
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+        if decided is not None:
+            return results[decided][1]
+        failures = [value for status, value in results if status == "failed"]
+        raise combined_failure(failures, "try_all", children)
 
 
 @node_type("try_in_order")
 class TryInOrder(Composite):
     DOC = "try the steps one after another until one succeeds; fails only when all failed"
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         children = ex.prepare(self.steps, tn)
         failures: list[Failure] = []
         try:
@@ -92,3 +128,19 @@ class TryInOrder(Composite):
             raise
         finally:
             close_pending(children, "skipped")
+
+
+def combined_failure(failures: list[Failure], what: str, children: Sequence[Record]) -> Failure:
+    """One failure for several alternatives that all failed: of their most specific common type."""
+    if not failures:
+        return Failure(f"{what}: no alternative could run")
+    common = type(failures[0])
+    while not all(isinstance(f, common) for f in failures):
+        common = common.__mro__[1]
+        if not issubclass(common, Failure):
+            common = Failure
+            break
+    parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
+    error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
+    error.failures = failures  # type: ignore[attr-defined]
+    return error

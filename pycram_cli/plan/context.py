@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Iterator, Mapping
 
 from ..failures import Failure
+from ..world import Object
 
 NAME = r"[A-Za-z_][A-Za-z0-9_-]*"
 PATH = rf"{NAME}(?:\.[A-Za-z0-9_-]+)*"
@@ -111,8 +112,6 @@ class Frame:
 
 def attribute(value: Any, attr: str, ref: Ref) -> Any:
     """`value.attr`: list index or `length`, mapping key, Object/failure attribute."""
-    from ..world import Object
-
     if isinstance(value, Object):
         table = {"name": lambda o: o.name, "type": lambda o: o.type,
                  "position": lambda o: list(o.get_position()), "orientation": lambda o: list(o.get_orientation())}
@@ -165,8 +164,6 @@ def _interpolated(match: re.Match[str], frame: Frame) -> str:
 
 def display(value: Any) -> str:
     """How a value reads in a message: objects by name, numbers short."""
-    from ..world import Object
-
     if isinstance(value, Object):
         return value.name
     if isinstance(value, bool):
@@ -195,8 +192,6 @@ def truthy(value: Any) -> bool:
 
 def jsonable(value: Any, digits: int = 6) -> Any:
     """A JSON-friendly, deterministic form of a value: objects by name, floats rounded, tuples as lists."""
-    from ..world import Object
-
     if isinstance(value, Object):
         return value.name
     if isinstance(value, FailureInfo):

@@ -25,13 +25,12 @@ from ..errors import Location
 from ..failures import Failure, failure_class
 from ..schema import describe
 from ..yamlsource import LList, LMap
-from .context import FailureInfo, jsonable
+from .context import REFERENCE, FailureInfo, jsonable
 from .leaves import Condition
-from .syntax import Node, Parser, node_type
+from .runtime import Record, Runtime
+from .syntax import Node, Parser, node_type, plain
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
 
 
@@ -72,7 +71,7 @@ class Retry(Node):
         v.check_steps(self.body)
         v.check_steps(self.recover)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         types = [name for name, _ in self.on] or ["Failure"]
         tn.info["retries"] = 0
         attempt = 1
@@ -90,7 +89,7 @@ class Retry(Node):
             tn.info["retries"] = attempt - 1
 
 
-def _run_part(ex: "Exec", steps: list[Node], tn: "TraceNode") -> Any:
+def _run_part(ex: Runtime, steps: list[Node], tn: Record) -> Any:
     """A named group of steps (an attempt, a branch, a handler) recorded as one trace node."""
     return ex.run_group(steps, tn)
 
@@ -126,6 +125,12 @@ class Try(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("try", self.body), *((f"catch {name}", steps) for name, _, steps in self.handlers)]
 
+    def bindings(self) -> list[tuple[str, Location]]:
+        found = super().bindings()
+        if self.handlers:
+            found.append(("failure", self.handlers[0][1]))
+        return found
+
     def check(self, v: "Validator") -> None:
         v.check_steps(self.body)
         for name, where, steps in self.handlers:
@@ -133,7 +138,7 @@ class Try(Node):
             v.define("failure", where)
             v.check_steps(steps)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         try:
             return _run_part(ex, self.body, tn.child("try", "try", self.where))
         except Failure as exc:
@@ -173,7 +178,7 @@ class Conditional(Node):
         v.check_steps(self.then)
         v.check_steps(self.otherwise)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         holds = self.condition.evaluate(ex, tn)
         branch = "then" if holds != self.NEGATE else "else"
         steps = self.then if branch == "then" else self.otherwise
@@ -210,9 +215,6 @@ class ForEach(Node):
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        from .context import REFERENCE
-        from .syntax import plain
-
         items = step[head]
         if not isinstance(items, LList) and not (isinstance(items, str) and REFERENCE.match(items)):
             parser.error(f"expected a list or a $variable holding one, got {describe(items)}", step.loc(head, True),
@@ -225,13 +227,19 @@ class ForEach(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("do", self.body)]
 
+    def bindings(self) -> list[tuple[str, Location]]:
+        found = super().bindings()
+        if self.var:
+            found.append((self.var, self.var_where))
+        return found
+
     def check(self, v: "Validator") -> None:
         v.refs(self.items, self.items_where)
         if self.var:
             v.define(self.var, self.var_where)
         v.check_steps(self.body)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         items = ex.evaluate(self.items)
         if isinstance(items, (str, dict)) or not hasattr(items, "__iter__"):
             raise Failure(f"for_each: expected a list, got {describe(jsonable(items))}")

@@ -2,9 +2,10 @@
 
 `run_plan(plan, world, params)` runs the plan body and returns a `RunResult` with the
 status, the failure (if any) and the trace. Each node class knows how to execute itself
-(`Node.execute(ex, tn)`); `Exec` is what it gets: the run, the current variable frame,
-the cancellation token and scheduler key of its thread, and helpers to run child steps
-in sequence (`seq`) or concurrently (`concurrent`).
+(`Node.execute(ex, tn)`); `Exec` is the `ex` it gets (it implements `runtime.Runtime`):
+the run, the current variable frame, the cancellation token and scheduler key of its
+thread, and helpers to run child steps in sequence (`seq`) or concurrently
+(`concurrent`, where the composite decides the outcome). `tn` is a `trace.TraceNode`.
 """
 from __future__ import annotations
 
@@ -12,19 +13,17 @@ import contextlib
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Protocol
+from typing import Any, Iterator, Mapping, Protocol, cast
 
 from ..failures import Failure
+from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable
+from .params import bind_params
 from .resources import ResourceAnalysis
-from .scheduler import CancelToken, Cancelled, Key, Scheduler
+from .runtime import Cancelled, Decider, Record, close_pending
+from .scheduler import CancelToken, Key, Scheduler
+from .syntax import Node, Plan
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
-
-if TYPE_CHECKING:
-    from ..world import BulletWorld
-    from .syntax import Node, Plan
-
-MAX_CALL_DEPTH = 64
 
 
 class Observer(Protocol):
@@ -59,7 +58,7 @@ class RunResult:
 class Run:
     """One execution of a plan on a world."""
 
-    def __init__(self, plan: "Plan", world: "BulletWorld", params: Mapping[str, Any],
+    def __init__(self, plan: Plan, world: BulletWorld, params: Mapping[str, Any],
                  observer: Observer | None = None, world_name: str | None = None) -> None:
         self.plan = plan
         self.world = world
@@ -122,8 +121,16 @@ class Exec:
         self.depth = depth
 
     @property
-    def world(self) -> "BulletWorld":
+    def world(self) -> BulletWorld:
         return self.run.world
+
+    @property
+    def plan(self) -> Plan:
+        return self.run.plan
+
+    @property
+    def globals(self) -> Frame:
+        return self.run.globals
 
     def derive(self, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
                depth: int | None = None) -> "Exec":
@@ -146,12 +153,13 @@ class Exec:
         self.token.check()
         self.run.scheduler.sleep(self.key, self.token, seconds)
 
-    def log(self, tn: TraceNode, message: str) -> None:
-        self.run.notify("log", tn, message)
+    def log(self, tn: Record, message: str) -> None:
+        self.run.notify("log", _own(tn), message)
 
     # -- one step ------------------------------------------------------------------------------
-    def step(self, node: "Node", tn: TraceNode) -> Any:
+    def step(self, node: Node, tn: Record) -> Any:
         """Run one node, recording its status, bound value and failure in `tn`."""
+        tn = _own(tn)
         self.token.check()
         if node.LEAF:  # the turn passes between leaves (see scheduler.py)
             self.run.scheduler.before_leaf(self.key, self.token)
@@ -186,11 +194,11 @@ class Exec:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
 
-    def prepare(self, nodes: list["Node"], tn: TraceNode) -> list[TraceNode]:
+    def prepare(self, nodes: list[Node], tn: Record) -> list[TraceNode]:
         """Trace nodes (pending) for a list of steps, labelled `index:label`."""
-        return [tn.child(f"{i}:{node.label()}", node.head, node.where) for i, node in enumerate(nodes)]
+        return [_own(tn).child(f"{i}:{node.label()}", node.head, node.where) for i, node in enumerate(nodes)]
 
-    def seq(self, nodes: list["Node"], tn: TraceNode) -> Any:
+    def seq(self, nodes: list[Node], tn: Record) -> Any:
         """Run steps one after another; a failure skips the rest. The value is the last step's."""
         children = self.prepare(nodes, tn)
         value = None
@@ -204,8 +212,9 @@ class Exec:
             close_pending(children, "skipped")
         return value
 
-    def run_group(self, nodes: list["Node"], tn: TraceNode) -> Any:
+    def run_group(self, nodes: list[Node], tn: Record) -> Any:
         """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
+        tn = _own(tn)
         self.token.check()
         tn.status, tn.started = "running", self.run.now()
         self.run.notify("started", tn)
@@ -227,17 +236,17 @@ class Exec:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
 
-    def run_body(self, nodes: list["Node"], tn: TraceNode, where: Any = None) -> Any:
+    def run_body(self, nodes: list[Node], tn: TraceNode, where: Any = None) -> Any:
         """The plan body: a group whose trace node is the root."""
         return self.run_group(nodes, tn)
 
     # -- concurrency ---------------------------------------------------------------------------
-    def concurrent(self, nodes: list["Node"], tn: TraceNode, policy: "Policy") -> Any:
-        """Run steps in threads of their own, deciding the outcome with `policy` (par, pursue, try_all)."""
+    def concurrent(self, nodes: list[Node], tn: Record, composite: Decider) -> Any:
+        """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome."""
         children = self.prepare(nodes, tn)
         scheduler = self.run.scheduler
         tokens = [self.token.child() for _ in nodes]
-        outcome = Outcome(policy, tokens)
+        outcome = Outcome(composite, tokens)
         keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes))
         threads = []
         for i, (node, child, key, token) in enumerate(zip(nodes, children, keys, tokens)):
@@ -267,7 +276,7 @@ class Exec:
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
-    def _branch(self, index: int, node: "Node", tn: TraceNode, outcome: "Outcome") -> None:
+    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome") -> None:
         result: tuple[str, Any] = ("cancelled", None)
         try:
             self.run.scheduler.acquire(self.key, self.token)
@@ -285,11 +294,9 @@ class Exec:
             self.run.scheduler.finish(self.key)
 
 
-def close_pending(children: list[TraceNode], status: str) -> None:
-    """Steps that never started: `skipped` after a failure or success, `cancelled` after a cancellation."""
-    for child in children:
-        if child.status == "pending":
-            child.status = status
+def _own(tn: Record) -> TraceNode:
+    """The runtime only ever gets back the trace nodes it made: a TraceNode (for the type checker)."""
+    return cast(TraceNode, tn)
 
 
 def _mark(tn: TraceNode, status: str) -> None:
@@ -301,24 +308,11 @@ def _mark(tn: TraceNode, status: str) -> None:
 
 
 # -- outcomes of concurrent nodes ------------------------------------------------------------------
-@dataclass(frozen=True)
-class Policy:
-    """When a concurrent node is decided: on the first failure (par), first end (pursue), first success (try_all)."""
-
-    name: str
-    decides: Callable[[str], bool]
-
-
-PAR = Policy("par", lambda status: status == "failed")
-PURSUE = Policy("pursue", lambda status: status in ("succeeded", "failed"))
-TRY_ALL = Policy("try_all", lambda status: status == "succeeded")
-
-
 class Outcome:
     """Collects what each branch ended with; the deciding branch cancels its siblings at once."""
 
-    def __init__(self, policy: Policy, tokens: list[CancelToken]) -> None:
-        self.policy = policy
+    def __init__(self, composite: Decider, tokens: list[CancelToken]) -> None:
+        self.composite = composite
         self.tokens = tokens
         self.results: dict[int, tuple[str, Any]] = {}
         self.decided: int | None = None
@@ -329,13 +323,13 @@ class Outcome:
         with self._lock:
             self.results[index] = result
             status = result[0]
-            if self.decided is None and (status == "error" or self.policy.decides(status)):
+            if self.decided is None and (status == "error" or self.composite.decides(status)):
                 self.decided = index
                 cancel = True
         if cancel:
             for i, token in enumerate(self.tokens):
                 if i != index:
-                    token.cancel(f"{self.policy.name} decided by branch {index}")
+                    token.cancel(f"{self.composite.head} decided by branch {index}")
 
     def result(self, ex: Exec, children: list[TraceNode]) -> Any:
         errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
@@ -343,47 +337,12 @@ class Outcome:
             error = errors[0]
             raise error if isinstance(error, InternalError) else InternalError(f"{type(error).__name__}: {error}")
         ordered = [self.results.get(i, ("cancelled", None)) for i in range(len(self.tokens))]
-        if self.policy is PAR:
-            if self.decided is not None:
-                raise ordered[self.decided][1]
-            return [value for _, value in ordered]
-        if self.policy is PURSUE:
-            if self.decided is None:
-                raise Cancelled("pursue: every branch was cancelled")
-            status, value = ordered[self.decided]
-            if status == "failed":
-                raise value
-            return value
-        # try_all
-        if self.decided is not None:
-            return ordered[self.decided][1]
-        failures = [value for status, value in ordered if status == "failed"]
-        raise combined_failure(failures, "try_all", children)
+        return self.composite.outcome(ordered, self.decided, children)
 
 
-def combined_failure(failures: list[Failure], what: str, children: list[TraceNode]) -> Failure:
-    """One failure for several alternatives that all failed: of their most specific common type."""
-    from ..failures import Failure as Base
-
-    if not failures:
-        return Base(f"{what}: no alternative could run")
-    common = type(failures[0])
-    while not all(isinstance(f, common) for f in failures):
-        common = common.__mro__[1]
-        if not issubclass(common, Base):
-            common = Base
-            break
-    parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
-    error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
-    error.failures = failures  # type: ignore[attr-defined]
-    return error
-
-
-def run_plan(plan: "Plan", world: "BulletWorld", params: Mapping[str, Any] | None = None,
+def run_plan(plan: Plan, world: BulletWorld, params: Mapping[str, Any] | None = None,
              observer: Observer | None = None, world_name: str | None = None) -> RunResult:
     """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`)."""
-    from .params import bind_params
-
     values = bind_params(plan, params or {})
     run = Run(plan, world, values, observer, world_name)
     try:

@@ -19,7 +19,11 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from ..paths import plans_dir
+from ..worldfile.loader import load_world
 from . import trace as traces
+from .executor import run_plan
+from .params import plan_world
+from .language import load_plan
 
 ATOL = 1e-3
 
@@ -50,11 +54,6 @@ def golden_path(plan: Path, folder: Path | None = None) -> Path:
 
 def record(plan_path: Path) -> dict[str, Any]:
     """Run a plan on its own world with its default parameters; the comparable trace."""
-    from ..worldfile.loader import load_world
-    from .executor import run_plan
-    from .params import plan_world
-    from .validate import load_plan
-
     plan = load_plan(plan_path)
     world_path = plan_world(plan)
     world = load_world(world_path)

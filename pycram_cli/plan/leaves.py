@@ -21,50 +21,29 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 """
 from __future__ import annotations
 
-import types
+import re
+from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
+from ..designators import DESIGNATORS, check_designator, perform
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
+from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
-from .context import FailureInfo, display, is_reference, jsonable, truthy
+from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
+from .resources import ResourceAnalysis, designator_resources
+from .runtime import Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
 
-
-# -- the registries of the other layers ------------------------------------------------------
-def designator_types() -> dict[str, Any]:
-    from ..designators import DESIGNATORS
-
-    return DESIGNATORS
-
-
-def queries() -> dict[str, Any]:
-    try:
-        from ..reasoning import QUERIES  # type: ignore[attr-defined]
-    except ImportError:  # reasoning not built yet: queries are unknown node types
-        return {}
-    return QUERIES
-
-
-def _perform() -> Any:
-    from .. import designators
-
-    function = getattr(designators, "perform", None)
-    if function is None or isinstance(function, types.ModuleType):
-        from ..designators.perform import perform as function  # type: ignore[no-redef]
-    return function
-
-
-def _run_query() -> Any:
-    from ..reasoning import run_query  # type: ignore[attr-defined]
-
-    return run_query
+if isinstance(perform, ModuleType):  # pragma: no cover
+    # designators' submodule `perform` replaces the package's perform() function in the package
+    # once it has been loaded (by the first perform); when that happened before this import, take
+    # the submodule's function. (Importing the submodule here would shadow the function for everyone.)
+    perform = perform.perform
 
 
 def _as_failure(exc: BaseException, what: str) -> Failure:
@@ -96,7 +75,7 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
 
 
 # -- motion designators -------------------------------------------------------------------------------
-@node_family("designator", lambda: designator_types().keys())
+@node_family("designator", lambda: DESIGNATORS.keys())
 class DesignatorStep(Node):
     BINDS = True
     LEAF = True
@@ -111,24 +90,22 @@ class DesignatorStep(Node):
         slots = _mapping(step[head], step.loc(head, True), head, parser, "slots")
         return None if slots is None else cls(head, step.loc(head), slots)
 
-    def check(self, v: "Validator") -> None:
-        from ..designators import check_designator
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
+        return designator_resources(self.head, self.slots)
 
+    def check(self, v: "Validator") -> None:
         for problem in check_designator(self.head, plain(self.slots), is_reference):
             v.error(problem.message, _problems_where(self.slots, problem.slot, self.where),
                     key=problem.slot or self.head, suggestion=problem.suggestion)
         v.refs(self.slots, self.slots.where)
         v.objects(self.head, self.slots)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        from ..designators import check_designator
-
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         values = ex.evaluate(self.slots)
         tn.info["designator"] = {"slots": jsonable(values)}
         problems = check_designator(self.head, jsonable(values))
         if problems:
             raise Failure(f"{self.head}: " + "; ".join(p.message for p in problems))
-        perform = _perform()
         with ex.world_action():
             try:
                 performed = perform(ex.world, self.head, values)
@@ -142,27 +119,20 @@ class DesignatorStep(Node):
 
 # -- reasoning queries --------------------------------------------------------------------------------------
 def query_problems(name: str, args: Any) -> list[str]:
-    try:
-        from ..reasoning import check_query_args  # type: ignore[attr-defined]
-    except ImportError:
-        return []
     return list(check_query_args(name, plain(args), is_reference))
 
 
 def query_problem_where(message: str, args: LMap) -> Location:
     """Point at the argument a query problem names (`... parameter 'arm' ...`), else at the arguments."""
-    import re
-
     match = re.search(r"parameter '([^']+)'", message)
     if match and match.group(1) in args:
         return args.loc(match.group(1), value="has no parameter" not in message)
     return args.where
 
 
-def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
+def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     """Run a query with evaluated arguments; its value and the record for the trace."""
     values = ex.evaluate(args)
-    run_query = _run_query()
     with ex.world_action():
         try:
             answer = run_query(ex.world, name, values)
@@ -175,7 +145,7 @@ def ask(ex: "Exec", name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     return answer.value, record
 
 
-@node_family("query", lambda: queries().keys())
+@node_family("query", lambda: QUERIES.keys())
 class QueryStep(Node):
     BINDS = True
     LEAF = True
@@ -196,7 +166,7 @@ class QueryStep(Node):
         v.refs(self.args, self.args.where)
         v.query_objects(self.head, self.args)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         value, record = ask(ex, self.head, self.args)
         record.pop("name")
         tn.info["query"] = record
@@ -216,8 +186,6 @@ class Condition:
         if isinstance(value, bool):
             return cls("literal", where, value)
         if isinstance(value, str) and value.startswith("$"):
-            from .context import REFERENCE
-
             if not REFERENCE.match(value):
                 parser.error(f"expected a variable like $name or $name.attr, got '{value}'", where, key=key)
                 return None
@@ -233,12 +201,12 @@ class Condition:
                                  value.loc("equal", True), key="equal")
                     return None
                 return cls("equal", value.loc("equal", True), plain(args))
-            if head in queries():
+            if head in QUERIES:
                 mapping = _mapping(args, value.loc(head, True), head, parser, "arguments")
                 return None if mapping is None else cls("query", where, mapping, name=head)
             parser.error(f"unknown query '{head}' in a condition", value.loc(head), key=key,
-                         suggestion=did_you_mean(str(head), [*queries(), "not", "equal"])
-                         or f"queries: {', '.join(queries())}")
+                         suggestion=did_you_mean(str(head), [*QUERIES, "not", "equal"])
+                         or f"queries: {', '.join(QUERIES)}")
             return None
         parser.error(f"expected a condition: a $variable, true/false, a query like {{stable: {{object: $obj}}}}, "
                      f"{{equal: [a, b]}} or {{not: ...}}, got {describe(value)}", where, key=key)
@@ -269,12 +237,12 @@ class Condition:
         args = ", ".join(f"{k}={display(v)}" for k, v in self.value.items())
         return f"{self.name}({args})"
 
-    def evaluate(self, ex: "Exec", tn: "TraceNode") -> bool:
+    def evaluate(self, ex: Runtime, tn: Record) -> bool:
         holds, record = self._evaluate(ex)
         tn.info["condition"] = record
         return holds
 
-    def _evaluate(self, ex: "Exec") -> tuple[bool, dict[str, Any]]:
+    def _evaluate(self, ex: Runtime) -> tuple[bool, dict[str, Any]]:
         if self.kind == "literal":
             return bool(self.value), {"value": bool(self.value)}
         if self.kind == "variable":
@@ -293,6 +261,9 @@ class Condition:
 
 
 # -- call -----------------------------------------------------------------------------------------------------------
+MAX_CALL_DEPTH = 64  # nested subplan calls before a run gives up (endless recursion)
+
+
 @node_type("call")
 class CallStep(Node):
     KEYS = ("args",)
@@ -318,13 +289,16 @@ class CallStep(Node):
     def label(self) -> str:
         return f"call {self.name}"
 
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
+        return analysis.subplan(self.name)
+
     def check(self, v: "Validator") -> None:
-        v.check_call(self)
+        v.check_call(self.name, self.args, self.args_where, self.where)
         if self.args is not None:
             v.refs(self.args, self.args_where)
 
-    def bound_args(self, ex: "Exec") -> dict[str, Any]:
-        sub = ex.run.plan.plans[self.name or ""]
+    def bound_args(self, ex: Runtime) -> dict[str, Any]:
+        sub = ex.plan.plans[self.name or ""]
         values: dict[str, Any] = {}
         if isinstance(self.args, list):
             for param, value in zip(sub.params, self.args):
@@ -337,16 +311,13 @@ class CallStep(Node):
                 values[param.name] = param.default
         return values
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
-        from .context import Frame
-        from .executor import MAX_CALL_DEPTH
-
-        sub = ex.run.plan.plans[self.name or ""]
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        sub = ex.plan.plans[self.name or ""]
         values = self.bound_args(ex)
         tn.info["call"] = {"plan": self.name, "args": jsonable(values)}
         if ex.depth >= MAX_CALL_DEPTH:
             raise Failure(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (endless recursion?)")
-        inner = ex.derive(frame=Frame(values, parent=ex.run.globals), depth=ex.depth + 1)
+        inner = ex.derive(frame=Frame(values, parent=ex.globals), depth=ex.depth + 1)
         value = inner.seq(sub.body, tn)
         return inner.evaluate(sub.returns) if sub.has_returns else None
 
@@ -385,7 +356,7 @@ class FailStep(Node):
         if self.message is not None:
             v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         kind = ex.evaluate(self.kind)
         if isinstance(kind, FailureInfo):
             tn.info["rethrow"] = kind.path
@@ -425,7 +396,7 @@ class AssertStep(Node):
         if self.message is not None:
             v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         if not self.condition.evaluate(ex, tn):
             message = (display(ex.evaluate(self.message)) if self.message is not None
                        else f"assertion failed: {self.condition.text()} does not hold")
@@ -450,7 +421,7 @@ class LogStep(Node):
     def check(self, v: "Validator") -> None:
         v.refs(self.message, self.message_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         message = display(ex.evaluate(self.message))
         tn.info["message"] = message
         ex.log(tn, message)
@@ -475,12 +446,15 @@ class SetStep(Node):
             parser.identifier(name, values.loc(name), head)
         return cls(head, step.loc(head), values)
 
+    def bindings(self) -> list[tuple[str, Location]]:
+        return [*super().bindings(), *((str(name), self.values.loc(name)) for name in self.values)]
+
     def check(self, v: "Validator") -> None:
         v.refs(self.values, self.values.where)
         for name in self.values:
             v.define(str(name), self.values.loc(name))
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         values = {name: ex.evaluate(value) for name, value in self.values.items()}
         for name, value in values.items():
             ex.frame.bind(name, value)
@@ -510,7 +484,7 @@ class WaitStep(Node):
     def check(self, v: "Validator") -> None:
         v.refs(self.seconds, self.value_where)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)
         if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or seconds < 0:
             raise Failure(f"wait: expected a number of seconds, got {display(seconds)}")

@@ -62,15 +62,15 @@ class ResourceAnalysis:
                     changed = True
 
     def of(self, node: Node) -> frozenset[str]:
-        from .leaves import CallStep, DesignatorStep
-
+        """What a step uses: its own resources and its child steps' (`Node.resources`)."""
         used: set[str] = set()
         for step in node.walk():
-            if isinstance(step, DesignatorStep):
-                used |= designator_resources(step.head, step.slots)
-            elif isinstance(step, CallStep):
-                used |= self.subplans.get(step.name or "", EVERYTHING)
+            used |= step.resources(self)
         return frozenset(used)
+
+    def subplan(self, name: str | None) -> frozenset[str]:
+        """What a call of subplan `name` uses (everything when there is no such subplan)."""
+        return self.subplans.get(name or "", EVERYTHING)
 
     def waits_for(self, nodes: list[Node]) -> dict[int, set[int]]:
         """For each branch, the earlier branches it shares a resource with."""

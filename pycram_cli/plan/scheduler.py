@@ -22,12 +22,12 @@ import threading
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
+from .runtime import Cancelled
+
+__all__ = ["Cancelled", "CancelToken", "Key", "Scheduler"]  # Cancelled lives in runtime; re-exported here
+
 Key = tuple[int, ...]
 POLL = 0.05  # seconds between checks of a cancellation while waiting (wake-ups are also notified)
-
-
-class Cancelled(BaseException):
-    """A branch was cancelled. Not a Failure: no handler or retry catches it."""
 
 
 class CancelToken:
@@ -132,10 +132,6 @@ class Scheduler:
                     return
                 self._cond.wait(POLL)
 
-    def holds(self, key: Key) -> bool:
-        with self._cond:
-            return self._holder == key
-
     def leaf_done(self, key: Key) -> None:
         """`key` finished a leaf step: it passes the turn before its next one."""
         with self._cond:
@@ -212,7 +208,3 @@ class Scheduler:
                 if parent.live_children <= 0 and parent.state == JOINING:
                     parent.state = READY
             self._cond.notify_all()
-
-    def active(self) -> int:
-        with self._cond:
-            return len(self._entries)

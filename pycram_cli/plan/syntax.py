@@ -15,7 +15,9 @@ A plan file:
 A step is a mapping with exactly one *head* key naming its node type (`seq`, `par`,
 `retry`, `moving`, `stable`, `log`, ...) plus the keys that node type allows. Node types
 register themselves with `@node_type`; motion designators and reasoning queries are node
-families found by name in their own registries. Parsing only builds the tree and reports
+families found by name in their own registries. This module knows no node type: the
+built-in ones are registered by `language.py`, which imports their modules (composites,
+decorators, leaves) and offers `parse_plan`. Parsing only builds the tree and reports
 malformed steps; `validate.py` checks names, variables and calls across the whole plan.
 """
 from __future__ import annotations
@@ -25,13 +27,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
-from ..schema import describe
+from ..schema import check_keys, describe
 from ..yamlsource import LList, LMap, load_yaml, where_of
-from .context import IDENTIFIER
+from .context import IDENTIFIER, references
+from .runtime import Record, Runtime
 
-if TYPE_CHECKING:
-    from .executor import Exec
-    from .trace import TraceNode
+if TYPE_CHECKING:  # for annotations only: these modules import this one
+    from .resources import ResourceAnalysis
     from .validate import Validator
 
 PLAN_KEYS = ("description", "world", "params", "plans", "body")
@@ -79,13 +81,22 @@ class Node:
             for step in steps:
                 yield from step.walk()
 
+    def bindings(self) -> list[tuple[str, Location]]:
+        """The variables this node itself binds, with their places (`as:`; subclasses add theirs)."""
+        return [(self.bind, self.bind_where)] if self.bind else []
+
+    def resources(self, analysis: "ResourceAnalysis") -> frozenset[str]:
+        """The robot's resources this node itself uses, not counting its child steps (see resources.py)."""
+        return frozenset()
+
     # -- checking and running -----------------------------------------------------
     def check(self, validator: "Validator") -> None:
         """Static checks (references, names); the default checks the child steps in order."""
         for _, steps in self.parts():
             validator.check_steps(steps)
 
-    def execute(self, ex: "Exec", tn: "TraceNode") -> Any:
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        """Run the node: `ex` is the runtime of its thread, `tn` its entry in the trace (see runtime.py)."""
         raise NotImplementedError
 
     def __repr__(self) -> str:
@@ -117,12 +128,8 @@ def node_family(name: str, heads: Callable[[], Iterable[str]]) -> Callable[[type
     return register
 
 
-def _load_node_modules() -> None:
-    from . import composites, decorators, leaves  # noqa: F401  (they register their node types)
-
-
 def node_class(head: str) -> type[Node] | None:
-    _load_node_modules()
+    """The registered node class for a head, or None."""
     if head in NODE_TYPES:
         return NODE_TYPES[head]
     for _, heads, cls in FAMILIES:
@@ -132,7 +139,7 @@ def node_class(head: str) -> type[Node] | None:
 
 
 def all_heads() -> list[str]:
-    _load_node_modules()
+    """Every registered head (for suggestions)."""
     names = list(NODE_TYPES)
     for _, heads, _cls in FAMILIES:
         names.extend(heads())
@@ -330,8 +337,6 @@ class Parser:
                 continue
             seen.add(name)
             if has_default:
-                from .context import references
-
                 if references(default):
                     self.error(f"the default of parameter '{name}' cannot use variables", at, key="params")
             result.append(Param(name, _plain(default), not has_default, at))
@@ -365,11 +370,12 @@ def _plain(value: Any) -> Any:
 plain = _plain
 
 
-def parse_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan:
-    """Read a plan file into nodes; every structural problem is reported together.
+def read_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan:
+    """Read a plan file into nodes of the registered types; every structural problem is reported together.
 
     With an `errors` list, problems are added to it instead of raised (so that later
-    checks can report theirs in the same go).
+    checks can report theirs in the same go). Use `language.parse_plan`, which has every
+    built-in node type registered.
     """
     path = Path(path)
     data = load_yaml(path)
@@ -378,8 +384,6 @@ def parse_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan
     if not isinstance(data, LMap):
         raise InputError("a plan file must be a mapping with a 'body' (and optionally world, params, plans)",
                          Location(fname, 1, 1))
-    from ..schema import check_keys
-
     check_keys(data, PLAN_KEYS, ("body",), "the plan", parser.errors)
     plan = Plan(path=path, body=[], where=data.where)
     if "description" in data:
@@ -424,8 +428,6 @@ def _parse_subplan(name: Any, value: Any, key_where: Location, where: Location, 
         parser.error(f"subplan '{name}': expected a mapping with params and body, got {describe(value)}", where,
                      key=str(name))
         return None
-    from ..schema import check_keys
-
     check_keys(value, SUBPLAN_KEYS, ("body",), f"subplan '{name}'", parser.errors)
     sub = Subplan(name, [], [], where=key_where)
     if "description" in value:

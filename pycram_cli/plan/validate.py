@@ -12,19 +12,21 @@ parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure`
 """
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..designators import DESIGNATORS
 from ..failures import ALIASES, FAILURES, failure_class
 from ..kinds import KINDS
+from ..reasoning import QUERIES
+from ..robots import description_for
 from ..yamlsource import LList, LMap
 from .context import references
-from .syntax import Node, Plan, parse_plan
+from .params import find_world
+from .syntax import Node, Plan
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
-    from .leaves import CallStep
 
 
 class Validator:
@@ -53,7 +55,7 @@ class Validator:
         self.later = {}
         for node in steps:
             for step in node.walk():
-                for name, where in bindings(step):
+                for name, where in step.bindings():
                     self.later.setdefault(name, where)
         self.check_steps(steps)
 
@@ -94,41 +96,40 @@ class Validator:
             self.error(f"unknown failure type '{name}'", where, key=key,
                        suggestion=did_you_mean(name, [*FAILURES, *ALIASES]) or f"failure types: {', '.join(FAILURES)}")
 
-    def check_call(self, call: "CallStep") -> None:
-        if call.name is None:
+    def check_call(self, name: str | None, args: Any, args_where: Location, where: Location) -> None:
+        """A call of subplan `name` (at `where`) with `args` (a list, a mapping or None, at `args_where`)."""
+        if name is None:
             return
-        sub = self.plan.plans.get(call.name)
-        if sub is None and call.name in self.plan.lost_plans:
+        sub = self.plan.plans.get(name)
+        if sub is None and name in self.plan.lost_plans:
             return
         if sub is None:
-            self.error(f"undefined subplan '{call.name}'", call.where, key="call",
-                       suggestion=did_you_mean(call.name, self.plan.plans)
+            self.error(f"undefined subplan '{name}'", where, key="call",
+                       suggestion=did_you_mean(name, self.plan.plans)
                        or (f"subplans: {', '.join(self.plan.plans)}" if self.plan.plans else "define it under 'plans:'"))
             return
         names = [p.name for p in sub.params]
         required = [p.name for p in sub.params if p.required]
-        signature = f"{call.name}({', '.join(names)})"
+        signature = f"{name}({', '.join(names)})"
         given: list[str] = []
-        if isinstance(call.args, LList):
-            if len(call.args) > len(names):
-                self.error(f"too many arguments: {signature} takes {len(names)}, got {len(call.args)}",
-                           call.args_where, key="args")
-            given = names[:len(call.args)]
-        elif isinstance(call.args, LMap):
-            for key in call.args:
+        if isinstance(args, LList):
+            if len(args) > len(names):
+                self.error(f"too many arguments: {signature} takes {len(names)}, got {len(args)}",
+                           args_where, key="args")
+            given = names[:len(args)]
+        elif isinstance(args, LMap):
+            for key in args:
                 if key not in names:
-                    self.error(f"{signature} has no parameter '{key}'", call.args.loc(key), key="args",
+                    self.error(f"{signature} has no parameter '{key}'", args.loc(key), key="args",
                                suggestion=did_you_mean(str(key), names))
-            given = [k for k in call.args if k in names]
-        missing = [name for name in required if name not in given]
+            given = [k for k in args if k in names]
+        missing = [param for param in required if param not in given]
         if missing:
             self.error(f"missing argument{'s' if len(missing) > 1 else ''} {', '.join(missing)}: "
-                       f"{signature} needs {len(required)}, got {len(given)}", call.args_where, key="args")
+                       f"{signature} needs {len(required)}, got {len(given)}", args_where, key="args")
 
     def objects(self, head: str, slots: LMap) -> None:
         """With a world: literal object names in designator slots must name objects in it."""
-        from ..designators import DESIGNATORS
-
         spec = DESIGNATORS.get(head)
         if spec is not None and self.world is not None and not self._robot_checked:
             self._robot_checked = True  # said once, at the first designator
@@ -139,8 +140,6 @@ class Validator:
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""
-        from ..robots import description_for
-
         robot = self.world.robot if self.world is not None else None
         if robot is None:
             self.error(f"the world has no robot to perform '{head}'", slots.where, key=head,
@@ -151,9 +150,7 @@ class Validator:
 
     def query_objects(self, name: str, args: LMap) -> None:
         """With a world: literal object names in query arguments must name objects in it."""
-        from .leaves import queries
-
-        spec = queries().get(name)
+        spec = QUERIES.get(name)
         if spec is not None:
             self._objects(args, [p.name for p in spec.params if p.kind in ("object", "target")])
 
@@ -169,21 +166,6 @@ class Validator:
                            key=str(slot_name), suggestion=did_you_mean(value, names))
 
 
-def bindings(node: Node) -> list[tuple[str, Location]]:
-    """The variables a node binds (for 'used before it is bound' hints)."""
-    from .decorators import ForEach, Try
-    from .leaves import SetStep
-
-    found = [(node.bind, node.bind_where)] if node.bind else []
-    if isinstance(node, ForEach) and node.var:
-        found.append((node.var, node.var_where))
-    elif isinstance(node, SetStep):
-        found.extend((str(name), node.values.loc(name)) for name in node.values)
-    elif isinstance(node, Try) and node.handlers:
-        found.append(("failure", node.handlers[0][1]))
-    return found
-
-
 def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
     hint = did_you_mean(name, known)
     if hint:
@@ -197,8 +179,6 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
     validator = Validator(plan, world)
     validator.errors.extend(errors or [])
     if check_world_file and plan.world is not None:
-        from .params import find_world
-
         try:
             find_world(plan.world, plan.path.parent, plan.world_where)
         except InputError as exc:
@@ -206,10 +186,3 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
     validator.check()
     raise_if_any(validator.errors)
     return plan
-
-
-def load_plan(path: str | Path, world: "BulletWorld | None" = None, check_world_file: bool = True) -> Plan:
-    """Parse and check a plan file; every problem is reported together with file, line and column."""
-    errors: list[InputError] = []
-    plan = parse_plan(path, errors)
-    return check_plan(plan, world, check_world_file, errors)

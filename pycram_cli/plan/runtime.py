@@ -1,0 +1,134 @@
+"""What a node may ask of the run that executes it: the contract between the two floors.
+
+Node classes (syntax, composites, decorators, leaves) belong to the language floor and
+never import the running floor (executor, scheduler, trace). `Node.execute(ex, tn)` gets
+the runtime through its two arguments only, and this module says what they offer:
+
+- `ex` is a `Runtime` (implemented by `executor.Exec`): the variables, the cancellation
+  token, the world, and running child steps in sequence, as a group, or concurrently;
+- `tn` is a `Record` (implemented by `trace.TraceNode`): the node's entry in the trace.
+
+A concurrent composite hands itself to `Runtime.concurrent` as a `Decider`: the runtime
+runs the branches, the composite decides (see composites.py). `Cancelled` and
+`close_pending` are shared by both floors and live here, below both.
+"""
+from __future__ import annotations
+
+from contextlib import AbstractContextManager
+from typing import TYPE_CHECKING, Any, Iterable, Protocol, Sequence
+
+from ..errors import Location
+from ..world import BulletWorld
+from .context import Frame
+
+if TYPE_CHECKING:  # for annotations only: syntax imports this module
+    from .syntax import Node, Plan
+
+
+class Cancelled(BaseException):
+    """A branch was cancelled. Not a Failure: no handler or retry catches it."""
+
+
+class Record(Protocol):
+    """`tn`: a node's entry in the trace of the run."""
+
+    path: str    # `body/1:for_each/item 0/0:call fetch`
+    status: str  # pending, running, succeeded, failed, cancelled, skipped
+    info: dict[str, Any]  # what the node records (its designator, query answer, bound values...)
+
+    def child(self, label: str, type: str, source: Location | None = None) -> Record:
+        """A new (pending) entry below this one."""
+        ...
+
+
+class Token(Protocol):
+    """A thread's cancellation token."""
+
+    def check(self) -> None:
+        """Raise Cancelled when the thread's branch has been cancelled."""
+        ...
+
+
+class Decider(Protocol):
+    """A concurrent composite (par, pursue, try_all): when it is decided and what it then yields."""
+
+    head: str
+
+    def decides(self, status: str) -> bool: ...
+
+    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any: ...
+
+
+class Runtime(Protocol):
+    """`ex`: one thread's view of the run executing a node."""
+
+    @property
+    def frame(self) -> Frame:
+        """The variables of the current plan invocation (`as`, `set` and `for_each` bind here)."""
+        ...
+
+    @property
+    def globals(self) -> Frame:
+        """The plan's parameters (the parent of every invocation's frame)."""
+        ...
+
+    @property
+    def plan(self) -> Plan: ...
+
+    @property
+    def world(self) -> BulletWorld: ...
+
+    @property
+    def token(self) -> Token: ...
+
+    @property
+    def depth(self) -> int:
+        """How many subplan calls deep this invocation is."""
+        ...
+
+    def evaluate(self, value: Any) -> Any:
+        """A plan value with its `$references` looked up in the current frame."""
+        ...
+
+    def derive(self, *, frame: Frame | None = None, depth: int | None = None) -> Runtime:
+        """The same thread with another frame or call depth (a subplan call)."""
+        ...
+
+    def world_action(self) -> AbstractContextManager[None]:
+        """Around anything that touches the world: cancellation check, world lock."""
+        ...
+
+    def sleep(self, seconds: float) -> None:
+        """Sleep, giving the turn to other branches; cancellable at once."""
+        ...
+
+    def log(self, tn: Record, message: str) -> None:
+        """Show a message (the trace has it in `tn.info` already)."""
+        ...
+
+    def step(self, node: Node, tn: Record) -> Any:
+        """Run one child step, recording its status, bound value and failure in `tn`."""
+        ...
+
+    def prepare(self, nodes: list[Node], tn: Record) -> Sequence[Record]:
+        """Pending trace entries for child steps, labelled `index:label`."""
+        ...
+
+    def seq(self, nodes: list[Node], tn: Record) -> Any:
+        """Child steps one after another (entries under `tn`); the value is the last one's."""
+        ...
+
+    def run_group(self, nodes: list[Node], tn: Record) -> Any:
+        """Child steps in sequence under `tn` as a running entry of its own (an attempt, a branch, a handler)."""
+        ...
+
+    def concurrent(self, nodes: list[Node], tn: Record, composite: Decider) -> Any:
+        """Child steps at once, each in a thread of its own; `composite` decides the outcome."""
+        ...
+
+
+def close_pending(children: Iterable[Record], status: str) -> None:
+    """Steps that never started: `skipped` after a failure or success, `cancelled` after a cancellation."""
+    for child in children:
+        if child.status == "pending":
+            child.status = status

@@ -1,0 +1,172 @@
+"""Architecture rules, checked on the source with `ast` (nothing is imported).
+
+pycram_cli/plan has two floors: the language floor (what a plan is and means) never
+imports the running floor (executor, scheduler, trace); no module of the package imports
+another in a cycle; and imports sit at module top, not inside functions.
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+PLAN_DIR = Path(__file__).resolve().parents[1] / "pycram_cli" / "plan"
+PLAN_PACKAGE = "pycram_cli.plan"
+
+PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
+                       "params", "validate", "language"}
+PLAN_RUNNING_FLOOR = {"scheduler", "trace", "executor"}
+PLAN_ON_TOP = {"golden", "__init__"}  # tools and the package's own exports, above both floors
+PLAN_NODE_MODULES = {"composites", "decorators", "leaves"}
+
+
+def _plan_modules() -> dict[str, Path]:
+    return {path.stem: path for path in sorted(PLAN_DIR.glob("*.py"))}
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return ((isinstance(test, ast.Name) and test.id == "TYPE_CHECKING")
+            or (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"))
+
+
+def _imports(tree: ast.AST, type_checking: bool) -> list[ast.Import | ast.ImportFrom]:
+    """Every import statement anywhere in the tree; those under `if TYPE_CHECKING:` only when asked."""
+    found: list[ast.Import | ast.ImportFrom] = []
+
+    def visit(node: ast.AST) -> None:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found.append(node)
+        if isinstance(node, ast.If) and _is_type_checking(node.test) and not type_checking:
+            for child in node.orelse:
+                visit(child)
+            return
+        for child in ast.iter_child_nodes(node):
+            visit(child)
+
+    visit(tree)
+    return found
+
+
+def _plan_targets(statement: ast.Import | ast.ImportFrom, modules: set[str]) -> set[str]:
+    """The modules of plan/ an import statement (in a module of plan/) imports."""
+    if isinstance(statement, ast.Import):
+        names = [alias.name for alias in statement.names]
+        froms: list[str] = []
+    else:
+        if statement.level:
+            base = PLAN_PACKAGE.split(".")[: len(PLAN_PACKAGE.split(".")) - (statement.level - 1)]
+            base_name = ".".join(base + ([statement.module] if statement.module else []))
+        else:
+            base_name = statement.module or ""
+        names = [base_name]
+        froms = [alias.name for alias in statement.names] if base_name == PLAN_PACKAGE else []
+    targets: set[str] = set()
+    for name in names:
+        if name == PLAN_PACKAGE:
+            # `from . import trace` imports the submodule; `from . import run_plan` the package itself
+            targets |= {f if f in modules else "__init__" for f in froms} or {"__init__"}
+        elif name.startswith(PLAN_PACKAGE + "."):
+            targets.add(name[len(PLAN_PACKAGE) + 1:].split(".")[0])
+    return targets
+
+
+def plan_import_graph(type_checking: bool = False) -> dict[str, set[str]]:
+    """Module -> the modules of plan/ it imports (relative imports resolved)."""
+    modules = _plan_modules()
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        tree = ast.parse(path.read_text(), str(path))
+        graph[name] = set()
+        for statement in _imports(tree, type_checking):
+            graph[name] |= _plan_targets(statement, set(modules))
+        graph[name].discard(name)
+    return graph
+
+
+def find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One cycle of the graph as a path that ends where it starts, or None."""
+    state: dict[str, str] = {}
+    stack: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        state[node] = "open"
+        stack.append(node)
+        for target in sorted(graph.get(node, ())):
+            if state.get(target) == "open":
+                return stack[stack.index(target):] + [target]
+            if target not in state:
+                cycle = visit(target)
+                if cycle:
+                    return cycle
+        stack.pop()
+        state[node] = "done"
+        return None
+
+    for node in sorted(graph):
+        if node not in state:
+            cycle = visit(node)
+            if cycle:
+                return cycle
+    return None
+
+
+def test_find_cycle_reports_a_cycle():
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": set()}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+def test_plan_import_graph_resolves_relative_imports():
+    graph = plan_import_graph()
+    assert "syntax" in graph["validate"]
+    assert "trace" in graph["golden"]  # `from . import trace as traces`
+    assert {"executor", "language", "params", "validate"} <= graph["__init__"]
+
+
+def test_plan_has_no_import_cycle():
+    cycle = find_cycle(plan_import_graph())
+    assert cycle is None, "import cycle in pycram_cli/plan: " + " -> ".join(cycle or [])
+
+
+def test_plan_modules_each_belong_to_a_floor():
+    modules = set(_plan_modules())
+    floors = [PLAN_LANGUAGE_FLOOR, PLAN_RUNNING_FLOOR, PLAN_ON_TOP]
+    unplaced = modules - set().union(*floors)
+    assert not unplaced, f"modules of plan/ on no floor (add them to tests/test_architecture.py): {sorted(unplaced)}"
+    assert not (PLAN_LANGUAGE_FLOOR & PLAN_RUNNING_FLOOR)
+
+
+def test_plan_language_floor_does_not_import_the_running_floor():
+    """Not even for type checking: nodes reach the runtime through the protocols in runtime.py."""
+    graph = plan_import_graph(type_checking=True)
+    for module in sorted(PLAN_LANGUAGE_FLOOR):
+        assert not graph[module] & {"executor", "scheduler", "trace"}, \
+            f"plan/{module}.py (language floor) imports {sorted(graph[module] & PLAN_RUNNING_FLOOR)}"
+        above = graph[module] - PLAN_LANGUAGE_FLOOR
+        assert not above, f"plan/{module}.py (language floor) imports modules above it: {sorted(above)}"
+
+
+def test_plan_syntax_validate_and_resources_know_no_node_module():
+    """The node registry is filled by language.py; validation and resource analysis ask the nodes."""
+    graph = plan_import_graph(type_checking=True)
+    for module in ("syntax", "validate", "resources"):
+        known = graph[module] & (PLAN_NODE_MODULES | {"language"})
+        assert not known, f"plan/{module}.py imports {sorted(known)}"
+    assert PLAN_NODE_MODULES <= graph["language"]
+
+
+def test_plan_has_no_import_inside_a_function():
+    """Imports sit at module top; one inside a function needs a comment saying `why:` (on it or the line before)."""
+    found: set[str] = set()
+    for name, path in _plan_modules().items():
+        lines = path.read_text().splitlines()
+        tree = ast.parse("\n".join(lines), str(path))
+        for function in ast.walk(tree):
+            if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for statement in ast.walk(function):
+                if not isinstance(statement, (ast.Import, ast.ImportFrom)):
+                    continue
+                here = lines[statement.lineno - 1]
+                before = lines[statement.lineno - 2] if statement.lineno > 1 else ""
+                if "why:" not in here and "why:" not in before:
+                    found.add(f"plan/{name}.py:{statement.lineno}: {here.strip()}")
+    assert not found, "imports inside functions (move them to the top, or say why:):\n" + "\n".join(sorted(found))
