@@ -1,4 +1,5 @@
-"""`pycram`: the command-line entry point. Each command group lives in its own module."""
+"""`pycram`: the command-line entry point. Each command group lives in its own module and lists its
+commands in `COMMANDS`; they are registered here, explicitly, in the order `pycram --help` shows them."""
 from __future__ import annotations
 
 import sys
@@ -9,7 +10,7 @@ import click
 
 from ..errors import InputError, InputErrors, PycramError, as_list
 from ..world import quiet
-from . import console
+from . import console, designators_cmd, query_cmd, run_cmd, trace_cmd, validate_cmd, world_cmd
 
 EXIT_INPUT = 2
 EXIT_INTERNAL = 3
@@ -55,23 +56,9 @@ def cli(verbose: bool) -> None:
     warnings.showwarning = _show_warning
 
 
-def _register() -> None:
-    from . import validate_cmd, world_cmd
-
-    cli.add_command(world_cmd.world)
-    cli.add_command(validate_cmd.validate)
-    for module_name in ("query_cmd", "run_cmd", "trace_cmd", "designators_cmd"):
-        try:
-            module = __import__(f"{__package__}.{module_name}", fromlist=["command"])
-        except ModuleNotFoundError as exc:
-            if exc.name and exc.name.endswith(module_name):
-                continue
-            raise
-        for command in getattr(module, "COMMANDS", []):
-            cli.add_command(command)
-
-
-_register()
+for _command in (*world_cmd.COMMANDS, *validate_cmd.COMMANDS, *query_cmd.COMMANDS, *run_cmd.COMMANDS,
+                 *trace_cmd.COMMANDS, *designators_cmd.COMMANDS):
+    cli.add_command(_command)
 
 
 def main() -> None:

@@ -10,22 +10,14 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
-from ..errors import InputError
-from ..plan import find_plan, parse_assignments, plan_world
 from ..plan.trace import TraceNode, normalised, save
+from ..scenario import prepare
+from ..world.camera import default_camera, render, write_png
 from . import console
 from .options import gui_option, json_option, wait_for_window
 from .trace_cmd import PLAIN, build_tree, describe_node, find_node
-from .validate_cmd import checker
 
 EXIT_FAILED = 1
-
-
-@checker("plan")
-def _check_plan(path: Path) -> object:
-    from ..plan import load_plan
-
-    return load_plan(path)
 
 
 # -- progress views (observers of a run) ------------------------------------------------------------
@@ -120,33 +112,6 @@ class QuietView:
 
 
 # -- the command -----------------------------------------------------------------------------------------
-def prepare(plan_file: str, world_file: str | None, params: tuple[str, ...]) -> tuple[Any, Path, dict[str, Any]]:
-    """Every check that needs no simulation: the plan, its world file, the parameters (all problems at once)."""
-    from ..errors import as_list, raise_if_any
-    from ..plan import bind_params, check_plan, parse_plan
-
-    path = find_plan(plan_file)
-    errors: list[InputError] = []
-    plan = parse_plan(path, errors)
-    world_path: Path | None = None
-    try:
-        world_path = plan_world(plan, world_file)
-    except InputError as exc:
-        errors.append(exc)
-    try:
-        check_plan(plan, check_world_file=False)
-    except Exception as exc:  # noqa: BLE001 - InputError(s)
-        errors.extend(as_list(exc))  # type: ignore[arg-type]
-    values: dict[str, Any] = {}
-    try:
-        values = bind_params(plan, parse_assignments(params))
-    except Exception as exc:  # noqa: BLE001 - InputError(s)
-        errors.extend(as_list(exc))  # type: ignore[arg-type]
-    raise_if_any(errors)
-    assert world_path is not None
-    return plan, world_path, values
-
-
 @click.command("run")
 @click.argument("plan_file", metavar="PLAN")
 @click.option("--world", "world_file", metavar="WORLD",
@@ -169,15 +134,10 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
     the plan succeeded, 1 when it failed, 2 for invalid input.
     """
-    from ..plan import check_plan, run_plan
-    from ..worldfile.loader import load_spec
-    from ..worldfile.spec import parse_world
-
-    plan, world_path, values = prepare(plan_file, world_file, params)
-    spec = parse_world(world_path)
-    world = load_spec(spec, mode="gui" if gui else "direct")
+    scenario = prepare(plan_file, world_file, assignments=params)
+    plan, world_path, values = scenario.plan, scenario.world_path, scenario.params
+    world = scenario.load_world(mode="gui" if gui else "direct")
     try:
-        check_plan(plan, world=world, check_world_file=False)
         view: Any
         if as_json:
             view = QuietView()
@@ -194,15 +154,13 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             view = Paced(view, pace)
         if isinstance(view.view if isinstance(view, Paced) else view, LiveView):
             with view:
-                result = run_plan(plan, world, values, view, world_name=world_path.name)
+                result = scenario.run(world, view)
         else:
-            result = run_plan(plan, world, values, view, world_name=world_path.name)
+            result = scenario.run(world, view)
         duration = time.perf_counter() - started
         if trace_file is not None:
             save(result.trace, trace_file)
         if render_file is not None:
-            from ..world.camera import default_camera, render, write_png
-
             write_png(render_file, render(world, default_camera(world), 960, 720))
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,

@@ -1,56 +1,49 @@
-"""`pycram validate FILE...`: check world and plan files without running anything."""
+"""`pycram validate FILE...`: check world and plan files as `run` would, without running anything.
+
+A plan is checked against its world file (`--world`, else its own `world:`): object names,
+the robot's description (its arms, grasps and poses), and its parameters' defaults.
+"""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Callable
 
 import click
 
 from ..errors import InputError, InputErrors, Location, as_list
+from ..scenario import prepare
+from ..worldfile.spec import parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
 
-# kind of file -> checker; a file's kind is told by its top-level keys
-CHECKERS: dict[str, Callable[[Path], object]] = {}
-
-
-def checker(kind: str) -> Callable[[Callable[[Path], object]], Callable[[Path], object]]:
-    def register(func: Callable[[Path], object]) -> Callable[[Path], object]:
-        CHECKERS[kind] = func
-        return func
-
-    return register
-
-
-@checker("world")
-def _check_world(path: Path) -> object:
-    from ..worldfile.spec import parse_world
-
-    return parse_world(path)
-
 
 def kind_of(path: Path) -> str:
+    """A file's kind, told by its top-level keys: a world has `objects`, a plan has `body`."""
     data = load_yaml(path)
     if isinstance(data, LMap) and "objects" in data:
         return "world"
-    if isinstance(data, LMap) and ("body" in data or "plan" in data) and "plan" in CHECKERS:
-        return "plan"
-    if isinstance(data, LMap) and "plan" in CHECKERS:
+    if isinstance(data, LMap) and "body" in data:
         return "plan"
     raise InputError("not a world file (no 'objects') nor a plan file (no 'body')", Location(str(path), 1, 1))
 
 
 @click.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
-def validate(files: tuple[Path, ...]) -> None:
-    """Check world and plan FILES; report every problem with file, line and key."""
+@click.option("--world", "world_file", metavar="WORLD", help="Check plans against this world (default: each plan's own).")
+def validate(files: tuple[Path, ...], world_file: str | None) -> None:
+    """Check world and plan FILES as `run` would; report every problem with file, line and key."""
     problems: list[InputError] = []
     for path in files:
         try:
             kind = kind_of(path)
-            CHECKERS[kind](path)
+            if kind == "world":
+                parse_world(path)
+            else:
+                prepare(path, world_file)
             console.success(f"{path}: valid {kind} file")
         except (InputError, InputErrors) as exc:
             problems.extend(as_list(exc))
     if problems:
         raise InputErrors(problems)
+
+
+COMMANDS = [validate]

@@ -92,3 +92,6 @@ def render_cmd(world_file: str | None, output: Path, camera: str | None, size: s
 
 
 world.add_command(render_cmd, "render")
+
+
+COMMANDS = [world]

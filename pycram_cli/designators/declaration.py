@@ -95,16 +95,15 @@ def drives_arm(slot: str) -> Uses:
 
 
 def robot_resources(roles: frozenset[str], description: "RobotDescription | None") -> frozenset[str]:
-    """The robot's physical resources behind some roles (`arm:*` is every arm; shared roles map to one resource)."""
-    arms = list(description.arms) if description is not None else []
+    """The robot's physical resources behind some roles (`arm:*` is every arm; shared roles map to one resource).
+
+    Without a description every arm role is one resource (`arm:*`), so that arm steps never overlap.
+    """
+    if description is None:
+        return frozenset(ANY_ARM if role.startswith("arm:") else role for role in roles)
     expanded: set[str] = set()
     for role in roles:
-        if role == ANY_ARM:
-            expanded |= {f"arm:{a}" for a in arms} or {ANY_ARM}
-        else:
-            expanded.add(role)
-    if description is None:
-        return frozenset(expanded)
+        expanded |= {f"arm:{a}" for a in description.arms} if role == ANY_ARM else {role}
     return frozenset(description.resource(role) for role in expanded)
 
 

@@ -17,23 +17,22 @@ The language floor: what a plan is and what it means, without running it.
     `composites`  seq, par, pursue, try_all, try_in_order; the concurrent ones own their policy
     `leaves`      designators, queries, call, fail, assert, log, set, wait; conditions
     `decorators`  retry, try/catch, if, unless, for_each
-    `params`      `-p` values, binding parameters, finding worlds and plans
-    `validate`    static checks of a parsed plan (`check_plan`)
+    `params`      `-p` values, binding parameters, the world a plan names
+    `validate`    static checks of a parsed plan (`check_plan`) against what is known of its world (`WorldFacts`)
     `language`    registers every node type; `parse_plan`, `load_plan`
 
 The running floor: executing a plan on a world.
     `scheduler`   cancellation tokens and the deterministic turn scheduler of threads
     `trace`       the trace model, JSON (de)serialisation, comparing traces
     `executor`    `run_plan`: `Exec` implements `runtime.Runtime` and runs the nodes
-    `golden`      golden traces of the bundled plans (`python -m pycram_cli.plan.golden`)
 
 Each node class parses, checks and executes itself (`Node.parse`, `.check`, `.execute(ex, tn)`);
 `execute` reaches the run only through `ex` and `tn`.
 """
 from .executor import RunResult, run_plan
 from .language import NODE_TYPES, Plan, load_plan, parse_plan
-from .params import bind_params, find_plan, parse_assignments, plan_world
-from .validate import check_plan
+from .params import bind_params, parse_assignments, plan_world
+from .validate import WorldFacts, check_plan
 
-__all__ = ["NODE_TYPES", "Plan", "RunResult", "bind_params", "check_plan", "find_plan", "load_plan",
+__all__ = ["NODE_TYPES", "Plan", "RunResult", "WorldFacts", "bind_params", "check_plan", "load_plan",
            "parse_assignments", "parse_plan", "plan_world", "run_plan"]

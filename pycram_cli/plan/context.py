@@ -11,12 +11,12 @@ which `as:`, `for_each` and `set` bind.
 """
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from typing import Any, Iterator, Mapping
 
 from ..failures import Failure
+from ..jsonable import jsonable  # noqa: F401  (plan modules take it from here)
 from ..world import Object
 
 NAME = r"[A-Za-z_][A-Za-z0-9_-]*"
@@ -83,6 +83,9 @@ class FailureInfo:
 
     def __str__(self) -> str:
         return f"{self.type}: {self.message}"
+
+    def to_json(self) -> dict[str, str]:
+        return {"type": self.type, "message": self.message, "path": self.path}
 
 
 class Frame:
@@ -188,39 +191,3 @@ def truthy(value: Any) -> bool:
     if isinstance(value, (int, float)):
         return value != 0
     return bool(value)
-
-
-def jsonable(value: Any, digits: int = 6) -> Any:
-    """A JSON-friendly, deterministic form of a value: objects by name, floats rounded, tuples as lists."""
-    if isinstance(value, Object):
-        return value.name
-    if isinstance(value, FailureInfo):
-        return {"type": value.type, "message": value.message, "path": value.path}
-    if _is_numpy_number(value):
-        return jsonable(value.item(), digits)
-    if isinstance(value, bool) or value is None or isinstance(value, str):
-        return value
-    if isinstance(value, int):
-        return value
-    if isinstance(value, float):
-        number = float(value)
-        if math.isnan(number) or math.isinf(number):
-            return str(number)
-        rounded = round(number, digits)
-        if rounded == int(rounded) and abs(rounded) < 1e15:
-            rounded = float(int(rounded))
-        return 0.0 if rounded == 0 else rounded
-    if isinstance(value, Mapping):
-        return {str(k): jsonable(v, digits) for k, v in value.items()}
-    if isinstance(value, (list, tuple, set, frozenset)):
-        items = sorted(value, key=str) if isinstance(value, (set, frozenset)) else value
-        return [jsonable(v, digits) for v in items]
-    if hasattr(value, "tolist"):
-        return jsonable(value.tolist(), digits)
-    if hasattr(value, "name") and isinstance(getattr(value, "name"), str):
-        return value.name
-    return str(value)
-
-
-def _is_numpy_number(value: Any) -> bool:
-    return type(value).__module__ == "numpy" and hasattr(value, "item") and isinstance(value.item(), (int, float))

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator, Mapping, Protocol, cast
 
 from ..failures import Failure
+from ..robots import description_for
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable
 from .params import bind_params
@@ -67,7 +68,7 @@ class Run:
         self.world_name = world_name
         self.scheduler = Scheduler()
         self.token = CancelToken(notify=self.scheduler.wake)
-        self.resources = ResourceAnalysis(plan)
+        self.resources = ResourceAnalysis(plan, description_for(world.robot) if world.robot is not None else None)
         self.globals = Frame(self.params)
         self.root = TraceNode("body", "seq", plan.where)
         self.t0 = time.perf_counter()
@@ -341,9 +342,10 @@ class Outcome:
 
 
 def run_plan(plan: Plan, world: BulletWorld, params: Mapping[str, Any] | None = None,
-             observer: Observer | None = None, world_name: str | None = None) -> RunResult:
-    """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`)."""
-    values = bind_params(plan, params or {})
+             observer: Observer | None = None, world_name: str | None = None, bound: bool = False) -> RunResult:
+    """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`, unless `bound`:
+    the values were bound already, as a `Scenario` does once)."""
+    values = dict(params or {}) if bound else bind_params(plan, params or {})
     run = Run(plan, world, values, observer, world_name)
     try:
         return run.execute()

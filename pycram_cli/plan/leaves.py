@@ -32,7 +32,7 @@ from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
-from .resources import ResourceAnalysis, designator_resources
+from .resources import ResourceAnalysis
 from .runtime import Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
@@ -91,10 +91,10 @@ class DesignatorStep(Node):
         return None if slots is None else cls(head, step.loc(head), slots)
 
     def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
-        return designator_resources(self.head, self.slots)
+        return analysis.designator(self.head, self.slots)
 
     def check(self, v: "Validator") -> None:
-        for problem in check_designator(self.head, plain(self.slots), is_reference):
+        for problem in check_designator(self.head, plain(self.slots), is_reference, v.robots):
             v.error(problem.message, _problems_where(self.slots, problem.slot, self.where),
                     key=problem.slot or self.head, suggestion=problem.suggestion)
         v.refs(self.slots, self.slots.where)
@@ -103,10 +103,8 @@ class DesignatorStep(Node):
     def execute(self, ex: Runtime, tn: Record) -> Any:
         values = ex.evaluate(self.slots)
         tn.info["designator"] = {"slots": jsonable(values)}
-        problems = check_designator(self.head, jsonable(values))
-        if problems:
-            raise Failure(f"{self.head}: " + "; ".join(p.message for p in problems))
-        with ex.world_action():
+        with ex.world_action():  # perform checks the slots' run-time values against the robot
+
             try:
                 performed = perform(ex.world, self.head, values)
             except Failure:
@@ -118,8 +116,8 @@ class DesignatorStep(Node):
 
 
 # -- reasoning queries --------------------------------------------------------------------------------------
-def query_problems(name: str, args: Any) -> list[str]:
-    return list(check_query_args(name, plain(args), is_reference))
+def query_problems(name: str, args: Any, v: "Validator") -> list[str]:
+    return list(check_query_args(name, plain(args), is_reference, v.robots))
 
 
 def query_problem_where(message: str, args: LMap) -> Location:
@@ -161,7 +159,7 @@ class QueryStep(Node):
         return None if args is None else cls(head, step.loc(head), args)
 
     def check(self, v: "Validator") -> None:
-        for message in query_problems(self.head, self.args):
+        for message in query_problems(self.head, self.args, v):
             v.error(message, query_problem_where(message, self.args), key=self.head)
         v.refs(self.args, self.args.where)
         v.query_objects(self.head, self.args)
@@ -216,7 +214,7 @@ class Condition:
         if self.kind == "variable":
             v.refs(self.value, self.where)
         elif self.kind == "query":
-            for message in query_problems(self.name, self.value):
+            for message in query_problems(self.name, self.value, v):
                 v.error(message, query_problem_where(message, self.value), key=self.name)
             v.refs(self.value, self.value.where)
             v.query_objects(self.name, self.value)

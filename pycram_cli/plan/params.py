@@ -1,4 +1,4 @@
-"""Plan parameters from the command line (`-p object=milk`), and where a plan's world is."""
+"""Plan parameters: from the command line (`-p object=milk`), bound to a plan; and which world a plan runs in."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,7 +7,7 @@ from typing import Any, Iterable, Mapping
 import yaml
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
-from ..paths import default_world, plans_dir, worlds_dir
+from ..paths import find_world
 from .syntax import Plan, plain
 
 
@@ -56,29 +56,6 @@ def bind_params(plan: Plan, given: Mapping[str, Any], where: str = "-p") -> dict
     return values
 
 
-def _bundled_names(folder: Path) -> list[str]:
-    return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
-
-
-def world_candidates(value: str, base: Path) -> list[Path]:
-    names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]
-    return [base / n for n in names] + [worlds_dir() / n for n in names]
-
-
-def find_world(value: str | None, base: Path, where: Location | None = None) -> Path:
-    """A world named in a plan (`world:`) or given with `--world`: a path (relative to `base`) or a bundled name."""
-    if value is None:
-        return default_world()
-    candidates = [Path(value)] if Path(value).is_absolute() else world_candidates(value, base)
-    for path in candidates:
-        if path.is_file():
-            return path
-    names = _bundled_names(worlds_dir())
-    raise InputError(f"world file not found: '{value}' (looked next to the plan and in the bundled worlds)",
-                     where or Location(value), key="world",
-                     suggestion=did_you_mean(value, names) or (f"bundled worlds: {', '.join(names)}" if names else None))
-
-
 def plan_world(plan: Plan, override: str | None = None) -> Path:
     """The world a run uses: `--world` (relative to the current folder) or else the plan's own `world:`."""
     if override is not None:
@@ -86,14 +63,3 @@ def plan_world(plan: Plan, override: str | None = None) -> Path:
     return find_world(plan.world, plan.path.parent, plan.world_where)
 
 
-def find_plan(value: str) -> Path:
-    """A plan file path, or the name of a bundled plan (`set_table`)."""
-    path = Path(value)
-    if path.is_file():
-        return path
-    for candidate in (plans_dir() / value, plans_dir() / f"{value}.yaml"):
-        if candidate.is_file():
-            return candidate
-    names = _bundled_names(plans_dir())
-    raise InputError("plan file not found", Location(value),
-                     suggestion=did_you_mean(value, names) or (f"bundled plans: {', '.join(names)}" if names else None))

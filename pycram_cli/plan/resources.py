@@ -1,56 +1,46 @@
-"""Which physical resources of the robot a step uses: the base, each arm, the head.
+"""Which physical resources of the robot a step uses: from the designators' declarations and the robot's description.
 
 Branches of a concurrent node that use disjoint resources run side by side; a branch
 that shares a resource with an earlier sibling starts only when that sibling has ended
-(in declaration order, so the outcome never depends on thread timing). The analysis is
-static and conservative: a slot only known at run time (`arm: $arm`) or an omitted arm
-counts as both arms; a call uses everything its subplan (transitively) uses.
+(in declaration order, so the outcome never depends on thread timing). A designator
+declares the roles it drives (`base`, `head`, `arm:<name>`); the robot description says
+which resource each role is (by default its own). The analysis is static and conservative:
+a slot only known at run time (`arm: $arm`) or an omitted arm counts as every arm; a call
+uses everything its subplan (transitively) uses.
 """
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
+from ..designators import ANY_ARM, DESIGNATORS, robot_resources
 from .context import is_reference
 from .syntax import Node, Plan
 
-BASE, HEAD = "base", "head"
-ARMS = ("arm:left", "arm:right")
-EVERYTHING = frozenset({BASE, HEAD, *ARMS})
+if TYPE_CHECKING:
+    from ..robots import RobotDescription
 
 
-def _arm(value: Any) -> frozenset[str]:
-    if isinstance(value, str) and not is_reference(value) and f"arm:{value}" in ARMS:
-        return frozenset({f"arm:{value}"})
-    return frozenset(ARMS)
+def everything(description: "RobotDescription | None") -> frozenset[str]:
+    """Every resource of the robot: what an unknown step is assumed to use."""
+    return robot_resources(frozenset({"base", "head", ANY_ARM}), description)
 
 
-def designator_resources(type_name: str, slots: Mapping[str, Any]) -> frozenset[str]:
-    """The resources a motion designator drives, from its type and literal slots."""
-    if type_name == "moving":
-        return frozenset({BASE})
-    if type_name in ("pick-up", "place", "move-tcp", "accessing"):
-        return _arm(slots.get("arm"))
-    if type_name in ("opening-gripper", "closing-gripper"):
-        return _arm(slots.get("gripper"))
-    if type_name == "move-arm-joints":
-        used: set[str] = set()
-        if "left-arm" in slots:
-            used.add("arm:left")
-        if "right-arm" in slots:
-            used.add("arm:right")
-        return frozenset(used)
-    if type_name in ("looking", "detecting"):
-        return frozenset({HEAD})
-    if type_name == "world-state-detecting":
-        return frozenset()
-    return EVERYTHING
+def designator_resources(type_name: str, slots: Mapping[str, Any],
+                         description: "RobotDescription | None" = None) -> frozenset[str]:
+    """The resources a motion designator drives, from its declaration, its literal slots and the robot."""
+    spec = DESIGNATORS.get(type_name)
+    if spec is None:
+        return everything(description)
+    known = {k: (None if is_reference(v) else v) for k, v in slots.items()}
+    return robot_resources(spec.uses(known), description)
 
 
 class ResourceAnalysis:
-    """Resources of steps and of subplans (a fixpoint over calls, recursion included)."""
+    """Resources of steps and of subplans (a fixpoint over calls, recursion included), for one robot."""
 
-    def __init__(self, plan: Plan) -> None:
+    def __init__(self, plan: Plan, description: "RobotDescription | None" = None) -> None:
         self.plan = plan
+        self.description = description
         self.subplans: dict[str, frozenset[str]] = {name: frozenset() for name in plan.plans}
         changed = True
         while changed:
@@ -61,6 +51,9 @@ class ResourceAnalysis:
                     self.subplans[name] = used
                     changed = True
 
+    def designator(self, type_name: str, slots: Mapping[str, Any]) -> frozenset[str]:
+        return designator_resources(type_name, slots, self.description)
+
     def of(self, node: Node) -> frozenset[str]:
         """What a step uses: its own resources and its child steps' (`Node.resources`)."""
         used: set[str] = set()
@@ -70,7 +63,7 @@ class ResourceAnalysis:
 
     def subplan(self, name: str | None) -> frozenset[str]:
         """What a call of subplan `name` uses (everything when there is no such subplan)."""
-        return self.subplans.get(name or "", EVERYTHING)
+        return self.subplans.get(name or "", everything(self.description))
 
     def waits_for(self, nodes: list[Node]) -> dict[int, set[int]]:
         """For each branch, the earlier branches it shares a resource with."""

@@ -12,27 +12,66 @@ parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure`
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..designators import DESIGNATORS
 from ..failures import ALIASES, FAILURES, failure_class
-from ..kinds import KINDS
+from ..kinds import KINDS, Robots
 from ..reasoning import QUERIES
-from ..robots import description_for
+from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
 from .context import references
-from .params import find_world
+from ..paths import find_world
 from .syntax import Node, Plan
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
+    from ..worldfile.spec import WorldSpec
+
+
+@dataclass(frozen=True)
+class WorldFacts:
+    """What validation knows of the world a plan runs in: its objects and its robot (with its description).
+
+    Made from a world file (`of_spec`, nothing simulated) or from a loaded world (`of_world`).
+    """
+
+    objects: tuple[str, ...]
+    robot: str | None = None
+    robot_file: str = ""
+    description: RobotDescription | None = None
+
+    @classmethod
+    def of_spec(cls, spec: "WorldSpec") -> "WorldFacts":
+        robot = spec.robot
+        return cls(tuple(spec.object_names), robot.name if robot else None, robot.file.name if robot else "",
+                   spec.robot_description)
+
+    @classmethod
+    def of_world(cls, world: "BulletWorld") -> "WorldFacts":
+        robot = world.robot
+        return cls(tuple(o.name for o in world.objects), robot.name if robot else None,
+                   robot.path.name if robot else "", description_for(robot) if robot is not None else None)
+
+    @property
+    def robots(self) -> Robots:
+        return Robots((self.description,), True) if self.description is not None else Robots()
+
+
+def _robots(facts: WorldFacts | None) -> Robots:
+    """The world's robot; every bundled robot when the world is not known."""
+    if facts is not None:
+        return facts.robots
+    return Robots(tuple(bundled_descriptions()), True)
 
 
 class Validator:
-    def __init__(self, plan: Plan, world: "BulletWorld | None" = None) -> None:
+    def __init__(self, plan: Plan, facts: WorldFacts | None = None) -> None:
         self.plan = plan
-        self.world = world
+        self.facts = facts
+        self.robots = _robots(facts)
         self._robot_checked = False
         self.errors: list[InputError] = []
         self.globals = {p.name: p.where for p in plan.params}
@@ -131,7 +170,7 @@ class Validator:
     def objects(self, head: str, slots: LMap) -> None:
         """With a world: literal object names in designator slots must name objects in it."""
         spec = DESIGNATORS.get(head)
-        if spec is not None and self.world is not None and not self._robot_checked:
+        if spec is not None and self.facts is not None and not self._robot_checked:
             self._robot_checked = True  # said once, at the first designator
             self._robot_for(head, slots)
         if spec is not None:
@@ -140,24 +179,28 @@ class Validator:
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""
-        robot = self.world.robot if self.world is not None else None
-        if robot is None:
+        facts = self.facts
+        if facts is None:
+            return
+        if facts.robot is None:
             self.error(f"the world has no robot to perform '{head}'", slots.where, key=head,
                        suggestion="add an object of type robot to the world file")
-        elif description_for(robot) is None:
-            self.error(f"no robot description for '{robot.name}' ({robot.path.name}) to perform '{head}'",
-                       slots.where, key=head, suggestion="add resources/robots/<name>/<name>.yaml for it")
+        elif facts.description is None:
+            stem = facts.robot_file.rsplit(".", 1)[0]
+            self.error(f"no robot description for '{facts.robot}' ({facts.robot_file}) to perform '{head}'",
+                       slots.where, key=head, suggestion=f"write {stem}.yaml beside {facts.robot_file}, or name one "
+                                                         "with 'description:' in the world file (see docs/robots.md)")
 
     def query_objects(self, name: str, args: LMap) -> None:
         """With a world: literal object names in query arguments must name objects in it."""
         spec = QUERIES.get(name)
         if spec is not None:
-            self._objects(args, [p.name for p in spec.params if p.kind in ("object", "target")])
+            self._objects(args, [p.name for p in spec.params if KINDS[p.kind].names_object])
 
     def _objects(self, slots: LMap, object_slots: list[str]) -> None:
-        if self.world is None:
+        if self.facts is None:
             return
-        names = [o.name for o in self.world.objects]
+        names = list(self.facts.objects)
         for slot_name, value in slots.items():
             if slot_name not in object_slots or not isinstance(value, str) or references(value):
                 continue
@@ -174,9 +217,15 @@ def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
 
 
 def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file: bool = True,
-               errors: list[InputError] | None = None) -> Plan:
-    """Raise every static problem of `plan` (and the `errors` found before) together; return it when there is none."""
-    validator = Validator(plan, world)
+               errors: list[InputError] | None = None, facts: WorldFacts | None = None) -> Plan:
+    """Raise every static problem of `plan` (and the `errors` found before) together; return it when there is none.
+
+    The world it runs in is known from `facts` (a world file) or `world` (a loaded world); without
+    either, robot names (arms, grasps, poses) are checked against every bundled robot.
+    """
+    if facts is None and world is not None:
+        facts = WorldFacts.of_world(world)
+    validator = Validator(plan, facts)
     validator.errors.extend(errors or [])
     if check_world_file and plan.world is not None:
         try:

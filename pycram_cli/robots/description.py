@@ -105,6 +105,11 @@ class RobotDescription:
     urdf: Path | None = None
     resources: dict[str, str] = field(default_factory=dict)  # role -> the resource it drives
     process_modules: dict[str, str] = field(default_factory=dict)  # designator -> process module name
+    places: dict[str, Location] = field(default_factory=dict, compare=False, repr=False)  # key -> where in the file
+
+    def where(self, key: str) -> Location:
+        """The place of a key (`arms.left.joints`) in the description file, for error messages."""
+        return self.places.get(key) or self.places.get(key.rsplit(".", 1)[0]) or Location(str(self.path))
 
     def arm(self, name: str) -> ArmDescription:
         try:
@@ -167,6 +172,12 @@ class _Reader:
     def __init__(self, path: Path) -> None:
         self.path = path
         self.errors: list[InputError] = []
+        self.places: dict[str, Location] = {}
+
+    def mark(self, key: str, data: LMap, name: str) -> None:
+        """Remember where `data[name]` is, as `key`."""
+        if name in data:
+            self.places[key] = data.loc(name, True)
 
     def error(self, message: str, where: Location, key: str, suggestion: str | None = None) -> None:
         self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
@@ -240,6 +251,10 @@ class _Reader:
                        arms.loc(name, True), f"arms.{name}")
             return None
         check_keys(data, ARM_KEYS, ("joints", "tool_frame"), f"arm '{name}'", self.errors)
+        for key in ARM_KEYS:
+            self.mark(f"arms.{name}.{key}", data, key)
+        if isinstance(data.get("gripper"), LMap):
+            self.mark(f"arms.{name}.gripper.joints", data["gripper"], "joints")
         joints = self.names(data, "joints")
         if "joints" in data and not joints and isinstance(data["joints"], LList):
             self.error("an arm needs at least one joint", data.loc("joints", True), "joints")
@@ -253,6 +268,12 @@ class _Reader:
             raise InputError("a robot description must be a mapping with name, base_link and arms",
                              Location(str(self.path), 1, 1))
         check_keys(data, DESCRIPTION_KEYS, ("name", "base_link", "arms"), "the robot description", self.errors)
+        for key in DESCRIPTION_KEYS:
+            self.mark(key, data, key)
+        for key, fields in (("camera", CAMERA_KEYS), ("head", HEAD_KEYS), ("torso", TORSO_KEYS)):
+            if isinstance(data.get(key), LMap):
+                for name in fields:
+                    self.mark(f"{key}.{name}", data[key], name)
         name = self.name(data, "name")
         base_link = self.name(data, "base_link")
         mobile = True
@@ -310,7 +331,7 @@ class _Reader:
         raise_if_any(self.errors)
         return RobotDescription(name=name, path=self.path, base_link=base_link, arms=arms, grasps=grasps, camera=camera,
                                 head=head, torso_joint=torso_joint, torso_default=torso_default, mobile=mobile,
-                                urdf=urdf, resources=resources, process_modules=modules)
+                                urdf=urdf, resources=resources, process_modules=modules, places=self.places)
 
     def string_map(self, data: LMap, key: str, allowed_keys: list[str] | None) -> dict[str, str]:
         if key not in data or data[key] is None:
@@ -350,14 +371,13 @@ def load_description(path: str | Path) -> RobotDescription:
 def check_against_model(desc: RobotDescription, model: ModelInfo, model_path: Path) -> list[InputError]:
     """Names in the description that the robot's model does not have (each at the description's file)."""
     errors: list[InputError] = []
-    where = Location(str(desc.path))
     for joint, key in desc.joint_names():
         if joint not in model.joints:
-            errors.append(InputError(f"the model {model_path.name} has no joint '{joint}'", where, key=key,
+            errors.append(InputError(f"the model {model_path.name} has no joint '{joint}'", desc.where(key), key=key,
                                      suggestion=did_you_mean(joint, model.joints)))
     for link, key in desc.link_names():
         if link not in model.links:
-            errors.append(InputError(f"the model {model_path.name} has no link '{link}'", where, key=key,
+            errors.append(InputError(f"the model {model_path.name} has no link '{link}'", desc.where(key), key=key,
                                      suggestion=did_you_mean(link, model.links)))
     return errors
 

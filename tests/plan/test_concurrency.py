@@ -1,6 +1,7 @@
 """par, pursue and try_all: real threads, CPL's outcomes, clean cancellation, deterministic traces."""
 from __future__ import annotations
 
+import dataclasses
 import threading
 import time
 
@@ -8,6 +9,7 @@ from pycram_cli.plan import run_plan
 from pycram_cli.plan.resources import ResourceAnalysis, designator_resources
 from pycram_cli.plan.scheduler import CancelToken, Cancelled, Scheduler
 from pycram_cli.plan.trace import comparable, dumps
+from pycram_cli.robots import bundled_descriptions
 
 from plan_helpers import messages, nodes, statuses
 
@@ -200,15 +202,35 @@ def test_the_same_par_plan_gives_the_same_trace_every_time(plans, world):
 
 
 def test_resources_of_designators_and_subplans(plans):
-    assert designator_resources("moving", {"target": [0, 0, 0]}) == {"base"}
-    assert designator_resources("pick-up", {"object": "milk", "arm": "left"}) == {"arm:left"}
-    assert designator_resources("pick-up", {"object": "milk"}) == {"arm:left", "arm:right"}
-    assert designator_resources("place", {"object": "milk", "arm": "$arm", "target": [0, 0, 0]}) == \
-        {"arm:left", "arm:right"}
-    assert designator_resources("move-arm-joints", {"right-arm": "park"}) == {"arm:right"}
-    assert designator_resources("closing-gripper", {"gripper": "right"}) == {"arm:right"}
-    assert designator_resources("detecting", {"object-type": "milk"}) == {"head"}
-    assert designator_resources("world-state-detecting", {"object-type": "milk"}) == set()
+    pr2 = next(d for d in bundled_descriptions() if d.name == "pr2")
+
+    def used(type_name, slots):
+        return designator_resources(type_name, slots, pr2)
+
+    assert used("moving", {"target": [0, 0, 0]}) == {"base"}
+    assert used("pick-up", {"object": "milk", "arm": "left"}) == {"arm:left"}
+    assert used("pick-up", {"object": "milk"}) == {"arm:left", "arm:right"}
+    assert used("place", {"object": "milk", "arm": "$arm", "target": [0, 0, 0]}) == {"arm:left", "arm:right"}
+    assert used("move-arm-joints", {"right-arm": "park"}) == {"arm:right"}
+    assert used("move-arm-joints", {"arms": {"left": "park", "right": "park"}}) == {"arm:left", "arm:right"}
+    assert used("closing-gripper", {"gripper": "right"}) == {"arm:right"}
+    assert used("detecting", {"object-type": "milk"}) == {"head"}
+    assert used("world-state-detecting", {"object-type": "milk"}) == set()
+
+
+def test_a_robot_description_can_say_that_two_roles_share_one_resource():
+    pr2 = next(d for d in bundled_descriptions() if d.name == "pr2")
+    wrist_camera = dataclasses.replace(pr2, resources={"head": "arm:left"})
+    assert designator_resources("looking", {"target": [1, 0, 1]}, wrist_camera) == {"arm:left"}
+    assert designator_resources("pick-up", {"object": "milk"}, wrist_camera) == {"arm:left", "arm:right"}
+
+
+def test_without_a_robot_description_arm_steps_share_one_resource():
+    assert designator_resources("pick-up", {"object": "milk", "arm": "left"}) == {"arm:*"}
+    assert designator_resources("move-arm-joints", {"right-arm": "park"}) == {"arm:*"}
+
+
+def test_resources_of_subplans(plans):
     plan = plans.load("""
         plans:
           drive: [{moving: {target: [1, 0, 0]}}, {call: drive_again}]

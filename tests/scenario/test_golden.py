@@ -1,7 +1,7 @@
 """Every plan in plans/ behaves as its golden trace records (tests/golden/<plan>.trace.json).
 
 When a change of behaviour is intended, regenerate the golden traces on purpose and review
-their diff:  python -m pycram_cli.plan.golden --update [PLAN...]   (see docs/plans.md)
+their diff:  python -m pycram_cli.scenario.golden --update [PLAN...]   (see docs/plans.md)
 """
 from __future__ import annotations
 
@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from pycram_cli.plan import golden
+from pycram_cli.scenario import golden
 
 REPO = Path(__file__).resolve().parents[2]
 GOLDEN = REPO / "tests" / "golden"
 PLANS = golden.bundled_plans(REPO / "plans")
-HOW = "python -m pycram_cli.plan.golden --update"
+HOW = "python -m pycram_cli.scenario.golden --update"
 
 
 def test_every_plan_has_a_golden_trace():

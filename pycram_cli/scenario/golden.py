@@ -7,9 +7,9 @@ default parameters. `tests/plan/test_golden.py` runs each plan again and compare
 
 When a change of behaviour is intended, regenerate on purpose and review the diff:
 
-    python -m pycram_cli.plan.golden --update            # every plan
-    python -m pycram_cli.plan.golden --update set_table  # one plan
-    python -m pycram_cli.plan.golden                     # only check, print differences
+    python -m pycram_cli.scenario.golden --update            # every plan
+    python -m pycram_cli.scenario.golden --update set_table  # one plan
+    python -m pycram_cli.scenario.golden                     # only check, print differences
 """
 from __future__ import annotations
 
@@ -19,11 +19,8 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from ..paths import plans_dir
-from ..worldfile.loader import load_world
-from . import trace as traces
-from .executor import run_plan
-from .params import plan_world
-from .language import load_plan
+from ..plan import trace as traces
+from . import prepare
 
 ATOL = 1e-3
 
@@ -54,13 +51,7 @@ def golden_path(plan: Path, folder: Path | None = None) -> Path:
 
 def record(plan_path: Path) -> dict[str, Any]:
     """Run a plan on its own world with its default parameters; the comparable trace."""
-    plan = load_plan(plan_path)
-    world_path = plan_world(plan)
-    world = load_world(world_path)
-    try:
-        result = run_plan(plan, world, {}, world_name=world_path.name)
-    finally:
-        world.exit()
+    result = prepare(plan_path).run()
     return traces.normalised(traces.comparable(result.trace))
 
 
@@ -92,7 +83,7 @@ def _select(names: Iterable[str]) -> list[Path]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pycram_cli.plan.golden",
+    parser = argparse.ArgumentParser(prog="python -m pycram_cli.scenario.golden",
                                      description="Check (or, with --update, regenerate) the golden traces of the bundled plans.")
     parser.add_argument("plans", nargs="*", help="plan names (default: every plan in plans/)")
     parser.add_argument("--update", action="store_true", help="write the golden traces from fresh runs")
