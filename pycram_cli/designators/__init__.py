@@ -8,7 +8,7 @@ validation, the scheduler's resources, `pycram designators` and `perform` are ge
 from . import arms, manipulation, navigation, perception  # noqa: F401  (declare the design's eleven designators)
 from .declaration import (ANY_ARM, DESIGNATORS, Designator, Slot, SlotProblem, check_designator, declare_designator,
                           drives, drives_arm, robot_resources)
-from .perform import perform
+from .performing import perform
 from .result import Performed
 
 __all__ = ["ANY_ARM", "DESIGNATORS", "Designator", "Performed", "Slot", "SlotProblem", "check_designator",

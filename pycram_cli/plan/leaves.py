@@ -22,7 +22,6 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 from __future__ import annotations
 
 import re
-from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
@@ -38,13 +37,6 @@ from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
-
-if isinstance(perform, ModuleType):  # pragma: no cover
-    # designators' submodule `perform` replaces the package's perform() function in the package
-    # once it has been loaded (by the first perform); when that happened before this import, take
-    # the submodule's function. (Importing the submodule here would shadow the function for everyone.)
-    perform = perform.perform
-
 
 def _as_failure(exc: BaseException, what: str) -> Failure:
     """Errors raised inside a designator or query that are not plan failures (bad run-time values)."""
