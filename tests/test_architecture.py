@@ -1,5 +1,9 @@
 """Architecture rules, checked on the source with `ast` (nothing is imported).
 
+Data flows one way: a package imports only packages below it in LAYERS (and the shared
+modules at the bottom import no layer at all); imports only needed for type annotations
+(under `if TYPE_CHECKING:`) do not count.
+
 pycram_cli/plan has two floors: the language floor (what a plan is and means) never
 imports the running floor (executor, scheduler, trace); no module of the package imports
 another in a cycle; and imports sit at module top, not inside functions.
@@ -15,7 +19,7 @@ PLAN_PACKAGE = "pycram_cli.plan"
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
                        "params", "validate", "language"}
 PLAN_RUNNING_FLOOR = {"scheduler", "trace", "executor"}
-PLAN_ON_TOP = {"golden", "__init__"}  # tools and the package's own exports, above both floors
+PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
 PLAN_NODE_MODULES = {"composites", "decorators", "leaves"}
 
 
@@ -170,3 +174,81 @@ def test_plan_has_no_import_inside_a_function():
                 if "why:" not in here and "why:" not in before:
                     found.add(f"plan/{name}.py:{statement.lineno}: {here.strip()}")
     assert not found, "imports inside functions (move them to the top, or say why:):\n" + "\n".join(sorted(found))
+
+
+# -- the layers of the whole package ----------------------------------------------------------------------
+
+PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
+#: bottom to top; a module may import its own layer and the layers below it
+LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "designators", "plan", "scenario", "cli"]
+#: modules at the package's top level shared by every layer; they import only each other
+SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths"}
+
+
+def _layer_of(module: str) -> str | None:
+    """`pycram_cli.plan.leaves` -> `plan`; shared modules -> `shared`; the package facade -> None."""
+    parts = module.split(".")
+    if parts[0] != "pycram_cli" or len(parts) < 2:
+        return None
+    if parts[1] in SHARED:
+        return "shared"
+    return parts[1] if parts[1] in LAYERS else None
+
+
+def _module_name(path: Path) -> str:
+    relative = path.relative_to(PACKAGE_DIR.parent).with_suffix("")
+    parts = list(relative.parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _absolute(statement: ast.ImportFrom, module: str, is_package: bool) -> str:
+    base = module.split(".") if is_package else module.split(".")[:-1]
+    if statement.level > 1:
+        base = base[: len(base) - (statement.level - 1)]
+    return ".".join(base + ([statement.module] if statement.module else []))
+
+
+def _imported(path: Path) -> set[str]:
+    """The pycram_cli modules a file imports (`from . import x` counts as importing `x`), TYPE_CHECKING excluded."""
+    module = _module_name(path)
+    found: set[str] = set()
+    for statement in _imports(ast.parse(path.read_text()), type_checking=False):
+        if isinstance(statement, ast.Import):
+            found |= {alias.name for alias in statement.names}
+            continue
+        target = _absolute(statement, module, path.name == "__init__.py") if statement.level else (statement.module or "")
+        found.add(target)
+        found |= {f"{target}.{alias.name}" for alias in statement.names}
+    return {name for name in found if name.startswith("pycram_cli")}
+
+
+def test_nothing_imports_upward():
+    rank = {layer: index for index, layer in enumerate(LAYERS)}
+    upward = []
+    for path in sorted(PACKAGE_DIR.rglob("*.py")):
+        layer = _layer_of(_module_name(path))
+        if layer is None:
+            continue
+        for target in _imported(path):
+            other = _layer_of(target)
+            if other is None or other == "shared" or other == layer:
+                if layer == "shared" and other not in (None, "shared"):
+                    upward.append(f"{_module_name(path)} (shared) imports {target}")
+                continue
+            if layer == "shared" or rank[other] > rank[layer]:
+                upward.append(f"{_module_name(path)} ({layer}) imports {target} ({other})")
+    assert not upward, "imports against the flow " + " > ".join(reversed(LAYERS)) + ":\n" + "\n".join(upward)
+
+
+def test_every_package_is_placed_in_a_layer():
+    packages = {p.name for p in PACKAGE_DIR.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
+    modules = {p.stem for p in PACKAGE_DIR.glob("*.py")} - {"__init__", "__main__"}
+    assert packages <= set(LAYERS), f"packages without a layer: {packages - set(LAYERS)}"
+    assert modules <= SHARED, f"top-level modules without a place: {modules - SHARED}"
+
+
+def test_the_layer_check_sees_an_upward_import(tmp_path):
+    statement = ast.parse("from ..plan import run_plan").body[0]
+    assert isinstance(statement, ast.ImportFrom)
+    assert _absolute(statement, "pycram_cli.world.object", False) == "pycram_cli.plan"
+    assert _layer_of("pycram_cli.plan") == "plan" and _layer_of("pycram_cli.errors") == "shared"
