@@ -8,12 +8,13 @@ from __future__ import annotations
 import contextlib
 import threading
 import time
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 import pybullet as p
 
 from .events import Event
-from .pose import check_position
+from .pose import Vec3, check_position
 from .quiet import silenced
 from .state import WorldState, capture, release, restore
 
@@ -25,6 +26,22 @@ STEP_HZ = 240
 
 class WorldError(RuntimeError):
     """Misuse of a world (a second GUI, a world that has exited, ...)."""
+
+
+@dataclass(frozen=True, slots=True)
+class ClosestPoint:
+    """One pair of closest points between two objects' collision shapes (world frame).
+
+    `link_a`/`link_b` are link indices (-1: the base); `normal_on_b` points from b towards a;
+    `distance` is negative when the shapes interpenetrate.
+    """
+
+    link_a: int
+    link_b: int
+    position_on_a: Vec3
+    position_on_b: Vec3
+    normal_on_b: Vec3
+    distance: float
 
 
 class BulletWorld:
@@ -145,6 +162,28 @@ class BulletWorld:
                 obj._reset_joints(positions)
             for obj in followers:
                 obj._move_attached()
+
+    # -- geometry ---------------------------------------------------------------
+    def closest_points(self, a: "Object", b: "Object", distance: float,
+                       link_a: int | None = None, link_b: int | None = None) -> list[ClosestPoint]:
+        """The closest points between `a` and `b` (or the given links of them) at most `distance` m apart.
+
+        Read from the collision shapes as they are now, so teleports and joint changes count at
+        once without a simulation step; an empty list when they are farther apart.
+        """
+        self._check_alive()
+        if a.world is not self or b.world is not self:
+            raise WorldError(f"'{a.name}' and '{b.name}' are not both in this world")
+        if link_a is None and link_b is None:
+            points = p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id)
+        else:
+            links: dict[str, int] = {}
+            if link_a is not None:
+                links["linkIndexA"] = link_a
+            if link_b is not None:
+                links["linkIndexB"] = link_b
+            points = p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
+        return [ClosestPoint(pt[3], pt[4], pt[5], pt[6], pt[7], pt[8]) for pt in points]
 
     # -- objects ----------------------------------------------------------------
     def _add(self, obj: "Object") -> None:
