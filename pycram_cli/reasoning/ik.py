@@ -349,18 +349,9 @@ def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
 
 def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """PyBullet's pose of `tool_link` with `joint_positions` applied; the joints are put back exactly."""
-    cid = robot.world.client_id
-    ids = [robot.get_joint_id(n) for n in joint_positions]
-    saved = p.getJointStates(robot.id, ids, physicsClientId=cid) if ids else []
-    try:
-        for jid, value in zip(ids, joint_positions.values()):
-            p.resetJointState(robot.id, jid, value, 0.0, physicsClientId=cid)
-        state = p.getLinkState(robot.id, robot.get_link_id(tool_link), computeForwardKinematics=True,
-                               physicsClientId=cid)
-        return tuple(state[4]), tuple(state[5])
-    finally:
-        for jid, s in zip(ids, saved):
-            p.resetJointState(robot.id, jid, s[0], s[1], physicsClientId=cid)
+    with robot.joints_kept(joint_positions):
+        robot.reset_joints(joint_positions)
+        return robot.get_link_position_and_orientation(tool_link)
 
 
 def solve(

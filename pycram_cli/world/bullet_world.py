@@ -159,7 +159,7 @@ class BulletWorld:
                 for obj in followers:
                     obj._move_attached()
             for obj, positions in held:
-                obj._reset_joints(positions)
+                obj.reset_joints(positions)
             for obj in followers:
                 obj._move_attached()
 

@@ -1,11 +1,12 @@
 """Object: anything in a world — a robot, a kitchen, a spoon — loaded from URDF, STL or OBJ."""
 from __future__ import annotations
 
+import contextlib
 import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Iterator, Mapping, Sequence
 
 import pybullet as p
 
@@ -270,11 +271,30 @@ class Object:
                 if old.get(joint.name) != value:
                     self.world.manipulation_event(self, joint.name, old.get(joint.name), value)
 
-    def _reset_joints(self, positions: Mapping[str, float]) -> None:
-        """Put joints back without checks or events (used when undoing drift)."""
+    def reset_joints(self, positions: Mapping[str, float]) -> None:
+        """Set joints (velocity 0) without limit checks or events; attached objects do not follow.
+
+        For putting joints back (drift, trial configurations); `set_joint_positions` is the checked way.
+        """
         cid = self.world.client_id
         for name, value in positions.items():
             p.resetJointState(self.id, self._joint_ids[name], value, 0.0, physicsClientId=cid)
+
+    @contextlib.contextmanager
+    def joints_kept(self, names: Iterable[str]) -> Iterator[None]:
+        """`with obj.joints_kept(names):` — these joints' positions and velocities are put back bitwise on leaving.
+
+        Cheaper than a world snapshot when a query only tries joint values; attached objects are
+        not moved (use `world.snapshot()` when they follow).
+        """
+        ids = [self.get_joint_id(name) for name in names]
+        cid = self.world.client_id
+        saved = [(s[0], s[1]) for s in p.getJointStates(self.id, ids, physicsClientId=cid)] if ids else []
+        try:
+            yield
+        finally:
+            for jid, (position, velocity) in zip(ids, saved):
+                p.resetJointState(self.id, jid, position, velocity, physicsClientId=cid)
 
     # -- attachments -----------------------------------------------------------
     def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
