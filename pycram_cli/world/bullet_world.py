@@ -153,15 +153,36 @@ class BulletWorld:
         steps = int(round(seconds * STEP_HZ))
         with self.lock:
             held = [(obj, obj.get_joint_positions()) for obj in self.objects if obj.fixed and obj.movable_joints]
-            followers = [o for o in self.objects if any(a.parent is o for a in o.attachments.values())]
             for _ in range(steps):
-                p.stepSimulation(physicsClientId=self.client_id)
-                for obj in followers:
-                    obj._move_attached()
+                self.step()
             for obj, positions in held:
                 obj.reset_joints(positions)
-            for obj in followers:
-                obj._move_attached()
+            self._follow_parents()
+
+    def step(self) -> None:
+        """One physics step (1/240 s); attached objects then follow their parents.
+
+        Fixed objects' joints are only held by their motors here; `simulate` also puts them back.
+        """
+        self._check_alive()
+        p.stepSimulation(physicsClientId=self.client_id)
+        self._follow_parents()
+
+    def _follow_parents(self) -> None:
+        """Every parent, in world order, moves what is attached to it (children only: nothing to do)."""
+        for obj in self.objects:
+            if obj.attachments:
+                obj.move_attached()
+
+    def wake_free_objects(self) -> None:
+        """Wake every free (not fixed) object.
+
+        PyBullet's restoreState does not restore sleep: an object that fell asleep in between
+        would otherwise hang where it was put back.
+        """
+        for obj in self.objects:
+            if not obj.fixed:
+                p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
 
     # -- geometry ---------------------------------------------------------------
     def closest_points(self, a: "Object", b: "Object", distance: float,

@@ -186,6 +186,14 @@ class Object:
             return compose((pos, orn), invert(self._inertial))
         return tuple(pos), tuple(orn)  # type: ignore[return-value]
 
+    def get_com_pose(self) -> tuple[Vec3, Quat]:
+        """PyBullet's own base pose: the base's centre-of-mass (inertial) frame in the world frame.
+
+        One call, no conversion: cheap enough to watch motion at every simulation step, and the
+        frame PyBullet's joint frames start from. `get_pose` is the base link's URDF frame.
+        """
+        return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)  # type: ignore[return-value]
+
     def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
         if self._inertial is not None:
@@ -332,10 +340,14 @@ class Object:
                 new = Attachment(att.parent, self, att.parent_link, att.child_link, transform)
                 self.attachments[other] = new
                 other.attachments[self] = new
-        self._move_attached()
+        self.move_attached()
 
-    def _move_attached(self, visited: set[int] | None = None) -> None:
-        """Move every object attached to this one (and theirs, recursively) to its kept offset."""
+    def move_attached(self, visited: set[int] | None = None) -> None:
+        """Move every object attached to this one (and theirs, recursively) to its kept offset.
+
+        Moving this object through the Object methods does this by itself; the world calls it
+        after each simulation step, when PyBullet has moved the parent.
+        """
         visited = visited if visited is not None else {self.id}
         cid = self.world.client_id
         for child, att in list(self.attachments.items()):
@@ -348,7 +360,7 @@ class Object:
                 target = compose(target, invert(base_to_link))
             child._reset_base(target[0], target[1])
             p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
-            child._move_attached(visited)
+            child.move_attached(visited)
 
     def remove(self) -> None:
         """Take the object out of its world (detaching it from everything)."""
