@@ -38,14 +38,30 @@ class Attachment:
     transform: tuple[Vec3, Quat]
 
 
+_IDENTITY: tuple[Vec3, Quat] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+
+
 @dataclass(frozen=True)
 class Joint:
+    """A joint as PyBullet indexed it: the joint's index is also its child link's index.
+
+    The constants a kinematic chain of this body needs, read once when the model is indexed, in
+    PyBullet's convention (it chains centre-of-mass frames): `parent_frame` leads from the parent
+    link's centre of mass to the joint origin, turned like the child's centre-of-mass frame at
+    joint position 0; `axis` is given in that frame, as PyBullet reports it (not normalised);
+    `inertial_frame` is the child's centre-of-mass frame in its URDF link frame.
+    """
+
     index: int
     name: str
     type: str  # revolute, prismatic, continuous, fixed, ...
     lower: float
     upper: float
     child_link: str
+    parent_index: int = -1  # the parent link's index (-1: the base)
+    axis: Vec3 = (0.0, 0.0, 0.0)
+    parent_frame: tuple[Vec3, Quat] = _IDENTITY
+    inertial_frame: tuple[Vec3, Quat] = _IDENTITY
 
     @property
     def movable(self) -> bool:
@@ -139,7 +155,12 @@ class Object:
             type_name = _JOINT_TYPES.get(kind, "unknown")
             if type_name == "revolute" and (lower > upper or getattr(declared.get(name), "type", "") == "continuous"):
                 type_name, lower, upper = "continuous", -math.inf, math.inf
-            joint = Joint(index, name, type_name, float(lower), float(upper), link)
+            dyn = p.getDynamicsInfo(self.id, index, physicsClientId=cid)
+            orn = info[15]  # getJointInfo reports this orientation inverted (checked against getLinkState)
+            joint = Joint(index, name, type_name, float(lower), float(upper), link,
+                          parent_index=info[16], axis=tuple(info[13]),
+                          parent_frame=(tuple(info[14]), (-orn[0], -orn[1], -orn[2], orn[3])),
+                          inertial_frame=(tuple(dyn[3]), tuple(dyn[4])))  # type: ignore[arg-type]
             self.joints.append(joint)
             self._joint_ids[name] = index
             self._link_ids[link] = index
