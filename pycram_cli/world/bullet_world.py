@@ -11,11 +11,14 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
+import numpy as np
 import pybullet as p
 
+from .camera import segmentation
 from .events import Event
 from .pose import Vec3, check_position
 from .quiet import silenced
+from .solo import SoloRenderer
 from .state import WorldState, capture, release, restore
 
 if TYPE_CHECKING:
@@ -88,6 +91,7 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
+        self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -112,6 +116,10 @@ class BulletWorld:
         for hook in self._exit_hooks:
             with contextlib.suppress(Exception):
                 hook()
+        if self._solo is not None:
+            with contextlib.suppress(Exception):
+                self._solo.close()
+            self._solo = None
         with BulletWorld._registry_lock:
             with contextlib.suppress(Exception), silenced():
                 p.disconnect(physicsClientId=self.client_id)
@@ -205,6 +213,29 @@ class BulletWorld:
                 links["linkIndexB"] = link_b
             points = p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
         return [ClosestPoint(pt[3], pt[4], pt[5], pt[6], pt[7], pt[8]) for pt in points]
+
+    # -- rendering --------------------------------------------------------------
+    def segmentation(self, width: int, height: int, view: Sequence[float],
+                     projection: Sequence[float]) -> np.ndarray:
+        """(height, width) ids of the objects seen at each pixel (-1: nothing), for OpenGL-style matrices.
+
+        TinyRenderer (works headless), no shadows; see `camera.view_matrix` and `camera.projection_matrix`.
+        """
+        self._check_alive()
+        return segmentation(self.client_id, width, height, view, projection)
+
+    def segmentation_alone(self, obj: "Object", width: int, height: int, view: Sequence[float],
+                           projection: Sequence[float]) -> np.ndarray:
+        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world.
+
+        Rendered from a copy of `obj` in this world's private client (see `solo.py`), so nothing
+        here is hidden, moved or recoloured.
+        """
+        self._check_alive()
+        with self.lock:
+            if self._solo is None:
+                self._solo = SoloRenderer()
+            return self._solo.mask(obj, width, height, view, projection)
 
     # -- objects ----------------------------------------------------------------
     def _add(self, obj: "Object") -> None:
