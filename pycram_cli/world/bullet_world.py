@@ -9,6 +9,7 @@ import contextlib
 import threading
 import time
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Iterator, Sequence
 
 import numpy as np
@@ -88,6 +89,7 @@ class BulletWorld:
         self.manipulation_event = Event("manipulation")
         self.lock = threading.RLock()
         self.gravity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self.source: Path | None = None  # the world file it was loaded from, if any
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
@@ -103,6 +105,10 @@ class BulletWorld:
     @property
     def alive(self) -> bool:
         return not self._exited
+
+    def is_connected(self) -> bool:
+        """Whether the PyBullet client still runs: False once the world exited or its GUI window was closed."""
+        return not self._exited and bool(p.isConnected(physicsClientId=self.client_id))
 
     def add_exit_hook(self, hook: Callable[[], None]) -> None:
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
@@ -238,13 +244,15 @@ class BulletWorld:
             return self._solo.mask(obj, width, height, view, projection)
 
     # -- objects ----------------------------------------------------------------
-    def _add(self, obj: "Object") -> None:
+    def register(self, obj: "Object") -> None:
+        """Take a newly loaded object into the world's lists (Object's constructor calls this)."""
         self.objects.append(obj)
         self._by_id[obj.id] = obj
         if obj.type == "robot" and self.robot is None:
             self.robot = obj
 
-    def _remove(self, obj: "Object") -> None:
+    def unregister(self, obj: "Object") -> None:
+        """Drop a removed object from the world's lists (Object.remove calls this)."""
         self.objects.remove(obj)
         self._by_id.pop(obj.id, None)
         if self.robot is obj:

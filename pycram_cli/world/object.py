@@ -139,7 +139,7 @@ class Object:
             ids = [j.index for j in self.movable_joints]
             p.setJointMotorControlArray(body, ids, p.VELOCITY_CONTROL, targetVelocities=[0.0] * len(ids),
                                         forces=[_HOLD_FORCE] * len(ids), physicsClientId=cid)
-        world._add(self)
+        world.register(self)
 
     # -- model ------------------------------------------------------------------
     def _index_model(self, declared: Mapping[str, "JointInfo"]) -> None:
@@ -388,7 +388,7 @@ class Object:
         for other in list(self.attachments):
             self.detach(other)
         p.removeBody(self.id, physicsClientId=self.world.client_id)
-        self.world._remove(self)
+        self.world.unregister(self)
 
     def __repr__(self) -> str:
         return f"Object({self.name!r}, type={self.type!r}, id={self.id})"
