@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..robots import description_for
-from ..world.pose import check_position, check_quaternion
+from ..world.pose import Quat, Vec3, check_position, check_quaternion
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -350,7 +350,7 @@ def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
     return [j.name for j in chain.joints if j.movable and j.name not in torso]
 
 
-def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[Vec3, Quat]:
     """PyBullet's pose of `tool_link` with `joint_positions` applied; the joints are put back exactly."""
     with robot.joints_kept(joint_positions):
         robot.reset_joints(joint_positions)

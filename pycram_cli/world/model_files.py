@@ -23,7 +23,7 @@ from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
 MESH_SUFFIXES = {".stl", ".obj"}
 
 
-def pybullet_data_dir() -> Path | None:
+def simulator_models_dir() -> Path | None:
     """PyBullet's bundled models folder (plane.urdf, ...), a last place to look for model files."""
     try:
         import pybullet_data

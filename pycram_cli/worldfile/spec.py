@@ -23,7 +23,7 @@ from typing import Any
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..paths import resources_dir
 from ..schema import check_keys, expect, is_number, number_list, quaternion
-from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, pybullet_data_dir
+from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
 from ..yamlsource import LList, LMap, load_yaml
 
 WORLD_KEYS = ("description", "gravity", "objects")
@@ -66,7 +66,7 @@ class WorldSpec:
 
 def search_dirs(base: Path) -> list[Path]:
     dirs = [base, resources_dir()]
-    data = pybullet_data_dir()
+    data = simulator_models_dir()
     if data is not None:
         dirs.append(data)
     return dirs
