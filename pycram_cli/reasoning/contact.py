@@ -41,13 +41,15 @@ def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = Fa
         raise ValueError(f"tolerance must be a non-negative distance in metres, got {tolerance!r}")
     world = same_world(a, b)
     with world.lock:
-        points = world.closest_points(a, b, tolerance)
-        if points:
-            distance = min(pt.distance for pt in points)
-            pairs: list[tuple[str, str]] = []
-            if links:
+        if links:
+            points = world.closest_points(a, b, tolerance)
+            if points:
+                distance = min(pt.distance for pt in points)
                 pairs = sorted({(a.get_link_name(pt.link_a), b.get_link_name(pt.link_b)) for pt in points})
-            return ContactAnswer(True, float(distance), pairs)
-        far = world.closest_points(a, b, max(SEARCH_DISTANCE, tolerance))
-        distance = min((pt.distance for pt in far), default=math.inf)
+                return ContactAnswer(True, float(distance), pairs)
+        else:
+            distance = world.distance(a, b, tolerance)
+            if distance < math.inf:
+                return ContactAnswer(True, float(distance), [])
+        distance = world.distance(a, b, max(SEARCH_DISTANCE, tolerance))
         return ContactAnswer(False, float(distance), [])

@@ -129,6 +129,6 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
 def _touching(movers: Sequence["Object"], candidates: Sequence["Object"], tolerance: float) -> list["Object"]:
     found = []
     for other in candidates:
-        if any(other.world.closest_points(m, other, tolerance) for m in movers):
+        if any(other.world.distance(m, other, tolerance) < math.inf for m in movers):
             found.append(other)
     return sorted(found, key=lambda o: (o.name, o.id))

@@ -1,7 +1,8 @@
-"""BulletWorld.closest_points: the closest points between two objects' collision shapes, as they are now."""
+"""BulletWorld.closest_points and distance: how close two objects' collision shapes are, as they are now."""
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 
@@ -75,3 +76,28 @@ def test_objects_of_another_world_are_refused(cubes, data_dir):
         other = Object("c", "box", data_dir / "cube.obj", world=other_world)
         with pytest.raises(WorldError, match="not both in this world"):
             world.closest_points(a, other, 0.0)
+
+
+def test_distance_is_the_smallest_closest_point_distance_and_inf_beyond_the_search(cubes):
+    world, a, b = cubes
+    assert world.distance(a, b, 0.0) == min(pt.distance for pt in world.closest_points(a, b, 0.0))
+    assert world.distance(a, b, 0.0) < 0.0
+    b.set_position([0.5, 0.0, 0.0])
+    assert world.distance(a, b, 0.1) == math.inf
+    assert world.distance(a, b, 1.0) == pytest.approx(0.4, abs=MARGIN)
+
+
+def test_distance_can_be_restricted_to_links(world, data_dir):
+    arm = Object("arm", "robot", data_dir / "arm.urdf")
+    cube = Object("cube", "box", data_dir / "cube.obj", [0.4, 0.0, 0.15])  # through the upper arm
+    assert world.distance(arm, cube, 0.0, link_a=arm.get_link_id("upper")) < 0.0
+    assert world.distance(arm, cube, 0.0, link_a=arm.get_link_id("base")) == math.inf
+
+
+def test_an_exited_world_answers_no_geometry(cubes):
+    world, a, b = cubes
+    world.exit()
+    with pytest.raises(WorldError, match="exited"):
+        world.closest_points(a, b, 0.0)
+    with pytest.raises(WorldError, match="exited"):
+        world.distance(a, b, 0.0)
