@@ -363,13 +363,15 @@ class Object:
                 other.attachments[self] = new
         self.move_attached()
 
-    def move_attached(self, visited: set[int] | None = None) -> None:
+    def move_attached(self) -> None:
         """Move every object attached to this one (and theirs, recursively) to its kept offset.
 
         Moving this object through the Object methods does this by itself; the world calls it
         after each simulation step, when PyBullet has moved the parent.
         """
-        visited = visited if visited is not None else {self.id}
+        self._move_attached({self.id})
+
+    def _move_attached(self, visited: set[int]) -> None:
         cid = self.world.client_id
         for child, att in list(self.attachments.items()):
             if att.parent is not self or child.id in visited:
@@ -381,7 +383,7 @@ class Object:
                 target = compose(target, invert(base_to_link))
             child._reset_base(target[0], target[1])
             p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
-            child.move_attached(visited)
+            child._move_attached(visited)
 
     def remove(self) -> None:
         """Take the object out of its world (detaching it from everything)."""
