@@ -307,7 +307,7 @@ class Object:
         """
         cid = self.world.client_id
         for name, value in positions.items():
-            p.resetJointState(self.id, self._joint_ids[name], value, 0.0, physicsClientId=cid)
+            p.resetJointState(self.id, self.get_joint_id(name), value, 0.0, physicsClientId=cid)
 
     @contextlib.contextmanager
     def joints_kept(self, names: Iterable[str]) -> Iterator[None]:

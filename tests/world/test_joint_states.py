@@ -73,3 +73,8 @@ def test_reset_joints_leaves_attached_objects_where_they_are(world, arm, data_di
     before = cube.get_pose()
     arm.reset_joints({"shoulder": 1.0})
     assert cube.get_pose() == before
+
+
+def test_reset_joints_names_an_unknown_joint_with_a_suggestion(arm):
+    with pytest.raises(KeyError, match="did you mean 'slide'"):
+        arm.reset_joints({"slid": 0.1})
