@@ -222,7 +222,8 @@ class BulletWorld:
                  link_a: int | None = None, link_b: int | None = None) -> float:
         """The smallest distance between `a` and `b` (negative: they interpenetrate), or inf when
         nothing of them is within `max_distance` m — `closest_points` without building the points."""
-        return min((row[8] for row in self._closest_rows(a, b, max_distance, link_a, link_b)), default=math.inf)
+        rows = self._closest_rows(a, b, max_distance, link_a, link_b)
+        return min(row[8] for row in rows) if rows else math.inf
 
     def _closest_rows(self, a: "Object", b: "Object", distance: float, link_a: int | None,
                       link_b: int | None) -> Sequence[Sequence[Any]]:
