@@ -27,17 +27,15 @@ def gui_option(func: F) -> F:
     return click.option("--gui", is_flag=True, help="Open PyBullet's window (needs a display, e.g. xvfb-run).")(func)  # type: ignore[return-value]
 
 
-def wait_for_window(world: object) -> None:
+def wait_for_window(world: "BulletWorld") -> None:
     """Keep a GUI world open until its window is closed (or Ctrl-C)."""
     import time
-
-    import pybullet as p
 
     from . import console
 
     console.info("close the window or press Ctrl-C to exit")
     try:
-        while p.isConnected(world.client_id):  # type: ignore[attr-defined]
+        while world.is_connected():
             time.sleep(0.1)
     except KeyboardInterrupt:
         pass

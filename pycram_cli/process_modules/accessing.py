@@ -3,8 +3,6 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-import pybullet as p
-
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..world import Object
 from .arms import move_tool, set_gripper
@@ -17,13 +15,12 @@ STEPS = 6
 
 def contents_of(part: Object, link: int) -> list[Object]:
     """Free objects resting on (touching, above) a link of `part` — they ride along when it moves."""
-    cid = part.world.client_id
     link_top = part.get_aabb(link)[0][2]
     inside = []
     for obj in part.world.objects:
         if obj is part or obj.fixed or obj.attachments:
             continue
-        points = p.getClosestPoints(part.id, obj.id, distance=0.005, linkIndexA=link, physicsClientId=cid)
+        points = part.world.closest_points(part, obj, 0.005, link_a=link)
         if points and obj.get_aabb()[0][2] >= link_top - 0.005:
             inside.append(obj)
     return inside

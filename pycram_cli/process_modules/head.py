@@ -34,7 +34,7 @@ def look_at(robot: Robot, target: Sequence[float]) -> None:
     q[0] = np.clip(q[0] + math.atan2(local[1], local[0]), lo[0], hi[0])
 
     def apply(values: np.ndarray) -> None:
-        body._reset_joints({pan.name: float(values[0]), tilt.name: float(values[1])})
+        body.reset_joints({pan.name: float(values[0]), tilt.name: float(values[1])})
 
     error = np.zeros(2)
     for _ in range(8):

@@ -1,9 +1,7 @@
-"""Helpers shared by the reasoning queries: finding the world, and undoing exactly what a query changed."""
+"""Helpers shared by the reasoning queries: finding the objects' world, and what follows an object."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterable, Sequence
-
-import pybullet as p
+from typing import TYPE_CHECKING
 
 from ..world import BulletWorld, WorldError
 
@@ -28,39 +26,6 @@ def same_world(*objects: "Object") -> BulletWorld:
     if not world.alive:
         raise WorldError("the objects' world has exited")
     return world
-
-
-class JointUndo:
-    """Remembers joint positions and velocities; `restore()` puts them back bitwise (resetJointState)."""
-
-    def __init__(self, obj: "Object", joint_ids: Sequence[int]) -> None:
-        self.obj = obj
-        self.ids = list(joint_ids)
-        cid = obj.world.client_id
-        self.states = [(s[0], s[1]) for s in p.getJointStates(obj.id, self.ids, physicsClientId=cid)] if self.ids else []
-
-    def restore(self) -> None:
-        cid = self.obj.world.client_id
-        for jid, (pos, vel) in zip(self.ids, self.states):
-            p.resetJointState(self.obj.id, jid, pos, vel, physicsClientId=cid)
-
-
-class BaseUndo:
-    """Remembers base poses and velocities of some objects; `restore()` puts them back bitwise."""
-
-    def __init__(self, objects: Iterable["Object"]) -> None:
-        self.saved = []
-        for obj in objects:
-            cid = obj.world.client_id
-            pos, orn = p.getBasePositionAndOrientation(obj.id, physicsClientId=cid)
-            lin, ang = p.getBaseVelocity(obj.id, physicsClientId=cid)
-            self.saved.append((obj, pos, orn, lin, ang))
-
-    def restore(self) -> None:
-        for obj, pos, orn, lin, ang in self.saved:
-            cid = obj.world.client_id
-            p.resetBasePositionAndOrientation(obj.id, pos, orn, physicsClientId=cid)
-            p.resetBaseVelocity(obj.id, lin, ang, physicsClientId=cid)
 
 
 def attached_descendants(obj: "Object") -> list["Object"]:

@@ -1,6 +1,6 @@
 """contact(a, b): are two objects touching? Read from the collision shapes, without stepping the simulation.
 
-`getClosestPoints` sees teleports and joint changes at once; objects resting on each other
+The world's closest points see teleports and joint changes at once; objects resting on each other
 sit about 1e-5 m apart (often slightly negative), so "touching" means closer than a small
 tolerance (default 5 mm).
 """
@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
-
-import pybullet as p
 
 from ._common import same_world
 
@@ -35,10 +33,6 @@ class ContactAnswer:
         return self.in_contact
 
 
-def closest_points(a: "Object", b: "Object", distance: float) -> tuple:
-    return p.getClosestPoints(a.id, b.id, distance, physicsClientId=a.world.client_id)
-
-
 def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = False) -> ContactAnswer:
     """Whether `a` and `b` are within `tolerance` metres of each other (touching)."""
     if a is b:
@@ -47,13 +41,15 @@ def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = Fa
         raise ValueError(f"tolerance must be a non-negative distance in metres, got {tolerance!r}")
     world = same_world(a, b)
     with world.lock:
-        points = closest_points(a, b, tolerance)
-        if points:
-            distance = min(pt[8] for pt in points)
-            pairs: list[tuple[str, str]] = []
-            if links:
-                pairs = sorted({(a.get_link_name(pt[3]), b.get_link_name(pt[4])) for pt in points})
-            return ContactAnswer(True, float(distance), pairs)
-        far = closest_points(a, b, max(SEARCH_DISTANCE, tolerance))
-        distance = min((pt[8] for pt in far), default=math.inf)
+        if links:
+            points = world.closest_points(a, b, tolerance)
+            if points:
+                distance = min(pt.distance for pt in points)
+                pairs = sorted({(a.get_link_name(pt.link_a), b.get_link_name(pt.link_b)) for pt in points})
+                return ContactAnswer(True, float(distance), pairs)
+        else:
+            distance = world.distance(a, b, tolerance)
+            if distance < math.inf:
+                return ContactAnswer(True, float(distance), [])
+        distance = world.distance(a, b, max(SEARCH_DISTANCE, tolerance))
         return ContactAnswer(False, float(distance), [])

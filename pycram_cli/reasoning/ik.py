@@ -1,7 +1,7 @@
 """Inverse kinematics for a robot's tool frame: damped least squares on our own kinematic chain.
 
 PyBullet's `calculateInverseKinematics` often stops short of the target and its SDLS solver
-crashes, so the chain from the robot's base to the tool link is read from PyBullet once
+crashes, so the chain from the robot's base to the tool link is read from the robot's joints once
 (joint frames, axes, inertial offsets — PyBullet expresses every joint frame relative to
 the parent's centre of mass) and solved here with a Levenberg–Marquardt loop:
 
@@ -18,14 +18,14 @@ link); the torso, head and base keep their current values.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
-import pybullet as p
 
 from ..robots import description_for
-from ..world.pose import check_position, check_quaternion
+from ..world.pose import Quat, Vec3, check_position, check_quaternion
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -68,11 +68,6 @@ def _transform(position: Sequence[float], orientation: Sequence[float]) -> np.nd
     return t
 
 
-def _conjugate(q: Sequence[float]) -> tuple[float, float, float, float]:
-    # getJointInfo reports parentFrameOrn inverted (measured against getLinkState)
-    return (-q[0], -q[1], -q[2], q[3])
-
-
 def _inverse(t: np.ndarray) -> np.ndarray:
     inv = np.eye(4)
     inv[:3, :3] = t[:3, :3].T
@@ -84,17 +79,25 @@ def _inverse(t: np.ndarray) -> np.ndarray:
 class _ChainJoint:
     index: int
     name: str
-    kind: int  # p.JOINT_REVOLUTE / p.JOINT_PRISMATIC / p.JOINT_FIXED
+    kind: str  # the Joint's type: revolute, continuous, prismatic, fixed, ...
     parent_to_joint: np.ndarray  # parent centre of mass -> joint (child link) frame
     axis: np.ndarray  # unit axis in the joint frame
     link_to_com: np.ndarray  # child link frame -> child centre of mass
     lower: float
     upper: float
 
+    @property
+    def revolute(self) -> bool:
+        return self.kind in ("revolute", "continuous")
+
+    @property
+    def movable(self) -> bool:
+        return self.revolute or self.kind == "prismatic"
+
 
 @dataclass
 class Chain:
-    """The joints from the base to a link, with everything constant read once from PyBullet."""
+    """The joints from the base to a link, with everything constant read once from the robot's joints."""
 
     body: int
     joints: list[_ChainJoint]
@@ -102,30 +105,31 @@ class Chain:
 
     @classmethod
     def build(cls, robot: "Object", link_index: int) -> "Chain":
-        cid = robot.world.client_id
         joints: list[_ChainJoint] = []
         index = link_index
         while index != -1:
-            info = p.getJointInfo(robot.id, index, physicsClientId=cid)
-            dyn = p.getDynamicsInfo(robot.id, index, physicsClientId=cid)
             joint = robot.joints[index]
-            axis = np.asarray(info[13], dtype=float)
+            axis = np.asarray(joint.axis, dtype=float)
             norm = float(np.linalg.norm(axis))
             joints.append(_ChainJoint(
-                index=index, name=joint.name, kind=info[2],
-                parent_to_joint=_transform(info[14], _conjugate(info[15])),
+                index=index, name=joint.name, kind=joint.type,
+                parent_to_joint=_transform(*joint.parent_frame),
                 axis=axis / norm if norm > 0 else axis,
-                link_to_com=_transform(dyn[3], dyn[4]),
+                link_to_com=_transform(*joint.inertial_frame),
                 lower=joint.lower if joint.limited else -math.inf,
                 upper=joint.upper if joint.limited else math.inf,
             ))
-            index = info[16]
+            index = joint.parent_index
         joints.reverse()
         return cls(robot.id, joints, _inverse(joints[-1].link_to_com) if joints else np.eye(4))
 
 
+#: chains already built, per robot and tool link (forgotten with the robot)
+_CHAINS: "weakref.WeakKeyDictionary[Object, dict[int, Chain]]" = weakref.WeakKeyDictionary()
+
+
 def chain_for(robot: "Object", link_index: int) -> Chain:
-    cache = robot.__dict__.setdefault("_ik_chains", {})
+    cache = _CHAINS.setdefault(robot, {})
     chain = cache.get(link_index)
     if chain is None:
         chain = cache[link_index] = Chain.build(robot, link_index)
@@ -145,10 +149,11 @@ def _axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     return t
 
 
-def _motion(kind: int, axis: np.ndarray, q: float) -> np.ndarray:
-    if kind == p.JOINT_REVOLUTE:
+def _motion(joint: _ChainJoint, q: float) -> np.ndarray:
+    axis = joint.axis
+    if joint.revolute:
         return _axis_rotation(axis, q)
-    if kind == p.JOINT_PRISMATIC:
+    if joint.kind == "prismatic":
         t = np.eye(4)
         t[:3, 3] = axis * q
         return t
@@ -167,10 +172,8 @@ class _Problem:
     """
 
     def __init__(self, robot: "Object", chain: Chain, variable: Sequence[str]) -> None:
-        cid = robot.world.client_id
-        base_pos, base_orn = p.getBasePositionAndOrientation(robot.id, physicsClientId=cid)
-        states = p.getJointStates(robot.id, [j.index for j in chain.joints], physicsClientId=cid)
-        current = {j.name: float(s[0]) for j, s in zip(chain.joints, states)}
+        base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
+        current = robot.get_joint_positions([j.name for j in chain.joints])
         wanted = set(variable)
         # Collapse everything between two variable joints into one constant transform.
         segments: list[np.ndarray] = []  # segments[i] precedes the motion of variable joint i
@@ -182,16 +185,16 @@ class _Problem:
         acc = _transform(base_pos, base_orn)
         for joint in chain.joints:
             acc = acc @ joint.parent_to_joint
-            if joint.name in wanted and joint.kind in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC):
+            if joint.name in wanted and joint.movable:
                 segments.append(acc)
                 axes.append(joint.axis)
-                self.revolute.append(joint.kind == p.JOINT_REVOLUTE)
+                self.revolute.append(joint.revolute)
                 self.names.append(joint.name)
                 lower.append(joint.lower)
                 upper.append(joint.upper)
                 acc = joint.link_to_com
             else:
-                acc = acc @ _motion(joint.kind, joint.axis, current[joint.name]) @ joint.link_to_com
+                acc = acc @ _motion(joint, current[joint.name]) @ joint.link_to_com
         self.tail = acc @ chain.tool_com_to_link
         self.segments = segments
         self.axes = axes
@@ -344,23 +347,14 @@ def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
         torso = set()
     # no description: every movable joint between the base and the link, but the torso
     chain = chain_for(robot, robot.get_link_id(tool_link))
-    return [j.name for j in chain.joints if j.kind in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC) and j.name not in torso]
+    return [j.name for j in chain.joints if j.movable and j.name not in torso]
 
 
-def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[tuple[float, ...], tuple[float, ...]]:
+def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[Vec3, Quat]:
     """PyBullet's pose of `tool_link` with `joint_positions` applied; the joints are put back exactly."""
-    cid = robot.world.client_id
-    ids = [robot.get_joint_id(n) for n in joint_positions]
-    saved = p.getJointStates(robot.id, ids, physicsClientId=cid) if ids else []
-    try:
-        for jid, value in zip(ids, joint_positions.values()):
-            p.resetJointState(robot.id, jid, value, 0.0, physicsClientId=cid)
-        state = p.getLinkState(robot.id, robot.get_link_id(tool_link), computeForwardKinematics=True,
-                               physicsClientId=cid)
-        return tuple(state[4]), tuple(state[5])
-    finally:
-        for jid, s in zip(ids, saved):
-            p.resetJointState(robot.id, jid, s[0], s[1], physicsClientId=cid)
+    with robot.joints_kept(joint_positions):
+        robot.reset_joints(joint_positions)
+        return robot.get_link_position_and_orientation(tool_link)
 
 
 def solve(

@@ -19,11 +19,9 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
-import pybullet as p
-
 from ..robots import description_for
 from ..world.pose import check_position, check_quaternion, quat_multiply
-from ._common import JointUndo, attached_descendants
+from ._common import attached_descendants
 from .ik import solve
 
 if TYPE_CHECKING:
@@ -123,20 +121,14 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
             finally:
                 world.restore_state(state)
                 world.release_state(state)
-        undo = JointUndo(robot, [robot.get_joint_id(n) for n in joint_positions])
-        try:
-            cid = world.client_id
-            for name, value in joint_positions.items():
-                p.resetJointState(robot.id, robot.get_joint_id(name), value, 0.0, physicsClientId=cid)
+        with robot.joints_kept(joint_positions):
+            robot.reset_joints(joint_positions)
             return _touching(movers, candidates, tolerance)
-        finally:
-            undo.restore()
 
 
 def _touching(movers: Sequence["Object"], candidates: Sequence["Object"], tolerance: float) -> list["Object"]:
     found = []
     for other in candidates:
-        cid = other.world.client_id
-        if any(p.getClosestPoints(m.id, other.id, tolerance, physicsClientId=cid) for m in movers):
+        if any(other.world.distance(m, other, tolerance) < math.inf for m in movers):
             found.append(other)
     return sorted(found, key=lambda o: (o.name, o.id))

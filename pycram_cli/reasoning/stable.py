@@ -25,8 +25,6 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import pybullet as p
-
 from ..world.pose import angle_between
 from ._common import world_of
 
@@ -65,10 +63,6 @@ class StableAnswer:
         return self.stable
 
 
-def _pose(cid: int, body: int) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    return p.getBasePositionAndOrientation(body, physicsClientId=cid)  # type: ignore[return-value]
-
-
 def _moved(a: tuple, b: tuple) -> tuple[float, float]:
     return math.dist(a[0], b[0]), angle_between(a[1], b[1])
 
@@ -80,7 +74,6 @@ def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = S
     if obj.fixed:
         return StableAnswer(True, 0.0, 0.0, 0.0)  # fixed objects are kinematic: simulation never moves them
     total = int(round(seconds * STEP_HZ))
-    cid = world.client_id
     with world.lock:
         state = world.save_state()
         try:
@@ -88,27 +81,21 @@ def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = S
         finally:
             world.restore_state(state)
             world.release_state(state)
-            for other in world.objects:
-                if not other.fixed:
-                    p.changeDynamics(other.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=cid)
+            world.wake_free_objects()
 
 
 def _watch(world: "BulletWorld", obj: "Object", total: int, distance: float, angle: float) -> StableAnswer:
-    cid = world.client_id
-    start = _pose(cid, obj.id)
-    followers = [o for o in world.objects if any(a.parent is o for a in o.attachments.values())]
+    start = obj.get_com_pose()  # watched at the centre of mass: one cheap call per step
     free = [o for o in world.objects if not o.fixed and not any(a.child is o for a in o.attachments.values())]
     min_steps = int(MIN_SECONDS * STEP_HZ)
     window_time = WINDOW / STEP_HZ
-    last = {o.id: _pose(cid, o.id) for o in free}
+    last = {o.id: o.get_com_pose() for o in free}
     previous_motion: tuple[float, float] | None = None
     calm = 0
     worst_d = worst_a = 0.0
     for step in range(1, total + 1):
-        p.stepSimulation(physicsClientId=cid)
-        for parent in followers:
-            parent._move_attached()
-        now = _pose(cid, obj.id)
+        world.step()
+        now = obj.get_com_pose()
         d, a = _moved(start, now)
         worst_d, worst_a = max(worst_d, d), max(worst_a, a)
         if d > distance or a > angle:
@@ -119,7 +106,7 @@ def _watch(world: "BulletWorld", obj: "Object", total: int, distance: float, ang
         scene_at_rest = True
         motion = (0.0, 0.0)
         for other in free:
-            pose = _pose(cid, other.id)
+            pose = other.get_com_pose()
             md, ma = _moved(last[other.id], pose)
             last[other.id] = pose
             if other is obj:

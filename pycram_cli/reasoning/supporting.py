@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-import pybullet as p
-
 from ._common import same_world
 
 if TYPE_CHECKING:
@@ -26,20 +24,19 @@ def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> li
     if a is b:
         raise ValueError(f"supporting needs two different objects, got '{a.name}' twice")
     world = same_world(a, b)
-    cid = world.client_id
     with world.lock:
-        # bodyA = b, bodyB = a: contactNormalOnB points from a towards b (up, when b rests on a)
-        points = p.getClosestPoints(b.id, a.id, tolerance, physicsClientId=cid)
+        # b first, a second: the normal on the second points from a towards b (up, when b rests on a)
+        points = world.closest_points(b, a, tolerance)
         if not points:
             return []
-        lo, hi = p.getAABB(b.id, -1, physicsClientId=cid) if not b.joints else b.get_aabb()
+        lo, hi = b.get_aabb(-1) if not b.joints else b.get_aabb()
         centre_z = (lo[2] + hi[2]) / 2.0
         found = []
         for pt in points:
-            normal_z = pt[7][2]
-            on_a = pt[6]
+            normal_z = pt.normal_on_b[2]
+            on_a = pt.position_on_b
             if normal_z > MIN_NORMAL_Z and centre_z > on_a[2]:
-                found.append((a.get_link_name(pt[4]), (float(on_a[0]), float(on_a[1]), float(on_a[2]))))
+                found.append((a.get_link_name(pt.link_b), (float(on_a[0]), float(on_a[1]), float(on_a[2]))))
         return found
 
 

@@ -7,9 +7,9 @@ fast and exact:
 * Only a small window is rendered: an off-centre perspective projection whose frustum is
   cropped to the object's bounding box as seen from the camera, about 32×32 pixels, with
   the far plane just behind the object. TinyRenderer's cost is mostly per pixel.
-* The object alone is rendered in a private PyBullet client that holds a copy of just that
-  object (same model file, same pose and joint positions), so the world itself is never
-  touched — no colours to hide and restore, no bodies to move.
+* The object alone is rendered by the world's private client that holds a copy of just that
+  object (same model file, same pose and joint positions; `world/solo.py`), so the world
+  itself is never touched — no colours to hide and restore, no bodies to move.
 
 Camera: None (the robot's camera frame from its description, with its field of view), a
 link name of the robot (its camera frame: as None; any other link: a position at that link's
@@ -21,17 +21,14 @@ seen: an object outside the view is 0 % visible.
 from __future__ import annotations
 
 import math
-import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
-import pybullet as p
 
 from ..robots import description_for
-from ..world.model_files import MESH_SUFFIXES, mesh_urdf, prepare_urdf
+from ..world.camera import projection_matrix, view_matrix
 from ..world.pose import check_position, check_quaternion, quat_to_matrix
-from ..world.quiet import silenced
 from ._common import world_of
 
 if TYPE_CHECKING:
@@ -138,76 +135,13 @@ def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
 
 
 def _aabb(obj: "Object") -> tuple[np.ndarray, np.ndarray]:
-    cid = obj.world.client_id
-    if not obj.joints:
-        lo, hi = p.getAABB(obj.id, -1, physicsClientId=cid)
-        return np.asarray(lo), np.asarray(hi)
-    lo, hi = obj.get_aabb()
+    lo, hi = obj.get_aabb(-1) if not obj.joints else obj.get_aabb()
     return np.asarray(lo), np.asarray(hi)
 
 
 def _aabb_centre(obj: "Object") -> np.ndarray:
     lo, hi = _aabb(obj)
     return (lo + hi) / 2.0
-
-
-# -- the private client that renders objects alone --------------------------------------
-
-
-class _Solo:
-    """A DIRECT client holding copies of the objects asked about, to render each of them alone."""
-
-    def __init__(self) -> None:
-        with silenced():
-            self.client = p.connect(p.DIRECT)
-        self.bodies: dict[int, tuple[weakref.ref, int]] = {}
-        self._finalizer = weakref.finalize(self, _disconnect, self.client)
-
-    def body_for(self, obj: "Object") -> int:
-        entry = self.bodies.get(id(obj))
-        if entry is not None and entry[0]() is obj:
-            return entry[1]
-        if obj.path.suffix.lower() in MESH_SUFFIXES:
-            path = mesh_urdf(obj.path, None)
-        else:
-            path = prepare_urdf(obj.path).path
-        with silenced():
-            body = p.loadURDF(str(path), useFixedBase=True, physicsClientId=self.client)
-        if body < 0:
-            raise RuntimeError(f"could not load a copy of '{obj.name}' to render it alone")
-        self.bodies[id(obj)] = (weakref.ref(obj), body)
-        return body
-
-    def park(self, body: int) -> None:
-        """Put a copy out of every view (each copy has its own spot far below the world)."""
-        p.resetBasePositionAndOrientation(body, (0.0, 0.0, -1000.0 - 50.0 * body), (0, 0, 0, 1),
-                                          physicsClientId=self.client)
-
-    def place(self, obj: "Object", body: int) -> None:
-        """Give the copy the object's pose and joint positions."""
-        cid = obj.world.client_id
-        pos, orn = p.getBasePositionAndOrientation(obj.id, physicsClientId=cid)
-        p.resetBasePositionAndOrientation(body, pos, orn, physicsClientId=self.client)
-        if obj.movable_joints:
-            ids = [j.index for j in obj.movable_joints]
-            for jid, state in zip(ids, p.getJointStates(obj.id, ids, physicsClientId=cid)):
-                p.resetJointState(body, jid, state[0], 0.0, physicsClientId=self.client)
-
-
-def _disconnect(client: int) -> None:
-    try:
-        p.disconnect(physicsClientId=client)
-    except Exception:  # noqa: BLE001 - already gone at interpreter exit
-        pass
-
-
-def _solo(world: "BulletWorld") -> _Solo:
-    solo = getattr(world, "_reasoning_solo", None)
-    if solo is None:
-        solo = _Solo()
-        world._reasoning_solo = solo  # type: ignore[attr-defined]
-        world.add_exit_hook(solo._finalizer)
-    return solo
 
 
 # -- rendering --------------------------------------------------------------------------
@@ -257,17 +191,10 @@ def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | No
     height = int(min(MAX_SIDE, max(MIN_SIDE, round(math.sqrt(PIXEL_BUDGET / ratio)))))
     eye = cam.position
     forward, down = cam.rotation[:, 2], cam.rotation[:, 1]
-    view = p.computeViewMatrix(eye.tolist(), (eye + forward).tolist(), (-down).tolist(), physicsClientId=world.client_id)
-    proj = p.computeProjectionMatrix(near * umin, near * umax, -near * vmax, -near * vmin, near, far,
-                                     physicsClientId=world.client_id)
-    scene = _segmentation(world.client_id, width, height, view, proj)
-    solo = _solo(world)
-    body = solo.body_for(obj)
-    solo.place(obj, body)
-    try:
-        alone = _segmentation(solo.client, width, height, view, proj) == body
-    finally:
-        solo.park(body)
+    view = view_matrix(eye.tolist(), (eye + forward).tolist(), (-down).tolist())
+    proj = projection_matrix(near * umin, near * umax, -near * vmax, -near * vmin, near, far)
+    scene = world.segmentation(width, height, view, proj)
+    alone = world.segmentation_alone(obj, width, height, view, proj)
     if cam.fov is not None:
         us = umin + (np.arange(width) + 0.5) / width * (umax - umin)
         vs = vmin + (np.arange(height) + 0.5) / height * (vmax - vmin)
@@ -275,12 +202,6 @@ def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | No
     else:
         in_view = np.ones((height, width), dtype=bool)
     return _Views(scene, alone, in_view)
-
-
-def _segmentation(client: int, width: int, height: int, view: Sequence[float], proj: Sequence[float]) -> np.ndarray:
-    _, _, _, _, seg = p.getCameraImage(width, height, view, proj, shadow=0, renderer=p.ER_TINY_RENDERER,
-                                       physicsClientId=client)
-    return np.asarray(seg, dtype=np.int64).reshape(height, width)
 
 
 # -- the queries --------------------------------------------------------------------------

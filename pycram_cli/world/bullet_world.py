@@ -6,15 +6,21 @@ by side without seeing each other's changes; at most one of them shows a GUI win
 from __future__ import annotations
 
 import contextlib
+import math
 import threading
 import time
-from typing import TYPE_CHECKING, Callable, Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
+import numpy as np
 import pybullet as p
 
+from .camera import segmentation
 from .events import Event
-from .pose import check_position
+from .pose import Vec3, check_position
 from .quiet import silenced
+from .solo import SoloRenderer
 from .state import WorldState, capture, release, restore
 
 if TYPE_CHECKING:
@@ -25,6 +31,22 @@ STEP_HZ = 240
 
 class WorldError(RuntimeError):
     """Misuse of a world (a second GUI, a world that has exited, ...)."""
+
+
+@dataclass(frozen=True)
+class ClosestPoint:
+    """One pair of closest points between two objects' collision shapes (world frame).
+
+    `link_a`/`link_b` are link indices (-1: the base); `normal_on_b` points from b towards a;
+    `distance` is negative when the shapes interpenetrate.
+    """
+
+    link_a: int
+    link_b: int
+    position_on_a: Vec3
+    position_on_b: Vec3
+    normal_on_b: Vec3
+    distance: float
 
 
 class BulletWorld:
@@ -68,9 +90,11 @@ class BulletWorld:
         self.manipulation_event = Event("manipulation")
         self.lock = threading.RLock()
         self.gravity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self.source: Path | None = None  # the world file it was loaded from, if any
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
+        self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -82,6 +106,10 @@ class BulletWorld:
     @property
     def alive(self) -> bool:
         return not self._exited
+
+    def is_connected(self) -> bool:
+        """Whether the PyBullet client still runs: False once the world exited or its GUI window was closed."""
+        return not self._exited and bool(p.isConnected(physicsClientId=self.client_id))
 
     def add_exit_hook(self, hook: Callable[[], None]) -> None:
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
@@ -95,6 +123,10 @@ class BulletWorld:
         for hook in self._exit_hooks:
             with contextlib.suppress(Exception):
                 hook()
+        if self._solo is not None:
+            with contextlib.suppress(Exception):
+                self._solo.close()
+            self._solo = None
         with BulletWorld._registry_lock:
             with contextlib.suppress(Exception), silenced():
                 p.disconnect(physicsClientId=self.client_id)
@@ -136,24 +168,112 @@ class BulletWorld:
         steps = int(round(seconds * STEP_HZ))
         with self.lock:
             held = [(obj, obj.get_joint_positions()) for obj in self.objects if obj.fixed and obj.movable_joints]
-            followers = [o for o in self.objects if any(a.parent is o for a in o.attachments.values())]
             for _ in range(steps):
-                p.stepSimulation(physicsClientId=self.client_id)
-                for obj in followers:
-                    obj._move_attached()
+                self.step()
             for obj, positions in held:
-                obj._reset_joints(positions)
-            for obj in followers:
-                obj._move_attached()
+                obj.reset_joints(positions)
+            self._follow_parents()
+
+    def step(self) -> None:
+        """One physics step (1/240 s); attached objects then follow their parents.
+
+        Fixed objects' joints are only held by their motors here; `simulate` also puts them back.
+        """
+        self._check_alive()
+        p.stepSimulation(physicsClientId=self.client_id)
+        self._follow_parents()
+
+    def _follow_parents(self) -> None:
+        """Every parent, in world order, moves what is attached to it (children only: nothing to do)."""
+        for obj in self.objects:
+            if obj.attachments:
+                obj.move_attached()
+
+    def wake_free_objects(self) -> None:
+        """Wake every free (not fixed) object.
+
+        PyBullet's restoreState does not restore sleep: an object that fell asleep in between
+        would otherwise hang where it was put back.
+        """
+        for obj in self.objects:
+            if not obj.fixed:
+                p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
+
+    # -- geometry ---------------------------------------------------------------
+    def closest_points(self, a: "Object", b: "Object", distance: float,
+                       link_a: int | None = None, link_b: int | None = None) -> list[ClosestPoint]:
+        """The closest points between `a` and `b` (or the given links of them) at most `distance` m apart.
+
+        Read from the collision shapes as they are now, so teleports and joint changes count at
+        once without a simulation step; an empty list when they are farther apart.
+        """
+        points = []
+        for row in self._closest_rows(a, b, distance, link_a, link_b):
+            # the fields go straight into the new instance: half the cost of the frozen __init__,
+            # which counts in the queries' hot paths
+            point = object.__new__(ClosestPoint)
+            fields = point.__dict__
+            (fields["link_a"], fields["link_b"], fields["position_on_a"], fields["position_on_b"],
+             fields["normal_on_b"], fields["distance"]) = row[3:9]
+            points.append(point)
+        return points
+
+    def distance(self, a: "Object", b: "Object", max_distance: float,
+                 link_a: int | None = None, link_b: int | None = None) -> float:
+        """The smallest distance between `a` and `b` (negative: they interpenetrate), or inf when
+        nothing of them is within `max_distance` m — `closest_points` without building the points."""
+        rows = self._closest_rows(a, b, max_distance, link_a, link_b)
+        return min(row[8] for row in rows) if rows else math.inf
+
+    def _closest_rows(self, a: "Object", b: "Object", distance: float, link_a: int | None,
+                      link_b: int | None) -> Sequence[Sequence[Any]]:
+        """PyBullet's getClosestPoints rows for `closest_points` and `distance` (kept lean: hot path)."""
+        if self._exited:
+            raise WorldError("this world has exited")
+        if a.world is not self or b.world is not self:
+            raise WorldError(f"'{a.name}' and '{b.name}' are not both in this world")
+        if link_a is None and link_b is None:
+            return p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id)
+        links: dict[str, int] = {}
+        if link_a is not None:
+            links["linkIndexA"] = link_a
+        if link_b is not None:
+            links["linkIndexB"] = link_b
+        return p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
+
+    # -- rendering --------------------------------------------------------------
+    def segmentation(self, width: int, height: int, view: Sequence[float],
+                     projection: Sequence[float]) -> np.ndarray:
+        """(height, width) ids of the objects seen at each pixel (-1: nothing), for OpenGL-style matrices.
+
+        TinyRenderer (works headless), no shadows; see `camera.view_matrix` and `camera.projection_matrix`.
+        """
+        self._check_alive()
+        return segmentation(self.client_id, width, height, view, projection)
+
+    def segmentation_alone(self, obj: "Object", width: int, height: int, view: Sequence[float],
+                           projection: Sequence[float]) -> np.ndarray:
+        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world.
+
+        Rendered from a copy of `obj` in this world's private client (see `solo.py`), so nothing
+        here is hidden, moved or recoloured.
+        """
+        self._check_alive()
+        with self.lock:
+            if self._solo is None:
+                self._solo = SoloRenderer()
+            return self._solo.mask(obj, width, height, view, projection)
 
     # -- objects ----------------------------------------------------------------
-    def _add(self, obj: "Object") -> None:
+    def register(self, obj: "Object") -> None:
+        """Take a newly loaded object into the world's lists (Object's constructor calls this)."""
         self.objects.append(obj)
         self._by_id[obj.id] = obj
         if obj.type == "robot" and self.robot is None:
             self.robot = obj
 
-    def _remove(self, obj: "Object") -> None:
+    def unregister(self, obj: "Object") -> None:
+        """Drop a removed object from the world's lists (Object.remove calls this)."""
         self.objects.remove(obj)
         self._by_id.pop(obj.id, None)
         if self.robot is obj:

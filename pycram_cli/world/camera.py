@@ -39,6 +39,25 @@ def default_camera(world: "BulletWorld") -> Camera:
     return Camera(tuple(eye), tuple(centre))
 
 
+def view_matrix(eye: Sequence[float], target: Sequence[float], up: Sequence[float]) -> tuple[float, ...]:
+    """OpenGL view matrix (16 numbers, column-major) of a camera at `eye` looking at `target`."""
+    return p.computeViewMatrix(list(eye), list(target), list(up))
+
+
+def projection_matrix(left: float, right: float, bottom: float, top: float, near: float,
+                      far: float) -> tuple[float, ...]:
+    """OpenGL projection matrix (16 numbers) of a frustum, possibly off-centre; the window is on the near plane."""
+    return p.computeProjectionMatrix(left, right, bottom, top, near, far)
+
+
+def segmentation(client: int, width: int, height: int, view: Sequence[float],
+                 projection: Sequence[float]) -> np.ndarray:
+    """(height, width) body ids that a PyBullet client shows at each pixel (-1: nothing); TinyRenderer, no shadows."""
+    _, _, _, _, seg = p.getCameraImage(width, height, view, projection, shadow=0, renderer=p.ER_TINY_RENDERER,
+                                       physicsClientId=client)
+    return np.asarray(seg, dtype=np.int64).reshape(height, width)
+
+
 def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
     """RGB image (height, width, 3) of the world from `camera`."""
     cid = world.client_id
@@ -79,8 +98,3 @@ def parse_camera(text: str) -> Camera:
     if not sep:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, got {text!r}")
     return Camera(parse_vector(eye, "camera eye"), parse_vector(target, "camera target"))
-
-
-def vec_or(value: Sequence[float] | None, fallback: Sequence[float]) -> tuple[float, float, float]:
-    v = value if value is not None else fallback
-    return (float(v[0]), float(v[1]), float(v[2]))

@@ -23,6 +23,15 @@ from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
 MESH_SUFFIXES = {".stl", ".obj"}
 
 
+def simulator_models_dir() -> Path | None:
+    """PyBullet's bundled models folder (plane.urdf, ...), a last place to look for model files."""
+    try:
+        import pybullet_data
+    except ImportError:  # pragma: no cover - pybullet always ships it
+        return None
+    return Path(pybullet_data.getDataPath())
+
+
 def _digest(*parts: object) -> str:
     h = hashlib.sha1()
     for part in parts:

@@ -1,11 +1,12 @@
 """Object: anything in a world — a robot, a kitchen, a spoon — loaded from URDF, STL or OBJ."""
 from __future__ import annotations
 
+import contextlib
 import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Iterator, Mapping, Sequence
 
 import pybullet as p
 
@@ -37,14 +38,30 @@ class Attachment:
     transform: tuple[Vec3, Quat]
 
 
+_IDENTITY: tuple[Vec3, Quat] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+
+
 @dataclass(frozen=True)
 class Joint:
+    """A joint as PyBullet indexed it: the joint's index is also its child link's index.
+
+    The constants a kinematic chain of this body needs, read once when the model is indexed, in
+    PyBullet's convention (it chains centre-of-mass frames): `parent_frame` leads from the parent
+    link's centre of mass to the joint origin, turned like the child's centre-of-mass frame at
+    joint position 0; `axis` is given in that frame, as PyBullet reports it (not normalised);
+    `inertial_frame` is the child's centre-of-mass frame in its URDF link frame.
+    """
+
     index: int
     name: str
     type: str  # revolute, prismatic, continuous, fixed, ...
     lower: float
     upper: float
     child_link: str
+    parent_index: int = -1  # the parent link's index (-1: the base)
+    axis: Vec3 = (0.0, 0.0, 0.0)
+    parent_frame: tuple[Vec3, Quat] = _IDENTITY
+    inertial_frame: tuple[Vec3, Quat] = _IDENTITY
 
     @property
     def movable(self) -> bool:
@@ -122,7 +139,7 @@ class Object:
             ids = [j.index for j in self.movable_joints]
             p.setJointMotorControlArray(body, ids, p.VELOCITY_CONTROL, targetVelocities=[0.0] * len(ids),
                                         forces=[_HOLD_FORCE] * len(ids), physicsClientId=cid)
-        world._add(self)
+        world.register(self)
 
     # -- model ------------------------------------------------------------------
     def _index_model(self, declared: Mapping[str, "JointInfo"]) -> None:
@@ -138,7 +155,12 @@ class Object:
             type_name = _JOINT_TYPES.get(kind, "unknown")
             if type_name == "revolute" and (lower > upper or getattr(declared.get(name), "type", "") == "continuous"):
                 type_name, lower, upper = "continuous", -math.inf, math.inf
-            joint = Joint(index, name, type_name, float(lower), float(upper), link)
+            dyn = p.getDynamicsInfo(self.id, index, physicsClientId=cid)
+            orn = info[15]  # getJointInfo reports this orientation inverted (checked against getLinkState)
+            joint = Joint(index, name, type_name, float(lower), float(upper), link,
+                          parent_index=info[16], axis=tuple(info[13]),
+                          parent_frame=(tuple(info[14]), (-orn[0], -orn[1], -orn[2], orn[3])),
+                          inertial_frame=(tuple(dyn[3]), tuple(dyn[4])))  # type: ignore[arg-type]
             self.joints.append(joint)
             self._joint_ids[name] = index
             self._link_ids[link] = index
@@ -184,6 +206,14 @@ class Object:
         if self._inertial is not None:
             return compose((pos, orn), invert(self._inertial))
         return tuple(pos), tuple(orn)  # type: ignore[return-value]
+
+    def get_com_pose(self) -> tuple[Vec3, Quat]:
+        """PyBullet's own base pose: the base's centre-of-mass (inertial) frame in the world frame.
+
+        One call, no conversion: cheap enough to watch motion at every simulation step, and the
+        frame PyBullet's joint frames start from. `get_pose` is the base link's URDF frame.
+        """
+        return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)  # type: ignore[return-value]
 
     def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
@@ -270,11 +300,30 @@ class Object:
                 if old.get(joint.name) != value:
                     self.world.manipulation_event(self, joint.name, old.get(joint.name), value)
 
-    def _reset_joints(self, positions: Mapping[str, float]) -> None:
-        """Put joints back without checks or events (used when undoing drift)."""
+    def reset_joints(self, positions: Mapping[str, float]) -> None:
+        """Set joints (velocity 0) without limit checks or events; attached objects do not follow.
+
+        For putting joints back (drift, trial configurations); `set_joint_positions` is the checked way.
+        """
         cid = self.world.client_id
         for name, value in positions.items():
-            p.resetJointState(self.id, self._joint_ids[name], value, 0.0, physicsClientId=cid)
+            p.resetJointState(self.id, self.get_joint_id(name), value, 0.0, physicsClientId=cid)
+
+    @contextlib.contextmanager
+    def joints_kept(self, names: Iterable[str]) -> Iterator[None]:
+        """`with obj.joints_kept(names):` — these joints' positions and velocities are put back bitwise on leaving.
+
+        Cheaper than a world snapshot when a query only tries joint values; attached objects are
+        not moved (use `world.snapshot()` when they follow).
+        """
+        ids = [self.get_joint_id(name) for name in names]
+        cid = self.world.client_id
+        saved = [(s[0], s[1]) for s in p.getJointStates(self.id, ids, physicsClientId=cid)] if ids else []
+        try:
+            yield
+        finally:
+            for jid, (position, velocity) in zip(ids, saved):
+                p.resetJointState(self.id, jid, position, velocity, physicsClientId=cid)
 
     # -- attachments -----------------------------------------------------------
     def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
@@ -312,11 +361,17 @@ class Object:
                 new = Attachment(att.parent, self, att.parent_link, att.child_link, transform)
                 self.attachments[other] = new
                 other.attachments[self] = new
-        self._move_attached()
+        self.move_attached()
 
-    def _move_attached(self, visited: set[int] | None = None) -> None:
-        """Move every object attached to this one (and theirs, recursively) to its kept offset."""
-        visited = visited if visited is not None else {self.id}
+    def move_attached(self) -> None:
+        """Move every object attached to this one (and theirs, recursively) to its kept offset.
+
+        Moving this object through the Object methods does this by itself; the world calls it
+        after each simulation step, when PyBullet has moved the parent.
+        """
+        self._move_attached({self.id})
+
+    def _move_attached(self, visited: set[int]) -> None:
         cid = self.world.client_id
         for child, att in list(self.attachments.items()):
             if att.parent is not self or child.id in visited:
@@ -335,7 +390,7 @@ class Object:
         for other in list(self.attachments):
             self.detach(other)
         p.removeBody(self.id, physicsClientId=self.world.client_id)
-        self.world._remove(self)
+        self.world.unregister(self)
 
     def __repr__(self) -> str:
         return f"Object({self.name!r}, type={self.type!r}, id={self.id})"

@@ -38,7 +38,7 @@ def load_spec(spec: WorldSpec, mode: str = "direct") -> BulletWorld:
             for att in item.attach:
                 with _reported_at(item.where):
                     objects[att.to].attach(objects[item.name], att.parent_link, att.child_link)
-        world.source = spec.path  # type: ignore[attr-defined]
+        world.source = spec.path
     except BaseException:
         world.exit()
         raise

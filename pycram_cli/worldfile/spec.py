@@ -26,7 +26,7 @@ from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
 from ..schema import check_keys, expect, is_number, number_list, quaternion
-from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model
+from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
 from ..yamlsource import LList, LMap, load_yaml
 
 WORLD_KEYS = ("description", "gravity", "objects")
@@ -77,12 +77,9 @@ class WorldSpec:
 
 def search_dirs(base: Path) -> list[Path]:
     dirs = [base, resources_dir()]
-    try:
-        import pybullet_data
-
-        dirs.append(Path(pybullet_data.getDataPath()))
-    except ImportError:  # pragma: no cover - pybullet always ships it
-        pass
+    data = simulator_models_dir()
+    if data is not None:
+        dirs.append(data)
     return dirs
 
 

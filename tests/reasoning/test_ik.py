@@ -30,7 +30,7 @@ def test_the_kinematic_chain_agrees_with_pybullet(scene, tool):
     robot = scene.robot
     robot.set_position_and_orientation((0.3, -0.2, 0.0), (0.0, 0.0, math.sin(0.4), math.cos(0.4)))
     chain = chain_for(robot, robot.get_link_id(tool))
-    names = [j.name for j in chain.joints if j.kind in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC)]
+    names = [j.name for j in chain.joints if j.movable]
     problem = Problem(robot, chain, names)
     rng = np.random.default_rng(7)
     lo = np.where(np.isfinite(problem.lo), problem.lo, -math.pi)

@@ -125,3 +125,14 @@ def test_world_events_fire_on_attach_detach_and_manipulation(world, data_dir):
     cabinet.set_joint_position("slide", 0.1)
     robot.set_joint_position("slide", 0.1)  # robots moving their own joints are not manipulation
     assert seen == [("attach", "robot", "cube"), ("detach", "robot", "cube"), ("manipulate", "cabinet", "slide", 0.1)]
+
+
+def test_a_world_is_connected_until_it_exits():
+    world = BulletWorld()
+    assert world.is_connected()
+    world.exit()
+    assert not world.is_connected()
+
+
+def test_a_world_made_in_code_has_no_source_file(world):
+    assert world.source is None

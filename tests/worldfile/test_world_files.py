@@ -53,6 +53,15 @@ def test_a_valid_world_loads_with_joints_and_attachments(tmp_path, data_dir):
         world.exit()
 
 
+def test_a_loaded_world_remembers_its_world_file(tmp_path, data_dir):
+    path = write(tmp_path, VALID.format(data=data_dir))
+    world = load_world(path)
+    try:
+        assert world.source == path
+    finally:
+        world.exit()
+
+
 def test_file_paths_resolve_against_the_world_files_folder(tmp_path, data_dir):
     (tmp_path / "cube.obj").write_text((data_dir / "cube.obj").read_text())
     world = load_world(write(tmp_path, "objects:\n  - {name: c, type: box, file: cube.obj}\n"))
