@@ -6,15 +6,16 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from ..errors import InputError, Location
 from ..failures import ReachabilityFailure
 from ..world.pose import invert, compose
 from .base import ProcessModule, Robot
 from .registry import process_module
 
 
-def _angles_in_camera(robot: Robot, target: Sequence[float]) -> np.ndarray:
+def _angles_in_camera(robot: Robot, frame: str, target: Sequence[float]) -> np.ndarray:
     """Horizontal and vertical angle of the target off the optical axis (+z forward, +x right, +y down)."""
-    camera = robot.body.get_link_position_and_orientation(robot.description.camera.frame)
+    camera = robot.body.get_link_position_and_orientation(frame)
     local = compose(invert(camera), (tuple(target), (0.0, 0.0, 0.0, 1.0)))[0]
     x, y, z = local
     return np.array([math.atan2(x, z), math.atan2(y, z)])
@@ -22,7 +23,10 @@ def _angles_in_camera(robot: Robot, target: Sequence[float]) -> np.ndarray:
 
 def look_at(robot: Robot, target: Sequence[float]) -> None:
     """Newton steps on (pan, tilt) with a numeric Jacobian; joint limits respected."""
-    head = robot.description.head
+    head, camera = robot.description.head, robot.description.camera
+    if head is None or camera is None:
+        raise InputError(f"robot '{robot.description.name}' cannot look: it has no "
+                         f"{'head' if head is None else 'camera'} in its description", Location(str(robot.description.path)))
     body = robot.body
     pan, tilt = body.joint(head.pan_joint), body.joint(head.tilt_joint)
     q = np.array([body.get_joint_position(pan.name), body.get_joint_position(tilt.name)])
@@ -39,7 +43,7 @@ def look_at(robot: Robot, target: Sequence[float]) -> None:
     error = np.zeros(2)
     for _ in range(8):
         apply(q)
-        error = _angles_in_camera(robot, target)
+        error = _angles_in_camera(robot, camera.frame, target)
         if np.max(np.abs(error)) < 1e-4:
             break
         jac = np.zeros((2, 2))
@@ -47,12 +51,12 @@ def look_at(robot: Robot, target: Sequence[float]) -> None:
             dq = q.copy()
             dq[k] += 1e-4
             apply(dq)
-            jac[:, k] = (_angles_in_camera(robot, target) - error) / 1e-4
+            jac[:, k] = (_angles_in_camera(robot, camera.frame, target) - error) / 1e-4
         step = np.linalg.lstsq(jac, -error, rcond=None)[0]
         q = np.clip(q + step, lo, hi)
     apply(q)
     body.set_joint_positions({pan.name: float(q[0]), tilt.name: float(q[1])})
-    error = _angles_in_camera(robot, target)
+    error = _angles_in_camera(robot, camera.frame, target)
     if np.max(np.abs(error)) > math.radians(2.0):
         raise ReachabilityFailure(
             f"the head cannot turn far enough to look at ({', '.join(f'{v:.2f}' for v in target)}): "

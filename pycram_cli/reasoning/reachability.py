@@ -27,7 +27,6 @@ from .ik import solve
 if TYPE_CHECKING:
     from ..world import Object
 
-GRASPS = ("front", "top", "left", "right")
 #: the robot touches an object when their collision shapes are closer than this (m)
 TOUCH = 0.001
 

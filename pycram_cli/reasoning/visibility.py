@@ -91,8 +91,9 @@ def _robot_camera(world: "BulletWorld") -> tuple["Object", Any]:
     if robot is None:
         raise ValueError("no camera given and the world has no robot to take it from")
     desc = description_for(robot)
-    if desc is None:
-        raise ValueError(f"no camera given and robot '{robot.name}' has no description naming its camera")
+    if desc is None or desc.camera is None:
+        why = "has no description naming its camera" if desc is None else "has no camera in its description"
+        raise ValueError(f"no camera given and robot '{robot.name}' {why}")
     return robot, desc.camera
 
 
@@ -114,7 +115,7 @@ def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
         if robot is None:
             raise ValueError(f"camera link '{camera}': the world has no robot")
         desc = description_for(robot)
-        if desc is not None and camera == desc.camera.frame:
+        if desc is not None and desc.camera is not None and camera == desc.camera.frame:
             return _frame_camera(robot, desc.camera)
         pos = robot.get_link_position(camera)  # KeyError with a suggestion for unknown links
         return CameraPose(np.asarray(pos, dtype=float), look_at(pos, centre), None, POSITION_NEAR, camera)
@@ -125,9 +126,9 @@ def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
         position = check_position(items[0], "camera position")
         orientation = check_quaternion(items[1], "camera orientation")
         fov, near = DEFAULT_FOV, DEFAULT_NEAR
-        if world.robot is not None and description_for(world.robot) is not None:
-            cam = description_for(world.robot).camera
-            fov, near = (cam.horizontal_fov, cam.vertical_fov), cam.near
+        desc = description_for(world.robot) if world.robot is not None else None
+        if desc is not None and desc.camera is not None:
+            fov, near = (desc.camera.horizontal_fov, desc.camera.vertical_fov), desc.camera.near
         return CameraPose(np.asarray(position), quat_to_matrix(orientation), fov, near, "pose")
     position = check_position(items, "camera position")
     return CameraPose(np.asarray(position), look_at(position, centre), None, POSITION_NEAR,

@@ -17,18 +17,16 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import pybullet_data
+
 from ..paths import cache_dir
 from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
 
 MESH_SUFFIXES = {".stl", ".obj"}
 
 
-def simulator_models_dir() -> Path | None:
+def simulator_models_dir() -> Path:
     """PyBullet's bundled models folder (plane.urdf, ...), a last place to look for model files."""
-    try:
-        import pybullet_data
-    except ImportError:  # pragma: no cover - pybullet always ships it
-        return None
     return Path(pybullet_data.getDataPath())
 
 

@@ -10,6 +10,7 @@ from typing import Iterable, Iterator, Mapping, Sequence
 
 import pybullet as p
 
+from ..errors import did_you_mean
 from .bullet_world import BulletWorld, WorldError
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, mesh_urdf, prepare_urdf
 from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
@@ -415,7 +416,5 @@ def _check_color(color: Sequence[float] | None, name: str) -> tuple[float, float
 
 
 def _unknown(prefix: str, name: str, known: Iterable[str]) -> str:
-    from ..errors import did_you_mean
-
     hint = did_you_mean(name, known)
     return f"{prefix} '{name}'" + (f" ({hint})" if hint else "")
