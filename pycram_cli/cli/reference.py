@@ -1,0 +1,71 @@
+"""The reference of designators, queries and value kinds, generated from their declarations.
+
+    python -m pycram_cli.cli.reference            # print it
+    python -m pycram_cli.cli.reference --write    # write docs/reference.md
+
+`tests/cli/test_reference.py` fails when docs/reference.md is not what the declarations say.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..designators import DESIGNATORS
+from ..kinds import KINDS
+from ..reasoning import QUERIES
+
+DOCS = Path(__file__).resolve().parents[2] / "docs" / "reference.md"
+
+
+def _cell(text: object) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def render() -> str:
+    """The whole reference as Markdown."""
+    lines = ["# Reference: designators, queries and values", "",
+             "Generated from the declarations by `python -m pycram_cli.cli.reference --write`; do not edit by hand.",
+             "`pycram designators` and `pycram query --help` show the same.", "", "## Motion designators", ""]
+    for spec in DESIGNATORS.values():
+        needs = f" Needs a robot with: {', '.join(spec.needs)}." if spec.needs else ""
+        lines += [f"### `{spec.name}`", "", f"{spec.doc} Performed by the `{spec.module}` process module "
+                  f"(drives: {spec.resource or 'nothing'}).{needs}", "",
+                  "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
+        for slot in spec.slots:
+            need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
+            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default or '-')} | "
+                         f"{_cell(slot.doc)} |")
+        if spec.one_of:
+            lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in spec.one_of)}."]
+        lines.append("")
+    lines += ["## Reasoning queries", "", "In a plan: `QUERY: {PARAMETER: value, ...}`; on the command line: "
+              "`pycram query QUERY ARGS [--OPTION VALUE]`.", ""]
+    for query in QUERIES.values():
+        lines += [f"### `{query.name}`", "", query.doc, "", f"    pycram query {query.usage()}", "",
+                  "| parameter | | value | default | meaning |", "|---|---|---|---|---|"]
+        for param in query.params:
+            where = "positional" if param.positional else f"`{param.option}`"
+            default = param.default_doc or (param.default if param.default not in (None, []) else "-")
+            lines.append(f"| `{param.name}` | {where}{', required' if param.required else ''} | "
+                         f"{_cell(KINDS[param.kind].doc)} | {_cell(default)} | {_cell(param.doc)} |")
+        lines.append("")
+    lines += ["## Value kinds", "", "| kind | written as |", "|---|---|"]
+    lines += [f"| `{kind.name}` | {_cell(kind.doc)} |" for kind in KINDS.values()]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m pycram_cli.cli.reference", description=__doc__.splitlines()[0])
+    parser.add_argument("--write", action="store_true", help=f"write {DOCS}")
+    args = parser.parse_args(argv)
+    if args.write:
+        DOCS.write_text(render())
+        print(f"wrote {DOCS}")
+    else:
+        sys.stdout.write(render())
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
