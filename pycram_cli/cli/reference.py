@@ -1,7 +1,7 @@
 """The reference of designators, queries and value kinds, generated from their declarations.
 
-    python -m pycram_cli.cli.reference            # print it
-    python -m pycram_cli.cli.reference --write    # write docs/reference.md
+    python -m pycram_cli.cli.reference                              # print it
+    python -m pycram_cli.cli.reference --write docs/reference.md    # write it (from the checkout's top)
 
 `tests/cli/test_reference.py` fails when docs/reference.md is not what the declarations say.
 """
@@ -15,9 +15,6 @@ from ..designators import DESIGNATORS
 from ..kinds import KINDS
 from ..reasoning import QUERIES
 
-DOCS = Path(__file__).resolve().parents[2] / "docs" / "reference.md"
-
-
 def _cell(text: object) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
@@ -25,7 +22,7 @@ def _cell(text: object) -> str:
 def render() -> str:
     """The whole reference as Markdown."""
     lines = ["# Reference: designators, queries and values", "",
-             "Generated from the declarations by `python -m pycram_cli.cli.reference --write`; do not edit by hand.",
+             "Generated from the declarations by `python -m pycram_cli.cli.reference --write docs/reference.md`; do not edit by hand.",
              "`pycram designators` and `pycram query --help` show the same.", "", "## Motion designators", ""]
     for spec in DESIGNATORS.values():
         needs = f" Needs a robot with: {', '.join(spec.needs)}." if spec.needs else ""
@@ -57,11 +54,11 @@ def render() -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m pycram_cli.cli.reference", description=__doc__.splitlines()[0])
-    parser.add_argument("--write", action="store_true", help=f"write {DOCS}")
+    parser.add_argument("--write", type=Path, metavar="FILE", help="write the reference to FILE")
     args = parser.parse_args(argv)
     if args.write:
-        DOCS.write_text(render())
-        print(f"wrote {DOCS}")
+        args.write.write_text(render())
+        print(f"wrote {args.write}")
     else:
         sys.stdout.write(render())
     return 0
