@@ -14,11 +14,6 @@ from ..worldfile.loader import load_world
 F = TypeVar("F", bound=Callable[..., object])
 
 
-def resolve_world_path(value: str | None) -> Path:
-    """A world file path; a bare name like `kitchen` means a bundled world (None: the default world)."""
-    return find_world(value)
-
-
 def json_option(func: F) -> F:
     return click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")(func)  # type: ignore[return-value]
 
@@ -49,7 +44,7 @@ def world_option(func: F) -> F:
 @contextlib.contextmanager
 def open_world(value: str | None, mode: str = "direct") -> Iterator[tuple[BulletWorld, Path]]:
     """Load a world file (or bundled world) for one command; it exits when the command is done."""
-    path = resolve_world_path(value)
+    path = find_world(value)
     world = load_world(path, mode=mode)
     try:
         yield world, path

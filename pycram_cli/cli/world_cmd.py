@@ -10,7 +10,8 @@ from ..world.camera import default_camera, parse_camera, render, write_png
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
 from . import console
-from .options import gui_option, json_option, resolve_world_path, wait_for_window
+from ..paths import find_world
+from .options import gui_option, json_option, wait_for_window
 
 
 @click.group()
@@ -28,7 +29,7 @@ def _fmt(values: tuple[float, ...] | list[float]) -> str:
 @gui_option
 def show(world_file: str | None, as_json: bool, gui: bool) -> None:
     """List the objects of WORLD (default: the bundled kitchen) with their poses and joints."""
-    path = resolve_world_path(world_file)
+    path = find_world(world_file)
     spec = parse_world(path)
     sim = load_spec(spec, mode="gui" if gui else "direct")
     try:
@@ -81,7 +82,7 @@ def render_cmd(world_file: str | None, output: Path, camera: str | None, size: s
         cam = parse_camera(camera) if camera else None
     except ValueError as exc:
         raise InputError(str(exc), Location("--camera")) from None
-    path = resolve_world_path(world_file)
+    path = find_world(world_file)
     sim = load_spec(parse_world(path))
     try:
         image = render(sim, cam or default_camera(sim), width, height)

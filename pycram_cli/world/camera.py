@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 import pybullet as p
 
+from ..kinds import parse_vector
+
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
 
@@ -81,15 +83,11 @@ def write_png(path: Path, rgb: np.ndarray) -> None:
     Path(path).write_bytes(png)
 
 
-def parse_vector(text: str, what: str) -> tuple[float, float, float]:
-    parts = [s for s in text.replace(" ", "").split(",") if s]
-    if len(parts) != 3:
+def _point(text: str, what: str) -> tuple[float, float, float]:
+    values = parse_vector(text, 3)
+    if values is None:
         raise ValueError(f"{what}: expected x,y,z (three numbers), got {text!r}")
-    try:
-        x, y, z = (float(s) for s in parts)
-    except ValueError:
-        raise ValueError(f"{what}: expected three numbers, got {text!r}") from None
-    return (x, y, z)
+    return (values[0], values[1], values[2])
 
 
 def parse_camera(text: str) -> Camera:
@@ -97,4 +95,4 @@ def parse_camera(text: str) -> Camera:
     eye, sep, target = text.partition(":")
     if not sep:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, got {text!r}")
-    return Camera(parse_vector(eye, "camera eye"), parse_vector(target, "camera target"))
+    return Camera(_point(eye, "camera eye"), _point(target, "camera target"))
