@@ -52,13 +52,17 @@ def _names(folder: Path) -> list[str]:
 
 
 def _find(value: str, base: Path, bundled_folder: Path) -> Path | None:
+    """`value` as a path relative to `base`, else a name in the working folder's `plans/` or `worlds/` (so that a
+    checkout's own files win over installed copies), else a bundled name."""
     path = Path(value).expanduser()
     if path.is_absolute():
         return path if path.is_file() else None
     names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]
-    for candidate in [base / n for n in names] + [bundled_folder / n for n in names]:
-        if candidate.is_file():
-            return candidate
+    local = Path.cwd() / bundled_folder.name
+    for folder in (base, local, bundled_folder):
+        for name in names:
+            if (folder / name).is_file():
+                return folder / name
     return None
 
 

@@ -10,10 +10,25 @@ from pathlib import Path
 import click
 
 from ..errors import InputError, InputErrors, Location, as_list
+from ..paths import find_plan, find_world
 from ..scenario import prepare
 from ..worldfile.spec import parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
+
+
+def _resolve(value: str) -> Path:
+    """A file path, or the name of a plan or world (the working folder's `plans/`/`worlds/`, then the bundled ones)."""
+    path = Path(value)
+    if path.exists() or path.suffix in (".yaml", ".yml") and path.parent != Path("."):
+        return path
+    try:
+        return find_plan(value)
+    except InputError:
+        try:
+            return find_world(value)
+        except InputError:
+            return path  # reported as not found, with the path as given
 
 
 def kind_of(path: Path) -> str:
@@ -27,12 +42,13 @@ def kind_of(path: Path) -> str:
 
 
 @click.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True)
 @click.option("--world", "world_file", metavar="WORLD", help="Check plans against this world (default: each plan's own).")
-def validate(files: tuple[Path, ...], world_file: str | None) -> None:
-    """Check world and plan FILES as `run` would; report every problem with file, line and key."""
+def validate(files: tuple[str, ...], world_file: str | None) -> None:
+    """Check world and plan FILES (or bundled names) as `run` would; report every problem with file, line and key."""
     problems: list[InputError] = []
-    for path in files:
+    for value in files:
+        path = _resolve(value)
         try:
             kind = kind_of(path)
             if kind == "world":
