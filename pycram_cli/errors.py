@@ -68,6 +68,11 @@ class InputError(PycramError):
     def __str__(self) -> str:
         return self.format()
 
+    def to_json(self) -> dict[str, object]:
+        """The problem as data: where (file, line, column), which key, what, and a suggestion."""
+        return {"file": self.location.file, "line": self.location.line, "column": self.location.column,
+                "key": self.key, "message": self.message, "suggestion": self.suggestion}
+
 
 class InputErrors(PycramError):
     """Several problems found together (validation reports them all at once)."""

@@ -19,7 +19,22 @@ out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty()
 err = Console(stderr=True, highlight=False, soft_wrap=True, width=None if sys.stderr.isatty() else 240)
 
 
+_quiet = False
+
+
+def set_quiet(value: bool) -> None:
+    """`-q`: only results and errors (no info lines, no progress views)."""
+    global _quiet
+    _quiet = value
+
+
+def is_quiet() -> bool:
+    return _quiet
+
+
 def info(message: str) -> None:
+    if _quiet:
+        return
     err.print(f"[cyan]info[/]: {message}", markup=True) if err.is_terminal else err.print(f"info: {message}", markup=False)
 
 

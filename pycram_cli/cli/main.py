@@ -16,17 +16,36 @@ EXIT_INPUT = 2
 EXIT_INTERNAL = 3
 
 
+#: options of the whole program that may also be written after the command (`pycram run x --verbose`)
+GLOBAL_FLAGS = ("--verbose", "-q", "--quiet")
+
+
 class PycramGroup(click.Group):
-    """Turns every error into a message and an exit code; never a traceback for bad input."""
+    """Turns every error into a message and an exit code; never a traceback for bad input.
+
+    With `--json`, input errors are also given as a JSON object on stdout, so that a program
+    reading stdout always gets JSON.
+    """
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        head, sep, tail = (args[: args.index("--")], ["--"], args[args.index("--") + 1:]) if "--" in args else (args, [], [])
+        flags = [a for a in head if a in GLOBAL_FLAGS]
+        ctx.meta["pycram.json"] = "--json" in head
+        return super().parse_args(ctx, flags + [a for a in head if a not in GLOBAL_FLAGS] + sep + tail)
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except (InputError, InputErrors) as exc:
-            console.input_errors(as_list(exc))
+            problems = as_list(exc)
+            console.input_errors(problems)
+            if ctx.meta.get("pycram.json"):
+                console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [p.to_json() for p in problems]})
             ctx.exit(EXIT_INPUT)
         except PycramError as exc:
             console.error(str(exc))
+            if ctx.meta.get("pycram.json"):
+                console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [{"message": str(exc)}]})
             ctx.exit(EXIT_INPUT)
         except (click.exceptions.Exit, click.exceptions.Abort, click.ClickException):
             raise
@@ -45,14 +64,16 @@ def _show_warning(message: Any, category: type, filename: str, lineno: int, file
 
 
 @click.group(cls=PycramGroup, context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
-@click.option("--verbose", is_flag=True, help="Show PyBullet's own console output and full tracebacks.")
+@click.option("--verbose", is_flag=True, help="Show PyBullet's own console output and full tracebacks (anywhere on the line).")
+@click.option("-q", "--quiet", "be_quiet", is_flag=True, help="Only results and errors: no progress, no info lines.")
 @click.version_option(package_name="pycram-cli", prog_name="pycram")
-def cli(verbose: bool) -> None:
+def cli(verbose: bool, be_quiet: bool) -> None:
     """Run robot plans and ask reasoning questions in a lightweight PyBullet world.
 
     With no world given, commands use the bundled kitchen world.
     """
     quiet.set_verbose(verbose)
+    console.set_quiet(be_quiet)
     warnings.showwarning = _show_warning
 
 

@@ -139,7 +139,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     world = scenario.load_world(mode="gui" if gui else "direct")
     try:
         view: Any
-        if as_json:
+        if as_json or console.is_quiet():
             view = QuietView()
         elif console.err.is_terminal:
             view = LiveView()

@@ -177,7 +177,9 @@ def _reachable(call: Call) -> QueryAnswer:
 def _say_reachable(answer: QueryAnswer) -> str:
     a, d = answer.args, answer.details
     grasp = f", {_place(a['grasp'])} grasp" if a.get("grasp") is not None else ""
-    errors = f"{_mm(d['position_error'])} left" + (f", {_deg(d['orientation_error'])} off" if grasp else "")
+    errors = f"{_mm(d['position_error'])} from the target" + (f", {_deg(d['orientation_error'])} off" if grasp else "")
+    if not answer.result:
+        errors = f"{_mm(d['position_error'])} short of the target" + (f", {_deg(d['orientation_error'])} off" if grasp else "")
     target = _place(a["target"])
     if answer.result:
         return f"{target} is reachable with the {d['arm']} arm{grasp} ({errors})"
@@ -205,7 +207,7 @@ def _blocking(call: Call) -> QueryAnswer:
 def _say_blocking(answer: QueryAnswer) -> str:
     a, d = answer.args, answer.details
     target = _place(a["target"])
-    reach = "" if d["reachable"] else f" (out of reach: best solution, {_mm(d['position_error'])} left)"
+    reach = "" if d["reachable"] else f" (out of reach: the best solution stops {_mm(d['position_error'])} short of the target)"
     if answer.result:
         return f"reaching {target} with the {d['arm']} arm touches: {', '.join(answer.result)}{reach}"
     return f"nothing blocks the {d['arm']} arm reaching {target}{reach}"
