@@ -8,7 +8,9 @@ Both run on the default kitchen world (`worlds/kitchen.yaml`), each in its own c
 loaded in the same process (the baseline hides bodies by changing their colours, which
 must not disturb ours). Perception, contact and stability queries run on the world as
 loaded (robot at its start pose, head tilted towards the counter); reachable and blocking
-after the robot has driven to the demo's counter pose (0.65, 0.7), as in the demo.
+after the robot has driven to the demo's counter pose (0.65, 0.7), as in the demo. The
+Fetch rows do the same on the kitchen with a Fetch (`worlds/kitchen_fetch.yaml`), with the
+Fetch at the counter pose of `plans/fetch_milk.yaml` (0.8, 1.0) and the same targets.
 
 The baseline is the design's method (thesis §4.4): visible/occluding render the whole
 camera frame at 256×256 twice (scene, then the object alone with every other body made
@@ -41,6 +43,9 @@ from pycram_cli.world.pose import quat_multiply  # noqa: E402
 WORLD = REPO / "worlds" / "kitchen.yaml"
 COUNTER_POSE = ((0.65, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
 UNREACHABLE = (1.3, 0.6, 1.9)
+FETCH_WORLD = REPO / "worlds" / "kitchen_fetch.yaml"
+FETCH_COUNTER_POSE = ((0.8, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+FETCH_UNREACHABLE = (1.3, 0.6, 2.4)  # the Fetch reaches higher than the PR2: 2.1 m with its torso up
 
 
 # -- the design's straightforward method --------------------------------------------------
@@ -206,6 +211,26 @@ def main(argv: list[str] | None = None) -> int:
         lambda: base.reachable(UNREACHABLE, left), 30.0, fast, slow * 3)
     run("blocking milk (left)", lambda: blocking(o["milk"], robot, left),
         lambda: base.blocking(b["milk"], left), 5.0, fast, slow * 3)
+    ow.exit()
+    bw.exit()
+
+    # the same questions for the Fetch (one arm, `arm`; head camera head_camera_rgb_optical_frame)
+    ow, bw = load_world(FETCH_WORLD), load_world(FETCH_WORLD)
+    o = {x.name: x for x in ow.objects}
+    b = {x.name: x for x in bw.objects}
+    base = Baseline(bw)
+    robot = ow.robot
+    tool = description_for(robot).arm("arm").tool_frame
+    print(f"benchmarking on {FETCH_WORLD.relative_to(REPO)}", file=sys.stderr)
+    run("fetch: visible milk", lambda: visible(o["milk"]), lambda: base.visible(b["milk"]), 5.0, fast, slow * 3)
+    for world in (ow, bw):
+        world.robot.set_position_and_orientation(*FETCH_COUNTER_POSE)
+    run("fetch: reachable milk (arm, top)", lambda: reachable(o["milk"], robot, tool, grasp="top"),
+        lambda: base.reachable(b["milk"], tool, "top"), 5.0, fast, slow * 3)
+    run("fetch: reachable unreachable (arm)", lambda: reachable(FETCH_UNREACHABLE, robot, tool),
+        lambda: base.reachable(FETCH_UNREACHABLE, tool), 30.0, fast, slow * 3)
+    run("fetch: blocking milk (arm, top)", lambda: blocking(o["milk"], robot, tool, grasp="top"),
+        lambda: base.blocking(b["milk"], tool, "top"), 5.0, fast, slow * 3)
 
     header = ("query", "ours (median)", "baseline (median)", "ratio", "target", "met?", "ours says", "baseline says")
     table = [header] + [(r[0], fmt_ms(r[1]), fmt_ms(r[2]), f"{r[3]:.0f}×", "≤ " + r[4], "yes" if r[5] else "NO",
