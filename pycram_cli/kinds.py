@@ -20,6 +20,11 @@ from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 from .errors import did_you_mean
 from .schema import is_number, is_vector
 
+
+def arm_phrase(name: str) -> str:
+    """How an arm is named in a sentence: "the left arm", and "the arm" for an arm called `arm` (a Fetch)."""
+    return f"the {name}" if name == "arm" or name.endswith(("arm", "_arm", "-arm")) else f"the {name} arm"
+
 if TYPE_CHECKING:
     from .robots import RobotDescription
 
@@ -170,7 +175,7 @@ def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | Non
     if isinstance(value, str) and value:
         poses = robots.poses(arm)
         if robots.known and robots.descriptions and value not in poses:
-            whose = f"the {arm} arm of {robots.label}" if arm else robots.label
+            whose = f"{arm_phrase(arm)} of {robots.label}" if arm else robots.label
             return f"{whose} has no pose '{value}' ({_hint(value, poses, 'pose')})"
         return None
     if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):

@@ -6,6 +6,7 @@ from typing import Any, Callable, Sequence
 from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ReachabilityFailure
 from ..process_modules import Robot
+from ..kinds import arm_phrase
 from ..process_modules.arms import reach
 from ..process_modules.manipulation import grasp_orientation
 from ..world import Object
@@ -57,5 +58,5 @@ def choose_arm_and_grasp(robot: Robot, position_of: Callable[[str, Any], Sequenc
                                  + " (too wide between the fingers)")
         raise ReachabilityFailure(f"no arm can reach {what}")
     grasp_text = f" with a {best[2]} grasp" if isinstance(best[2], str) else ""
-    raise ReachabilityFailure(f"no arm can reach {what}: best is the {best[1]} arm{grasp_text}, "
+    raise ReachabilityFailure(f"no arm can reach {what}: best is {arm_phrase(best[1])}{grasp_text}, "
                               f"{best[0] * 100:.1f} cm away", position_error=best[0])

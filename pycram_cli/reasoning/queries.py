@@ -9,6 +9,7 @@ import math
 from typing import Any
 
 from ..errors import did_you_mean
+from ..kinds import arm_phrase
 from .contact import contact
 from .query import Call, QueryAnswer, QueryParam, QuerySpec, declare_query, finite
 from .reachability import ReachableAnswer, reachable, touching_at
@@ -182,8 +183,8 @@ def _say_reachable(answer: QueryAnswer) -> str:
         errors = f"{_mm(d['position_error'])} short of the target" + (f", {_deg(d['orientation_error'])} off" if grasp else "")
     target = _place(a["target"])
     if answer.result:
-        return f"{target} is reachable with the {d['arm']} arm{grasp} ({errors})"
-    return f"{target} is NOT reachable (best: the {d['arm']} arm{grasp}, {errors})"
+        return f"{target} is reachable with {arm_phrase(d['arm'])}{grasp} ({errors})"
+    return f"{target} is NOT reachable (best: {arm_phrase(d['arm'])}{grasp}, {errors})"
 
 
 declare_query(QuerySpec(
@@ -209,8 +210,8 @@ def _say_blocking(answer: QueryAnswer) -> str:
     target = _place(a["target"])
     reach = "" if d["reachable"] else f" (out of reach: the best solution stops {_mm(d['position_error'])} short of the target)"
     if answer.result:
-        return f"reaching {target} with the {d['arm']} arm touches: {', '.join(answer.result)}{reach}"
-    return f"nothing blocks the {d['arm']} arm reaching {target}{reach}"
+        return f"reaching {target} with {arm_phrase(d['arm'])} touches: {', '.join(answer.result)}{reach}"
+    return f"nothing blocks {arm_phrase(d['arm'])} reaching {target}{reach}"
 
 
 declare_query(QuerySpec(

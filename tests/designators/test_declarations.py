@@ -96,3 +96,13 @@ def test_pycram_designators_json_and_unknown_type():
     assert [(s["name"], s["required"]) for s in data[0]["slots"]] == [("object", True), ("target", True), ("arm", False)]
     bad = runner.invoke(cli, ["designators", "pickup"])
     assert bad.exit_code == 2 and "did you mean 'pick-up'?" in bad.output
+
+
+def test_pycram_designators_shows_arm_and_grasp_names_per_bundled_robot():
+    import json
+
+    data = json.loads(CliRunner().invoke(cli, ["designators", "pick-up", "--json"]).stdout)
+    arm = next(s for s in data[0]["slots"] if s["name"] == "arm")
+    assert arm["values_per_robot"] == {"fetch": ["arm"], "pr2": ["left", "right"]}
+    text = CliRunner().invoke(cli, ["designators", "pick-up"]).output
+    assert "fetch: arm" in text and "pr2: left, right" in text
