@@ -64,6 +64,3 @@ def designators(type_name: str | None, as_json: bool) -> None:
         if spec.one_of:
             console.plain(f"  give at least one of: {', '.join(spec.one_of)}")
         console.plain("")
-
-
-COMMANDS = [designators]

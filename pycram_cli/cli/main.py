@@ -1,7 +1,12 @@
-"""`pycram`: the command-line entry point. Each command group lives in its own module and lists its
-commands in `COMMANDS`; they are registered here, explicitly, in the order `pycram --help` shows them."""
+"""`pycram`: the command-line entry point.
+
+Each command group lives in its own module and is registered here, explicitly, in `COMMANDS`
+(in the order `pycram --help` shows them). A command's module is imported only when that
+command runs, so `pycram --help` and light commands start without loading PyBullet.
+"""
 from __future__ import annotations
 
+import importlib
 import sys
 import warnings
 from typing import Any
@@ -9,12 +14,23 @@ from typing import Any
 import click
 
 from ..errors import InputError, InputErrors, PycramError, as_list
-from ..world import quiet
-from . import console, designators_cmd, query_cmd, run_cmd, trace_cmd, validate_cmd, world_cmd
+from .. import quiet
+from . import console
 
 EXIT_INPUT = 2
 EXIT_INTERNAL = 3
 
+
+#: every command: name -> (its module in pycram_cli.cli, the click command's name there, its one-line help)
+COMMANDS: dict[str, tuple[str, str, str]] = {
+    "run": ("run_cmd", "run", "Validate and run PLAN (a plan file, or the name of a bundled plan)."),
+    "validate": ("validate_cmd", "validate",
+                 "Check world and plan FILES (or bundled names) as `run` would; report every problem with file, line and key."),
+    "query": ("query_cmd", "query", "Ask a reasoning question (stable, visible, reachable, ...) about a world."),
+    "world": ("world_cmd", "world", "Inspect and render world files."),
+    "designators": ("designators_cmd", "designators", "List every motion designator type with its slots (or just TYPE)."),
+    "trace": ("trace_cmd", "trace", "Show saved plan traces and compare them."),
+}
 
 #: options of the whole program that may also be written after the command (`pycram run x --verbose`)
 GLOBAL_FLAGS = ("--verbose", "-q", "--quiet")
@@ -26,6 +42,23 @@ class PycramGroup(click.Group):
     With `--json`, input errors are also given as a JSON object on stdout, so that a program
     reading stdout always gets JSON.
     """
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(COMMANDS)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        entry = COMMANDS.get(name)
+        if entry is None:
+            return None
+        module = importlib.import_module(f"{__package__}.{entry[0]}")  # why: load a command only when it runs
+        command = getattr(module, entry[1])
+        assert isinstance(command, click.Command)
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The command list from the table, without importing every command's module."""
+        with formatter.section("Commands"):
+            formatter.write_dl([(name, help_text) for name, (_, _, help_text) in COMMANDS.items()])
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         head, sep, tail = (args[: args.index("--")], ["--"], args[args.index("--") + 1:]) if "--" in args else (args, [], [])
@@ -75,11 +108,6 @@ def cli(verbose: bool, be_quiet: bool) -> None:
     quiet.set_verbose(verbose)
     console.set_quiet(be_quiet)
     warnings.showwarning = _show_warning
-
-
-for _command in (*world_cmd.COMMANDS, *validate_cmd.COMMANDS, *query_cmd.COMMANDS, *run_cmd.COMMANDS,
-                 *trace_cmd.COMMANDS, *designators_cmd.COMMANDS):
-    cli.add_command(_command)
 
 
 def main() -> None:

@@ -126,6 +126,3 @@ def query(query_name: str, tokens: tuple[str, ...], world_file: str | None, as_j
         console.emit_json(jsonable(payload, nonfinite=None))
     else:
         console.plain(spec.describe(answer))
-
-
-COMMANDS = [query]

@@ -193,6 +193,3 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None) -
             console.plain(message)
     if trace_file is not None:
         console.info(f"trace written to {trace_file}")
-
-
-COMMANDS = [run]

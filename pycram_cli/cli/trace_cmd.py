@@ -191,6 +191,3 @@ def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -
         console.plain(f"{len(found)} difference{'s' if len(found) != 1 else ''} (A = {a}, B = {b})")
     if found:
         ctx.exit(1)
-
-
-COMMANDS = [trace]

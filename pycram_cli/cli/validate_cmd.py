@@ -60,6 +60,3 @@ def validate(files: tuple[str, ...], world_file: str | None) -> None:
             problems.extend(as_list(exc))
     if problems:
         raise InputErrors(problems)
-
-
-COMMANDS = [validate]

@@ -93,6 +93,3 @@ def render_cmd(world_file: str | None, output: Path, camera: str | None, size: s
 
 
 world.add_command(render_cmd, "render")
-
-
-COMMANDS = [world]

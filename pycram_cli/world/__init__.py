@@ -1,5 +1,5 @@
 """The simulation layer: worlds, objects, attachments, events and saved states."""
-from .quiet import silenced
+from ..quiet import silenced
 
 with silenced():  # PyBullet prints its build banner from C when first imported
     import pybullet  # noqa: F401

@@ -19,7 +19,7 @@ import pybullet as p
 from .camera import segmentation
 from .events import Event
 from .pose import Vec3, check_position
-from .quiet import silenced
+from ..quiet import silenced
 from .solo import SoloRenderer
 from .state import WorldState, capture, release, restore
 

@@ -14,7 +14,7 @@ from ..errors import did_you_mean
 from .bullet_world import BulletWorld, WorldError
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, mesh_urdf, prepare_urdf
 from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
-from .quiet import silenced
+from ..quiet import silenced
 
 KINEMATIC_TYPES = ("robot", "environment")
 _HOLD_FORCE = 1e5

@@ -15,7 +15,7 @@ import pybullet as p
 
 from .camera import segmentation
 from .model_files import MESH_SUFFIXES, mesh_urdf, prepare_urdf
-from .quiet import silenced
+from ..quiet import silenced
 
 if TYPE_CHECKING:
     from .object import Object

@@ -7,7 +7,7 @@ from click.testing import CliRunner
 
 from pycram_cli.cli import console
 from pycram_cli.cli.main import cli
-from pycram_cli.world import quiet
+from pycram_cli import quiet
 
 
 def run(*args: str):
@@ -48,3 +48,20 @@ def test_json_errors_carry_the_place_in_the_file(tmp_path):
     data = json.loads(run("run", str(plan), "--json").stdout)
     assert data["errors"][0]["file"] == str(plan) and data["errors"][0]["line"] == 2
     assert data["errors"][0]["suggestion"] == "did you mean 'moving'?"
+
+
+def test_help_lists_every_command_with_its_own_one_line_help_without_loading_the_simulator():
+    import subprocess
+    import sys
+
+    import click
+
+    from pycram_cli.cli.main import COMMANDS
+
+    ctx = click.Context(cli)
+    for name, (_, _, help_text) in COMMANDS.items():
+        assert cli.get_command(ctx, name).get_short_help_str(limit=300) == help_text
+    code = ("import sys; from click.testing import CliRunner; from pycram_cli.cli.main import cli; "
+            "r = CliRunner().invoke(cli, ['--help']); assert r.exit_code == 0 and 'designators' in r.output; "
+            "print(sorted(m for m in ('pybullet', 'numpy') if m in sys.modules))")
+    assert subprocess.run([sys.executable, "-c", code], capture_output=True, text=True).stdout.strip() == "[]"
