@@ -6,13 +6,11 @@
     worlds.close()
 
 A world is loaded once per *structure* (which bodies exist: see `Variant.structure`) and its
-state saved; every run starts by putting it back with `reset`, which makes it
-indistinguishable from the freshly loaded world: PyBullet's restoreState puts poses, joints
-and velocities back bitwise but not the contact caches the previous run left (nor sleep), so
-one physics step from the restored state refreshes them and a second restore undoes the step.
-Traces on a kept world are then byte-identical to those on a fresh one, whatever ran before
-(tests/scenario/test_variations.py checks it), which is what makes a sweep's outcomes the
-same whatever the number of workers or the order of the scenarios.
+state saved; every run starts by putting it back with `scenario.reset` (the same reset a
+varied `Scenario.load_world` does on a fresh world), so traces on a kept world are
+byte-identical to those of the scenario run alone, whatever ran before
+(tests/scenario/test_variations.py checks it): a sweep's outcomes are the same whatever the
+number of workers or the order of the scenarios.
 """
 from __future__ import annotations
 
@@ -26,19 +24,11 @@ from ..plan.executor import Observer
 from ..world import BulletWorld
 from ..world.state import WorldState
 from ..worldfile.loader import load_spec
-from . import Scenario
+from . import Scenario, reset
 from .variations import Variant
 
 #: worlds of different structures a process keeps loaded (a variation that drops two objects makes four)
 KEEP = 4
-
-
-def reset(world: BulletWorld, state: WorldState) -> None:
-    """Put `world` back to `state` as if it had just been loaded (see the module's docstring)."""
-    world.restore_state(state)
-    world.step()
-    world.restore_state(state)
-    world.wake_free_objects()
 
 
 @dataclass
