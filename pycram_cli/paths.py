@@ -48,7 +48,8 @@ def cache_dir() -> Path:
 
 
 def _names(folder: Path) -> list[str]:
-    return sorted(p.stem for p in folder.glob("*.yaml")) if folder.is_dir() else []
+    # variation files (`set_table.vary.yaml`) sit beside their plans but are no plans
+    return sorted(p.stem for p in folder.glob("*.yaml") if not p.name.endswith(".vary.yaml")) if folder.is_dir() else []
 
 
 def _find(value: str, base: Path, bundled_folder: Path) -> Path | None:

@@ -24,8 +24,10 @@ EXIT_INTERNAL = 3
 #: every command: name -> (its module in pycram_cli.cli, the click command's name there, its one-line help)
 COMMANDS: dict[str, tuple[str, str, str]] = {
     "run": ("run_cmd", "run", "Validate and run PLAN (a plan file, or the name of a bundled plan)."),
+    "sweep": ("sweep_cmd", "sweep", "Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails."),
     "validate": ("validate_cmd", "validate",
-                 "Check world and plan FILES (or bundled names) as `run` would; report every problem with file, line and key."),
+                 "Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every "
+                 "problem with file, line and key."),
     "query": ("query_cmd", "query", "Ask a reasoning question (stable, visible, reachable, ...) about a world."),
     "world": ("world_cmd", "world", "Inspect and render world files."),
     "designators": ("designators_cmd", "designators", "List every motion designator type with its slots (or just TYPE)."),

@@ -11,7 +11,9 @@ from rich.live import Live
 from rich.markup import escape
 
 from ..plan.trace import TraceNode, normalised, save
+from ..errors import InputError, Location
 from ..scenario import prepare
+from ..scenario.variations import beside, read_variations
 from ..world.camera import default_camera, render, write_png
 from . import console
 from .options import gui_option, json_option, wait_for_window
@@ -124,17 +126,33 @@ class QuietView:
               help="Write a PNG of the final scene (headless).")
 @click.option("--pace", type=click.FloatRange(min=0.0), default=None, metavar="SECONDS",
               help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
+@click.option("--scenario", "scenario_seed", type=int, default=None, metavar="SEED",
+              help="Run one scenario of a sweep: the world and parameters drawn from SEED (see `pycram sweep`).")
+@click.option("--vary", "vary_file", metavar="VARY.yaml",
+              help="The variation file --scenario draws from (default: PLAN.vary.yaml beside the plan).")
 @json_option
 @gui_option
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
-        render_file: Path | None, pace: float | None, as_json: bool, gui: bool) -> None:
+        render_file: Path | None, pace: float | None, scenario_seed: int | None, vary_file: str | None, as_json: bool,
+        gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
     the plan succeeded, 1 when it failed, 2 for invalid input.
     """
     scenario = prepare(plan_file, world_file, assignments=params)
+    if vary_file is not None and scenario_seed is None:
+        raise InputError("--vary draws a scenario only with --scenario SEED", Location("--vary"))
+    if scenario_seed is not None:
+        vary = Path(vary_file) if vary_file is not None else beside(scenario.plan.path)
+        if vary is None:
+            raise InputError(f"--scenario needs the variation file: give --vary (none named "
+                             f"{scenario.plan.path.stem}.vary.yaml is beside the plan)", Location("--scenario"))
+        variant = read_variations(vary, scenario.world, scenario.plan).sample(scenario_seed)
+        given = {name for name in (a.partition("=")[0].strip() for a in params)}
+        before = scenario.params
+        scenario = scenario.varied(variant).with_params({k: v for k, v in before.items() if k in given})
     plan, world_path, values = scenario.plan, scenario.world_path, scenario.params
     world = scenario.load_world(mode="gui" if gui else "direct")
     try:

@@ -1,7 +1,9 @@
-"""`pycram validate FILE...`: check world and plan files as `run` would, without running anything.
+"""`pycram validate FILE...`: check world, plan and variation files as `run` and `sweep` would, running nothing.
 
 A plan is checked against its world file (`--world`, else its own `world:`): object names,
-the robot's description (its arms, grasps and poses), and its parameters' defaults.
+the robot's description (its arms, grasps and poses), and its parameters' defaults. A
+variation file is checked against its plan (its `plan:`, else the plan it is named after:
+`set_table.vary.yaml` goes with `set_table.yaml`) and that plan's world.
 """
 from __future__ import annotations
 
@@ -12,6 +14,7 @@ import click
 from ..errors import InputError, InputErrors, Location, as_list
 from ..paths import find_plan, find_world
 from ..scenario import prepare
+from ..scenario.variations import SUFFIX, parse_variations
 from ..worldfile.spec import parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
@@ -32,20 +35,43 @@ def _resolve(value: str) -> Path:
 
 
 def kind_of(path: Path) -> str:
-    """A file's kind, told by its top-level keys: a world has `objects`, a plan has `body`."""
+    """A file's kind, told by its top-level keys: a world has a list of `objects`, a plan has `body`,
+    variations have `objects` by name, `robot` or `params` (or the name NAME.vary.yaml)."""
     data = load_yaml(path)
-    if isinstance(data, LMap) and "objects" in data:
-        return "world"
     if isinstance(data, LMap) and "body" in data:
         return "plan"
-    raise InputError("not a world file (no 'objects') nor a plan file (no 'body')", Location(str(path), 1, 1))
+    if isinstance(data, LMap) and (path.name.endswith(SUFFIX) or isinstance(data.get("objects"), LMap)
+                                   or (("robot" in data or "params" in data) and "objects" not in data)):
+        return "variation"
+    if isinstance(data, LMap) and "objects" in data:
+        return "world"
+    raise InputError("not a world file (no 'objects'), a plan file (no 'body') nor a variation file",
+                     Location(str(path), 1, 1))
+
+
+def check_variations(path: Path, world_file: str | None) -> None:
+    """A variation file against its plan and world."""
+    data = load_yaml(path)
+    named = data.get("plan") if isinstance(data, LMap) and isinstance(data.get("plan"), str) else None
+    if named is not None:
+        try:
+            plan = find_plan(named, path.parent)
+        except InputError as exc:
+            raise InputError(exc.message, data.loc("plan", True), key="plan", suggestion=exc.suggestion) from None
+    elif path.name.endswith(SUFFIX) and path.with_name(path.name[: -len(SUFFIX)] + ".yaml").is_file():
+        plan = path.with_name(path.name[: -len(SUFFIX)] + ".yaml")
+    else:
+        raise InputError("which plan are these variations for? name it with 'plan:' (or call the file "
+                         "PLAN.vary.yaml beside PLAN.yaml)", Location(str(path), 1, 1), key="plan")
+    scenario = prepare(plan, world_file)
+    parse_variations(path, scenario.world, scenario.plan)
 
 
 @click.command()
 @click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True)
 @click.option("--world", "world_file", metavar="WORLD", help="Check plans against this world (default: each plan's own).")
 def validate(files: tuple[str, ...], world_file: str | None) -> None:
-    """Check world and plan FILES (or bundled names) as `run` would; report every problem with file, line and key."""
+    """Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every problem with file, line and key."""
     problems: list[InputError] = []
     for value in files:
         path = _resolve(value)
@@ -53,6 +79,8 @@ def validate(files: tuple[str, ...], world_file: str | None) -> None:
             kind = kind_of(path)
             if kind == "world":
                 parse_world(path)
+            elif kind == "variation":
+                check_variations(path, world_file)
             else:
                 prepare(path, world_file)
             console.success(f"{path}: valid {kind} file")

@@ -13,7 +13,7 @@ it open, so any number of scenarios can run one after another, or side by side, 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
@@ -22,8 +22,25 @@ from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
 from ..plan.executor import Observer
 from ..world import BulletWorld
+from ..world.state import WorldState
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import WorldSpec, parse_world
+from .variations import Variant
+
+
+def reset(world: BulletWorld, state: WorldState) -> None:
+    """Put `world` back to `state` as if it had just been loaded, and in the same way whatever ran since.
+
+    PyBullet's restoreState puts poses, joints and velocities back bitwise, but not the contact
+    caches a run leaves behind (nor sleep): one physics step from the restored state refreshes
+    them, a second restore undoes the step. Worlds reset like this give byte-identical traces
+    whatever ran on them before (tests/scenario/test_variations.py), which is what makes a
+    sweep's outcomes independent of its number of workers and of the order of its scenarios.
+    """
+    world.restore_state(state)
+    world.step()
+    world.restore_state(state)
+    world.wake_free_objects()
 
 
 @dataclass
@@ -33,14 +50,34 @@ class Scenario:
     plan: Plan
     world: WorldSpec
     params: dict[str, Any] = field(default_factory=dict)
+    variant: Variant | None = None  # one drawn variation of the world and parameters (see variations.py)
 
     @property
     def world_path(self) -> Path:
         return self.world.path
 
     def load_world(self, mode: str = "direct") -> BulletWorld:
-        """A fresh simulation of the scenario's world (the caller exits it)."""
-        return load_spec(self.world, mode=mode)
+        """A fresh simulation of the scenario's world, varied by its variant if any (the caller exits it)."""
+        if self.variant is None:
+            return load_spec(self.world, mode=mode)
+        world = load_spec(self.variant.world_spec(self.world), mode=mode)
+        try:
+            state = world.save_state()
+            reset(world, state)  # exactly the state a sweep's kept world starts every scenario from
+            world.release_state(state)
+            self.variant.apply(world)
+        except BaseException:
+            world.exit()
+            raise
+        return world
+
+    def varied(self, variant: Variant) -> "Scenario":
+        """This scenario with a variant's parameter values and world (checked when the variations were read)."""
+        return replace(self, params={**self.params, **variant.params}, variant=variant)
+
+    def with_params(self, values: Mapping[str, Any]) -> "Scenario":
+        """This scenario with some parameters set otherwise (values checked by `bind_params`)."""
+        return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values})})
 
     def run(self, world: BulletWorld | None = None, observer: Observer | None = None, mode: str = "direct") -> RunResult:
         """Run the plan: on `world` if given (left open), else on a freshly loaded world (exited afterwards)."""

@@ -21,6 +21,7 @@ from typing import Any, Iterable
 from ..paths import plans_dir
 from ..plan import trace as traces
 from . import prepare
+from .variations import SUFFIX as VARIATIONS
 
 ATOL = 1e-3
 
@@ -42,7 +43,7 @@ def bundled_plans(folder: Path | None = None) -> list[Path]:
         folder = _checkout() / "plans"
         if not folder.is_dir():
             folder = plans_dir()
-    return sorted(folder.glob("*.yaml"))
+    return sorted(p for p in folder.glob("*.yaml") if not p.name.endswith(VARIATIONS))
 
 
 def golden_path(plan: Path, folder: Path | None = None) -> Path:

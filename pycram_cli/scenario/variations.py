@@ -1,0 +1,564 @@
+"""Variations: how the scenarios of a sweep differ from the world file and the plan's defaults.
+
+A variation file (YAML, checked like worlds and plans: every problem with file:line:column
+and key) says, per object, where it may start and whether it is there at all, where the
+robot starts, and which values the plan's parameters take:
+
+    description: breakfast things anywhere near their places, the robot a little off
+    plan: set_table                     # optional: the plan it is made for (`pycram validate`)
+    separation: 0.12                    # optional: varied objects start at least this far (m, x-y)
+                                        #   from every other free object
+    objects:
+      milk:
+        region: {on: kitchen/sink_area_surface, margin: 0.05}   # x-y uniform on the link's top
+        yaw: 3.1416                     # turned by a uniform angle in ±yaw (rad) about z
+      cereal:
+        noise: [0.05, 0.05, 0]          # uniform in ± per axis around its position (or one number: x, y)
+      bowl:
+        region: {box: [[1.25, 0.6, 0.851], [1.4, 1.0, 0.851]]}  # uniform in the box
+      bottle:
+        present: 0.5                    # probability that it is in the scenario
+        swap:                           # equally likely: as in the world (keep) or another model
+          - keep
+          - {type: milk, file: objects/milk.obj, color: [1, 1, 1]}
+    robot:
+      noise: [0.05, 0.05, 0]
+      yaw: 0.1
+    params:
+      arm: [left, right]                # one of these, equally likely
+      offset: {range: [0.0, 0.1]}       # uniform (integers when both ends are integers)
+
+`Variations.sample(seed)` draws one `Variant` from its own `random.Random(seed)`, in file
+order, so a scenario is a function of its seed alone; `scenario_seed(sweep_seed, i)` gives
+scenario i's seed. A variant changes the world's *structure* (which bodies exist: presence,
+swaps) through `Variant.world_spec`, and the rest (poses) through `Variant.apply` on a
+loaded world of that structure.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import random
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Mapping
+
+from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..jsonable import jsonable
+from ..plan import Plan
+from ..world import BulletWorld
+from ..world.pose import quat_multiply, yaw_quaternion
+from ..schema import check_keys, describe, expect, is_number, number_list
+from ..world.model_files import MESH_SUFFIXES, describe_model
+from ..worldfile.loader import load_spec
+from ..worldfile.spec import ObjectSpec, WorldSpec, resolve_file
+from ..yamlsource import LList, LMap, load_yaml
+
+TOP_KEYS = ("description", "plan", "separation", "objects", "robot", "params")
+OBJECT_KEYS = ("noise", "region", "yaw", "present", "swap")
+ROBOT_KEYS = ("noise", "region", "yaw")
+REGION_KEYS = ("box", "on", "margin")
+SWAP_KEYS = ("type", "file", "color", "mass")
+PARAM_KEYS = ("range", "choose")
+DEFAULT_MARGIN = 0.05
+#: draws of a position before giving up on `separation` (the last draw is kept)
+TRIES = 50
+KEEP = "keep"
+
+
+def scenario_seed(seed: int, index: int) -> int:
+    """Scenario `index`'s own seed (32 bits) in a sweep seeded with `seed`: the same on every machine."""
+    return int.from_bytes(hashlib.sha256(f"pycram-sweep/{seed}/{index}".encode()).digest()[:4], "big")
+
+
+# -- what a file says ---------------------------------------------------------------------------------
+@dataclass
+class Region:
+    box: tuple[tuple[float, float, float], tuple[float, float, float]] | None = None
+    on: tuple[str, str] | None = None  # (object, link): x-y on its top face
+    margin: float = DEFAULT_MARGIN
+
+
+@dataclass
+class Swap:
+    type: str
+    file: Path
+    color: list[float] | None = None
+    mass: float | None = None
+
+    def describe(self) -> str:
+        return self.type
+
+
+@dataclass
+class Varied:
+    """How one object (or the robot) varies."""
+
+    name: str
+    noise: tuple[float, float, float] | None = None
+    region: Region | None = None
+    yaw: float = 0.0
+    present: float = 1.0
+    swaps: list[Swap | None] = field(default_factory=list)  # None: keep the world's model
+
+    @property
+    def moves(self) -> bool:
+        return self.noise is not None or self.region is not None or self.yaw > 0
+
+
+@dataclass
+class ParamDraw:
+    name: str
+    choices: list[Any] | None = None
+    range: tuple[float, float] | None = None
+    integer: bool = False
+
+
+@dataclass
+class Variations:
+    path: Path
+    world: WorldSpec
+    objects: list[Varied]
+    robot: Varied | None = None
+    params: list[ParamDraw] = field(default_factory=list)
+    separation: float = 0.0
+    description: str = ""
+    plan: str | None = None
+    plan_where: Location = field(default_factory=Location)
+    #: (object, link) -> the link's axis-aligned box in the world as loaded (see `bind_surfaces`)
+    surfaces: dict[tuple[str, str], tuple[tuple[float, ...], tuple[float, ...]]] = field(default_factory=dict)
+
+    @property
+    def structural(self) -> bool:
+        """Whether some scenarios add or remove bodies (presence, swaps): worlds then differ in structure."""
+        return any(v.present < 1.0 or v.swaps for v in self.objects)
+
+    def needs_surfaces(self) -> list[tuple[str, str]]:
+        return [v.region.on for v in self._all() if v.region is not None and v.region.on is not None]
+
+    def bind_surfaces(self, world: BulletWorld) -> None:
+        """Read the boxes of the surfaces regions stand `on` from a loaded world of the base structure."""
+        for name, link in self.needs_surfaces():
+            obj = world.get_object_by_name(name)
+            assert obj is not None
+            self.surfaces[(name, link)] = obj.get_aabb(link)
+
+    def _all(self) -> list[Varied]:
+        return self.objects + ([self.robot] if self.robot is not None else [])
+
+    # -- drawing ------------------------------------------------------------------------------
+    def sample(self, seed: int, index: int | None = None) -> "Variant":
+        """The variant of scenario `seed`: every draw from one generator, in the file's order."""
+        missing = [s for s in self.needs_surfaces() if s not in self.surfaces]
+        if missing:
+            raise RuntimeError(f"surfaces not bound (call bind_surfaces first): {missing}")
+        rng = random.Random(seed)
+        by_name = {o.name: o for o in self.world.objects}
+        absent: list[str] = []
+        swaps: dict[str, Swap] = {}
+        varied: dict[str, dict[str, Any]] = {}
+        for item in self.objects:
+            record: dict[str, Any] = {}
+            if item.present < 1.0:
+                record["present"] = rng.random() < item.present
+                if not record["present"]:
+                    absent.append(item.name)
+                    varied[item.name] = record
+                    continue
+            if item.swaps:
+                choice = item.swaps[rng.randrange(len(item.swaps))]
+                record["type"] = by_name[item.name].type if choice is None else choice.type
+                if choice is not None:
+                    swaps[item.name] = choice
+            varied[item.name] = record
+        # positions after presence: an absent object keeps nothing apart
+        placed: dict[str, tuple[float, float, float]] = {
+            o.name: tuple(o.position) for o in self.world.objects  # type: ignore[misc]
+            if o.name not in absent and not _is_fixed(o) and o is not self.world.robot}
+        poses: dict[str, tuple[tuple[float, float, float], tuple[float, float, float, float]]] = {}
+        for item in self._all():
+            if item.name in absent or not item.moves:
+                continue
+            spec = by_name[item.name]
+            others = [pos for name, pos in placed.items() if name != item.name]
+            position = tuple(spec.position)
+            for _ in range(TRIES if self.separation > 0 and item is not self.robot else 1):
+                position = self._position(rng, item, spec)
+                if all(math.dist(position[:2], other[:2]) >= self.separation for other in others):
+                    break
+            yaw = rng.uniform(-item.yaw, item.yaw) if item.yaw > 0 else 0.0
+            orientation = quat_multiply(yaw_quaternion(yaw), spec.orientation) if yaw else tuple(spec.orientation)
+            if item is not self.robot:
+                placed[item.name] = position  # type: ignore[assignment]
+            poses[item.name] = (position, orientation)  # type: ignore[assignment]
+            record = varied.setdefault(item.name, {}) if item is not self.robot else varied.setdefault("robot", {})
+            if item.noise is not None or item.region is not None:
+                record["position"] = [round(c, 6) for c in position]
+            if item.yaw > 0:
+                record["yaw"] = round(yaw, 6)
+        params: dict[str, Any] = {}
+        for draw in self.params:
+            if draw.choices is not None:
+                params[draw.name] = draw.choices[rng.randrange(len(draw.choices))]
+            else:
+                assert draw.range is not None
+                lo, hi = draw.range
+                params[draw.name] = rng.randint(int(lo), int(hi)) if draw.integer else rng.uniform(lo, hi)
+        if params:
+            varied["params"] = jsonable(params)
+        return Variant(seed, tuple(absent), swaps, poses, params, varied, index)
+
+    def _position(self, rng: random.Random, item: Varied, spec: ObjectSpec) -> tuple[float, float, float]:
+        if item.region is not None and item.region.box is not None:
+            lo, hi = item.region.box
+            return tuple(rng.uniform(lo[k], hi[k]) for k in range(3))  # type: ignore[return-value]
+        if item.region is not None and item.region.on is not None:
+            lo, hi = self.surfaces[item.region.on]
+            m = item.region.margin
+            x = rng.uniform(lo[0] + m, hi[0] - m) if hi[0] - lo[0] > 2 * m else (lo[0] + hi[0]) / 2
+            y = rng.uniform(lo[1] + m, hi[1] - m) if hi[1] - lo[1] > 2 * m else (lo[1] + hi[1]) / 2
+            return (x, y, float(hi[2]))
+        if item.noise is not None:
+            return tuple(spec.position[k] + (rng.uniform(-item.noise[k], item.noise[k]) if item.noise[k] else 0.0)
+                         for k in range(3))  # type: ignore[return-value]
+        return tuple(spec.position)  # type: ignore[return-value]
+
+
+def _is_fixed(spec: ObjectSpec) -> bool:
+    return spec.fixed if spec.fixed is not None else spec.type in ("robot", "environment")
+
+
+# -- one scenario ---------------------------------------------------------------------------------------
+@dataclass
+class Variant:
+    """One drawn scenario: which bodies exist, where things start, the parameter values."""
+
+    seed: int
+    absent: tuple[str, ...] = ()
+    swaps: dict[str, Swap] = field(default_factory=dict)
+    poses: dict[str, tuple[tuple[float, float, float], tuple[float, float, float, float]]] = field(default_factory=dict)
+    params: dict[str, Any] = field(default_factory=dict)
+    varied: dict[str, Any] = field(default_factory=dict)  # what was drawn, JSON-ready (the results' record)
+    index: int | None = None
+
+    @property
+    def structure(self) -> tuple[Any, ...]:
+        """What decides which bodies a world of this variant holds (equal: one loaded world serves both)."""
+        return (self.absent, tuple(sorted((name, str(s.file), s.type) for name, s in self.swaps.items())))
+
+    def world_spec(self, base: WorldSpec) -> WorldSpec:
+        """`base` with absent objects left out and swapped models put in (poses are set by `apply`)."""
+        if not self.absent and not self.swaps:
+            return base
+        objects = []
+        for obj in base.objects:
+            if obj.name in self.absent:
+                continue
+            swap = self.swaps.get(obj.name)
+            if swap is not None:
+                obj = replace(obj, type=swap.type, file=swap.file, file_text=str(swap.file),
+                              color=swap.color if swap.color is not None else obj.color,
+                              mass=swap.mass if swap.mass is not None else obj.mass)
+            objects.append(obj)
+        robot = next((o for o in objects if o.type == "robot"), None)
+        return replace(base, objects=objects, robot=robot)
+
+    def apply(self, world: BulletWorld) -> None:
+        """Put the varied objects (and the robot) at their drawn poses."""
+        for name, (position, orientation) in self.poses.items():
+            obj = world.robot if name == "robot" else world.get_object_by_name(name)
+            if obj is None:
+                raise RuntimeError(f"variant {self.seed}: no object '{name}' in the world")
+            obj.set_position_and_orientation(position, orientation)
+
+
+# -- reading a file ------------------------------------------------------------------------------------
+SUFFIX = ".vary.yaml"
+
+
+def beside(plan_path: Path) -> Path | None:
+    """The variation file that goes with a plan by name (`set_table.yaml` -> `set_table.vary.yaml`), if any."""
+    candidate = plan_path.with_name(plan_path.stem + SUFFIX)
+    return candidate if candidate.is_file() else None
+
+
+def read_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:
+    """`parse_variations`, then the surfaces its regions stand on read from the world loaded once."""
+    variations = parse_variations(path, world, plan)
+    if variations.needs_surfaces():
+        sim = load_spec(world)
+        try:
+            variations.bind_surfaces(sim)
+        finally:
+            sim.exit()
+    return variations
+
+
+def parse_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:
+    """Read and check a variation file against the world (and the plan's parameters); all problems at once."""
+    path = Path(path)
+    data = load_yaml(path)
+    fname = str(path)
+    errors: list[InputError] = []
+    if not isinstance(data, LMap):
+        raise InputError("a variation file must be a mapping with 'objects', 'robot' and/or 'params'",
+                         Location(fname, 1, 1))
+    check_keys(data, TOP_KEYS, (), "the variations", errors)
+    result = Variations(path, world, [])
+    if "description" in data and expect(data["description"], str, data.loc("description", True), "description", errors):
+        result.description = data["description"]
+    if "plan" in data and expect(data["plan"], str, data.loc("plan", True), "plan", errors):
+        result.plan, result.plan_where = data["plan"], data.loc("plan", True)
+    if "separation" in data and expect(data["separation"], float, data.loc("separation", True), "separation", errors):
+        if data["separation"] < 0:
+            errors.append(InputError("separation must not be negative (m)", data.loc("separation", True),
+                                     key="separation"))
+        else:
+            result.separation = float(data["separation"])
+    by_name = {o.name: o for o in world.objects}
+    if "objects" in data:
+        objects = data["objects"]
+        if not isinstance(objects, LMap):
+            errors.append(InputError(f"expected a mapping of object name to its variations, got {describe(objects)}",
+                                     data.loc("objects", True), key="objects"))
+        else:
+            for name, value in objects.items():
+                spec = by_name.get(name)
+                if spec is None:
+                    errors.append(InputError(f"the world {world.path.name} has no object '{name}'", objects.loc(name),
+                                             key="objects", suggestion=did_you_mean(str(name), list(by_name))))
+                    continue
+                if spec is world.robot:
+                    errors.append(InputError(f"'{name}' is the robot: vary its start pose under 'robot:'",
+                                             objects.loc(name), key="objects"))
+                    continue
+                if _is_fixed(spec) and isinstance(value, LMap) and set(value) - {"present"}:
+                    errors.append(InputError(f"'{name}' is a fixed {spec.type}: only free objects move or change "
+                                             "model in a sweep", objects.loc(name), key="objects"))
+                    continue
+                item = _parse_varied(str(name), value, objects.loc(name, True), OBJECT_KEYS, world, errors)
+                if item is not None:
+                    result.objects.append(item)
+    if "robot" in data:
+        if world.robot is None:
+            errors.append(InputError(f"the world {world.path.name} has no robot (an object of type robot)",
+                                     data.loc("robot"), key="robot"))
+        else:
+            result.robot = _parse_varied(world.robot.name, data["robot"], data.loc("robot", True), ROBOT_KEYS, world,
+                                         errors)
+            if result.robot is not None and result.robot.region is not None and result.robot.region.on is not None:
+                errors.append(InputError("the robot stands on the floor: give it a region 'box', not 'on'",
+                                         data.loc("robot", True), key="region"))
+    if "params" in data:
+        result.params = _parse_params(data["params"], data.loc("params", True), plan, errors)
+    for item in result.objects + ([result.robot] if result.robot else []):
+        if item.region is not None and item.region.on is not None:
+            owner = item.region.on[0]
+            if owner in by_name and any(v.name == owner and (v.present < 1.0 or v.swaps) for v in result.objects):
+                errors.append(InputError(f"'{item.name}' stands on '{owner}', which may be absent or swapped",
+                                         data.loc("objects"), key="region"))
+    raise_if_any(errors)
+    return result
+
+
+def _parse_varied(name: str, value: Any, where: Location, keys: tuple[str, ...], world: WorldSpec,
+                  errors: list[InputError]) -> Varied | None:
+    if not isinstance(value, LMap):
+        errors.append(InputError(f"expected a mapping with some of {', '.join(keys)}, got {describe(value)}", where,
+                                 key=name))
+        return None
+    count = len(errors)
+    check_keys(value, keys, (), f"the variations of '{name}'", errors)
+    item = Varied(name)
+    if "noise" in value and "region" in value:
+        errors.append(InputError("give either 'noise' (around its position) or 'region' (anywhere in it), not both",
+                                 value.loc("region"), key="region"))
+    if "noise" in value:
+        noise = value["noise"]
+        at = value.loc("noise", True)
+        if is_number(noise):
+            item.noise = (float(noise), float(noise), 0.0)
+        else:
+            numbers = number_list(noise, 3, at, "noise", errors)
+            if numbers is not None:
+                item.noise = (numbers[0], numbers[1], numbers[2])
+        if item.noise is not None and any(n < 0 for n in item.noise):
+            errors.append(InputError("noise must not be negative (m, the half-width of a uniform draw)", at, key="noise"))
+    if "region" in value:
+        item.region = _parse_region(value["region"], value.loc("region", True), world, errors)
+    if "yaw" in value and expect(value["yaw"], float, value.loc("yaw", True), "yaw", errors):
+        if not 0 <= value["yaw"] <= math.pi + 1e-3:
+            errors.append(InputError("yaw must be between 0 and π (rad, the half-width of a uniform draw)",
+                                     value.loc("yaw", True), key="yaw"))
+        else:
+            item.yaw = float(value["yaw"])
+    if "present" in value and expect(value["present"], float, value.loc("present", True), "present", errors):
+        if not 0 <= value["present"] <= 1:
+            errors.append(InputError("present is a probability, between 0 and 1", value.loc("present", True),
+                                     key="present"))
+        else:
+            item.present = float(value["present"])
+    if "swap" in value:
+        item.swaps = _parse_swaps(value["swap"], value.loc("swap", True), world, errors)
+    return item if len(errors) == count else None
+
+
+def _parse_region(value: Any, where: Location, world: WorldSpec, errors: list[InputError]) -> Region | None:
+    if not isinstance(value, LMap):
+        errors.append(InputError("expected {box: [[x, y, z], [x, y, z]]} or {on: object/link, margin: m}", where,
+                                 key="region"))
+        return None
+    if True in value and "on" not in value:  # YAML 1.1 reads a bare `on:` key as true
+        value["on"] = value.pop(True)
+        value.key_where["on"], value.value_where["on"] = value.key_where.pop(True), value.value_where.pop(True)
+    check_keys(value, REGION_KEYS, (), "region", errors)
+    region = Region()
+    if ("box" in value) == ("on" in value):
+        errors.append(InputError("a region is either a 'box' or 'on' a surface link", value.loc(), key="region"))
+        return None
+    if "box" in value:
+        box = value["box"]
+        at = value.loc("box", True)
+        if not isinstance(box, list) or len(box) != 2:
+            errors.append(InputError(f"expected two corners [[x, y, z], [x, y, z]], got {describe(box)}", at, key="box"))
+            return None
+        corners = [number_list(c, 3, box.loc(i) if isinstance(box, LList) else at, "box", errors)
+                   for i, c in enumerate(box)]
+        if corners[0] is None or corners[1] is None:
+            return None
+        lo = tuple(min(a, b) for a, b in zip(corners[0], corners[1]))
+        hi = tuple(max(a, b) for a, b in zip(corners[0], corners[1]))
+        region.box = (lo, hi)  # type: ignore[assignment]
+    else:
+        text = value["on"]
+        at = value.loc("on", True)
+        if not expect(text, str, at, "on", errors):
+            return None
+        owner, sep, link = text.partition("/")
+        spec = next((o for o in world.objects if o.name == owner), None)
+        if not sep or not link:
+            errors.append(InputError(f"expected object/link, got '{text}'", at, key="on",
+                                     suggestion="e.g. kitchen/sink_area_surface"))
+            return None
+        if spec is None:
+            errors.append(InputError(f"the world has no object '{owner}'", at, key="on",
+                                     suggestion=did_you_mean(owner, [o.name for o in world.objects])))
+            return None
+        links = _links_of(spec)
+        if link not in links:
+            surfaces = [name for name in links if "surface" in name]
+            errors.append(InputError(f"object '{owner}' has no link '{link}'", at, key="on",
+                                     suggestion=did_you_mean(link, links)
+                                     or (f"its surfaces: {', '.join(surfaces)}" if surfaces else None)))
+            return None
+        region.on = (owner, link)
+    if "margin" in value and expect(value["margin"], float, value.loc("margin", True), "margin", errors):
+        if value["margin"] < 0:
+            errors.append(InputError("margin must not be negative (m)", value.loc("margin", True), key="margin"))
+        region.margin = float(value["margin"])
+    return region
+
+
+def _links_of(spec: ObjectSpec) -> list[str]:
+    try:
+        return list(describe_model(spec.file).links)
+    except Exception:  # noqa: BLE001 - the world file's own check reports unreadable models
+        return []
+
+
+def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[InputError]) -> list[Swap | None]:
+    if not isinstance(value, LList) or not value:
+        errors.append(InputError("expected a list of models: keep, or {type, file[, color, mass]}", where, key="swap"))
+        return []
+    swaps: list[Swap | None] = []
+    base = world.path.parent
+    for index, entry in enumerate(value):
+        at = value.loc(index)
+        if entry == KEEP:
+            swaps.append(None)
+            continue
+        if not isinstance(entry, LMap):
+            errors.append(InputError(f"expected 'keep' or a mapping {{type, file}}, got {describe(entry)}", at,
+                                     key="swap"))
+            continue
+        count = len(errors)
+        check_keys(entry, SWAP_KEYS, ("type", "file"), "swap", errors)
+        for key in ("type", "file"):
+            if key in entry:
+                expect(entry[key], str, entry.loc(key, True), key, errors)
+        if len(errors) != count:
+            continue
+        found = resolve_file(entry["file"], base)
+        if found is None or found.suffix.lower() not in {".urdf", *MESH_SUFFIXES}:
+            errors.append(InputError(f"model file not found: '{entry['file']}' (looked beside the world, in the bundled "
+                                     "resources and pybullet_data)", entry.loc("file", True), key="file"))
+            continue
+        if entry["type"] in ("robot", "environment"):
+            errors.append(InputError("a swapped object stays a free object (not a robot or environment)",
+                                     entry.loc("type", True), key="type"))
+            continue
+        color = None
+        if "color" in entry:
+            color = number_list(entry["color"], (3, 4), entry.loc("color", True), "color", errors)
+        mass = None
+        if "mass" in entry and expect(entry["mass"], float, entry.loc("mass", True), "mass", errors):
+            mass = float(entry["mass"])
+        swaps.append(Swap(entry["type"], found, color, mass))
+    return swaps
+
+
+def _parse_params(value: Any, where: Location, plan: Plan | None, errors: list[InputError]) -> list[ParamDraw]:
+    if not isinstance(value, LMap):
+        errors.append(InputError("expected a mapping of parameter name to [choices] or {range: [lo, hi]}", where,
+                                 key="params"))
+        return []
+    known = [p.name for p in plan.params] if plan is not None else None
+    draws: list[ParamDraw] = []
+    for name, spec in value.items():
+        at = value.loc(name, True)
+        if known is not None and name not in known:
+            errors.append(InputError(f"plan '{plan.name}' has no parameter '{name}'", value.loc(name), key=str(name),  # type: ignore[union-attr]
+                                     suggestion=did_you_mean(str(name), known)
+                                     or (f"its parameters: {', '.join(known)}" if known else "it takes no parameters")))
+            continue
+        if isinstance(spec, LList):
+            if not spec:
+                errors.append(InputError("expected at least one value to choose from", at, key=str(name)))
+                continue
+            draws.append(ParamDraw(str(name), choices=[_plain(v) for v in spec]))
+            continue
+        if isinstance(spec, LMap):
+            count = len(errors)
+            check_keys(spec, PARAM_KEYS, (), f"parameter '{name}'", errors)
+            if ("range" in spec) == ("choose" in spec):
+                errors.append(InputError("give either 'range: [lo, hi]' or 'choose: [values]'", spec.loc(),
+                                         key=str(name)))
+                continue
+            if "choose" in spec:
+                choices = spec["choose"]
+                if not isinstance(choices, list) or not choices:
+                    errors.append(InputError("expected a non-empty list of values", spec.loc("choose", True),
+                                             key="choose"))
+                    continue
+                draws.append(ParamDraw(str(name), choices=[_plain(v) for v in choices]))
+                continue
+            bounds = number_list(spec["range"], 2, spec.loc("range", True), "range", errors)
+            if bounds is None or len(errors) != count:
+                continue
+            if bounds[0] > bounds[1]:
+                errors.append(InputError("expected [lo, hi] with lo <= hi", spec.loc("range", True), key="range"))
+                continue
+            integer = all(isinstance(b, int) and not isinstance(b, bool) for b in spec["range"])
+            draws.append(ParamDraw(str(name), range=(bounds[0], bounds[1]), integer=integer))
+            continue
+        errors.append(InputError(f"expected [choices] or {{range: [lo, hi]}}, got {describe(spec)}", at, key=str(name),
+                                 suggestion=f"a fixed value is a plan parameter: -p {name}=VALUE"))
+    return draws
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_plain(v) for v in value]
+    return value

@@ -1,0 +1,604 @@
+"""The map of a sweep: the floor and surfaces from above, each scenario's varied start positions
+as a dot coloured by its outcome, so a person sees where the plan fails.
+
+Rendered headless with the world's own renderer (TinyRenderer, only the fixed environment
+objects: the things that were varied are drawn as dots) and written with `camera.write_png`;
+no plotting library. Marker shapes tell the varied objects apart (circle, square, triangle,
+diamond, ...), colours the outcomes (green: succeeded; one colour per failure type); a legend
+with counts sits in a corner, in a built-in 5x7 pixel font.
+"""
+from __future__ import annotations
+
+import math
+from collections import Counter
+from dataclasses import replace
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import InputError, Location
+from ..world.camera import Camera, render, write_png
+from ..worldfile.loader import load_spec
+from .summary import outcome_of
+
+if TYPE_CHECKING:
+    from . import PreparedSweep
+
+SUCCESS = (30, 160, 60)
+PALETTE = [(215, 40, 40), (240, 140, 20), (130, 60, 190), (30, 110, 220), (150, 90, 40), (220, 60, 170),
+           (0, 150, 150), (90, 90, 90)]
+SPECIAL = {"Timeout": (0, 0, 0), "InternalError": (120, 120, 120)}
+MARKERS = ("circle", "square", "triangle", "diamond", "cross", "ring")
+CAMERA_HEIGHT = 20.0
+PAD = 0.3  # m around the dots
+RADIUS = 5  # px
+
+
+def collect(records: list[dict[str, Any]]) -> list[tuple[str, tuple[float, float, float], str]]:
+    """(object, start position, outcome) of every varied position in the records."""
+    points = []
+    for record in records:
+        outcome = outcome_of(record)
+        for name, varied in sorted((record.get("varied") or {}).items()):
+            if isinstance(varied, dict) and "position" in varied:
+                points.append((name, tuple(varied["position"]), outcome))
+    return points  # type: ignore[return-value]
+
+
+def colours(outcomes: list[str]) -> dict[str, tuple[int, int, int]]:
+    table: dict[str, tuple[int, int, int]] = {"succeeded": SUCCESS}
+    failures = [o for o, _ in Counter(o for o in outcomes if o != "succeeded").most_common()]
+    for index, kind in enumerate(k for k in failures if k not in SPECIAL):
+        table[kind] = PALETTE[index % len(PALETTE)]
+    table.update({k: v for k, v in SPECIAL.items() if k in failures})
+    return table
+
+
+def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: Path,
+                  width: int = 960, height: int = 720) -> None:
+    points = collect(records)
+    if not points:
+        raise InputError("nothing to plot: the variation file moves no object (give one a noise or a region)",
+                         Location("--plot"))
+    xy = np.array([p[1] for p in points], dtype=float)
+    lo, hi = xy[:, :2].min(axis=0) - PAD, xy[:, :2].max(axis=0) + PAD
+    centre = (lo + hi) / 2.0
+    span = np.maximum(hi - lo, 1.0)
+    aspect = width / height
+    half_y = max(span[1], span[0] / aspect) / 2.0
+    z_ref = float(np.median(xy[:, 2]))
+    fov = 2.0 * math.degrees(math.atan(half_y / (CAMERA_HEIGHT - z_ref)))
+    camera = Camera((float(centre[0]), float(centre[1]), CAMERA_HEIGHT), (float(centre[0]), float(centre[1]), 0.0),
+                    (0.0, 1.0, 0.0), fov, CAMERA_HEIGHT - 3.0, CAMERA_HEIGHT + 1.0)
+    spec = sweep.scenario.world
+    fixed = [o for o in spec.objects if o.type == "environment" or (o.fixed and o.type != "robot")]
+    world = load_spec(replace(spec, objects=fixed, robot=None, robot_description=None))
+    try:
+        image = render(world, camera, width, height).copy()
+    finally:
+        world.exit()
+    focal = (height / 2.0) / math.tan(math.radians(fov) / 2.0)
+
+    def pixel(position: tuple[float, float, float]) -> tuple[int, int]:
+        depth = CAMERA_HEIGHT - position[2]
+        return (int(round(width / 2.0 + focal * (position[0] - centre[0]) / depth)),
+                int(round(height / 2.0 - focal * (position[1] - centre[1]) / depth)))
+
+    table = colours([p[2] for p in points])
+    names = sorted({p[0] for p in points})
+    shape = {name: MARKERS[i % len(MARKERS)] for i, name in enumerate(names)}
+    # successes first, failures on top of them
+    for name, position, outcome in sorted(points, key=lambda p: p[2] != "succeeded"):
+        draw_marker(image, pixel(position), shape[name], table[outcome])
+    counts = Counter(outcome_of(r) for r in records)
+    rows: list[tuple[str, Any, str]] = [("circle", table[o], f"{o} {counts[o]}") for o in table if counts[o]]
+    rows += [(shape[n], (60, 60, 60), n) for n in names]
+    draw_legend(image, rows, f"{Path(sweep.meta['plan']).stem}: {len({r['index'] for r in records})} scenarios")
+    write_png(path, image)
+
+
+# -- drawing ------------------------------------------------------------------------------------------
+def draw_marker(image: np.ndarray, at: tuple[int, int], shape: str, colour: tuple[int, int, int],
+                radius: int = RADIUS) -> None:
+    height, width, _ = image.shape
+    cx, cy = at
+    r = radius
+    ys, xs = np.mgrid[-r - 1:r + 2, -r - 1:r + 2]
+    if shape == "circle":
+        inside = xs * xs + ys * ys <= r * r
+        edge = inside & (xs * xs + ys * ys > (r - 1.2) ** 2)
+    elif shape == "square":
+        inside = (abs(xs) <= r - 1) & (abs(ys) <= r - 1)
+        edge = inside & ((abs(xs) == r - 1) | (abs(ys) == r - 1))
+    elif shape == "triangle":
+        inside = (ys <= r - 1) & (ys >= -r) & (2 * abs(xs) <= ys + r)
+        edge = inside & ((ys == r - 1) | (2 * abs(xs) >= ys + r - 2))
+    elif shape == "diamond":
+        inside = abs(xs) + abs(ys) <= r
+        edge = inside & (abs(xs) + abs(ys) >= r - 1)
+    elif shape == "cross":
+        inside = ((abs(xs) <= 1) | (abs(ys) <= 1)) & (abs(xs) <= r) & (abs(ys) <= r)
+        edge = np.zeros_like(inside)
+    else:  # ring
+        inside = (xs * xs + ys * ys <= r * r) & (xs * xs + ys * ys >= (r - 2) ** 2)
+        edge = np.zeros_like(inside)
+    for fill, mask in ((colour, inside), (_darker(colour), edge)):
+        yy, xx = ys[mask] + cy, xs[mask] + cx
+        keep = (yy >= 0) & (yy < height) & (xx >= 0) & (xx < width)
+        image[yy[keep], xx[keep]] = fill
+
+
+def _darker(colour: tuple[int, int, int]) -> tuple[int, int, int]:
+    return tuple(int(c * 0.55) for c in colour)  # type: ignore[return-value]
+
+
+def draw_legend(image: np.ndarray, rows: list[tuple[str, Any, str]], title: str, scale: int = 2) -> None:
+    line = 8 * scale + 6
+    lines = [title.upper()] + [text.upper() for _, _, text in rows]
+    box_w = 12 + max(len(t) for t in lines) * 6 * scale + 24
+    box_h = 10 + line * len(lines)
+    x0, y0 = 10, 10
+    image[y0:y0 + box_h, x0:x0 + box_w] = (image[y0:y0 + box_h, x0:x0 + box_w] * 0.15 + 255 * 0.85).astype(np.uint8)
+    draw_text(image, (x0 + 8, y0 + 8), title.upper(), (20, 20, 20), scale)
+    for i, (shape, colour, text) in enumerate(rows, start=1):
+        y = y0 + 8 + i * line
+        draw_marker(image, (x0 + 14, y + 3 * scale), shape, colour, radius=5)
+        draw_text(image, (x0 + 28, y), text.upper(), (20, 20, 20), scale)
+
+
+def draw_text(image: np.ndarray, at: tuple[int, int], text: str, colour: tuple[int, int, int], scale: int = 2) -> None:
+    height, width, _ = image.shape
+    x, y = at
+    for char in text:
+        glyph = FONT.get(char, FONT["?"])
+        for row, bits in enumerate(glyph):
+            for col, bit in enumerate(bits):
+                if bit == "#":
+                    ys, xs = y + row * scale, x + col * scale
+                    if 0 <= ys < height - scale and 0 <= xs < width - scale:
+                        image[ys:ys + scale, xs:xs + scale] = colour
+        x += 6 * scale
+
+
+def _font(spec: str) -> dict[str, list[str]]:
+    glyphs: dict[str, list[str]] = {}
+    for block in spec.strip("\n").split("\n\n"):
+        lines = block.split("\n")
+        glyphs[lines[0][0] if lines[0] != "space" else " "] = [line.ljust(5, ".") for line in lines[1:]]
+    return glyphs
+
+
+FONT = _font("""
+A
+.###.
+#...#
+#...#
+#####
+#...#
+#...#
+#...#
+
+B
+####.
+#...#
+#...#
+####.
+#...#
+#...#
+####.
+
+C
+.###.
+#...#
+#....
+#....
+#....
+#...#
+.###.
+
+D
+####.
+#...#
+#...#
+#...#
+#...#
+#...#
+####.
+
+E
+#####
+#....
+#....
+####.
+#....
+#....
+#####
+
+F
+#####
+#....
+#....
+####.
+#....
+#....
+#....
+
+G
+.###.
+#...#
+#....
+#.###
+#...#
+#...#
+.####
+
+H
+#...#
+#...#
+#...#
+#####
+#...#
+#...#
+#...#
+
+I
+.###.
+..#..
+..#..
+..#..
+..#..
+..#..
+.###.
+
+J
+..###
+...#.
+...#.
+...#.
+...#.
+#..#.
+.##..
+
+K
+#...#
+#..#.
+#.#..
+##...
+#.#..
+#..#.
+#...#
+
+L
+#....
+#....
+#....
+#....
+#....
+#....
+#####
+
+M
+#...#
+##.##
+#.#.#
+#.#.#
+#...#
+#...#
+#...#
+
+N
+#...#
+#...#
+##..#
+#.#.#
+#..##
+#...#
+#...#
+
+O
+.###.
+#...#
+#...#
+#...#
+#...#
+#...#
+.###.
+
+P
+####.
+#...#
+#...#
+####.
+#....
+#....
+#....
+
+Q
+.###.
+#...#
+#...#
+#...#
+#.#.#
+#..#.
+.##.#
+
+R
+####.
+#...#
+#...#
+####.
+#.#..
+#..#.
+#...#
+
+S
+.####
+#....
+#....
+.###.
+....#
+....#
+####.
+
+T
+#####
+..#..
+..#..
+..#..
+..#..
+..#..
+..#..
+
+U
+#...#
+#...#
+#...#
+#...#
+#...#
+#...#
+.###.
+
+V
+#...#
+#...#
+#...#
+#...#
+#...#
+.#.#.
+..#..
+
+W
+#...#
+#...#
+#...#
+#.#.#
+#.#.#
+#.#.#
+.#.#.
+
+X
+#...#
+#...#
+.#.#.
+..#..
+.#.#.
+#...#
+#...#
+
+Y
+#...#
+#...#
+.#.#.
+..#..
+..#..
+..#..
+..#..
+
+Z
+#####
+....#
+...#.
+..#..
+.#...
+#....
+#####
+
+0
+.###.
+#...#
+#..##
+#.#.#
+##..#
+#...#
+.###.
+
+1
+..#..
+.##..
+..#..
+..#..
+..#..
+..#..
+.###.
+
+2
+.###.
+#...#
+....#
+...#.
+..#..
+.#...
+#####
+
+3
+#####
+...#.
+..#..
+...#.
+....#
+#...#
+.###.
+
+4
+...#.
+..##.
+.#.#.
+#..#.
+#####
+...#.
+...#.
+
+5
+#####
+#....
+####.
+....#
+....#
+#...#
+.###.
+
+6
+..##.
+.#...
+#....
+####.
+#...#
+#...#
+.###.
+
+7
+#####
+....#
+...#.
+..#..
+.#...
+.#...
+.#...
+
+8
+.###.
+#...#
+#...#
+.###.
+#...#
+#...#
+.###.
+
+9
+.###.
+#...#
+#...#
+.####
+....#
+...#.
+.##..
+
+space
+.....
+.....
+.....
+.....
+.....
+.....
+.....
+
+:
+.....
+.##..
+.##..
+.....
+.##..
+.##..
+.....
+
+.
+.....
+.....
+.....
+.....
+.....
+.##..
+.##..
+
+-
+.....
+.....
+.....
+#####
+.....
+.....
+.....
+
+_
+.....
+.....
+.....
+.....
+.....
+.....
+#####
+
+%
+##...
+##..#
+...#.
+..#..
+.#...
+#..##
+...##
+
+/
+.....
+....#
+...#.
+..#..
+.#...
+#....
+.....
+
+(
+...#.
+..#..
+.#...
+.#...
+.#...
+..#..
+...#.
+
+)
+.#...
+..#..
+...#.
+...#.
+...#.
+..#..
+.#...
+
+,
+.....
+.....
+.....
+.....
+.##..
+..#..
+.#...
+
+=
+.....
+.....
+#####
+.....
+#####
+.....
+.....
+
+?
+.###.
+#...#
+....#
+...#.
+..#..
+.....
+..#..
+""")

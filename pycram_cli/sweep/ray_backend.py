@@ -1,0 +1,109 @@
+"""The Ray backend: the same workers as Ray actors, on an existing cluster or a local one.
+
+    pycram sweep set_table -n 1000 --backend ray --address auto     # a running cluster (`ray start --head`)
+    pycram sweep set_table -n 100 --backend ray                      # a local Ray instance for this sweep
+
+Each actor is a `Worker` (one CPU): it keeps its worlds loaded and runs one scenario at a time,
+exactly as a local worker process does, so both backends give the same outcomes for the same
+seeds. An actor that does not answer within the timeout (plus a grace period) is killed and
+replaced, one that dies has its scenario recorded as an error. Ray is an optional extra
+(`pip install 'pycram-cli[ray]'`); every machine of the cluster needs pycram installed.
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import time
+from collections import deque
+from typing import Any, Callable, Iterable
+
+from ..errors import InputError, Location
+from .local import GRACE, STARTUP, SweepError
+from .worker import SweepJob, Task, Worker, error_record, timeout_record
+
+MISSING = ("the ray backend needs Ray, an optional extra: pip install 'pycram-cli[ray]' "
+           "(in a checkout: pip install '.[ray]')")
+
+
+def load_ray() -> Any:
+    """The `ray` module, or an input error saying how to install it."""
+    try:
+        # why: Ray is optional and takes a second to import; only `--backend ray` needs it
+        return importlib.import_module("ray")
+    except ImportError:
+        raise InputError(MISSING, Location("--backend")) from None
+
+
+class RayWorker:
+    """A sweep worker inside a Ray actor."""
+
+    def __init__(self, job: SweepJob) -> None:
+        self.worker = Worker(job)
+
+    def ready(self) -> int:
+        return os.getpid()
+
+    def run(self, task: Task) -> tuple[dict[str, Any], bool]:
+        """The outcome, and whether this actor should be replaced (see `Worker.retire`)."""
+        return self.worker.run(task), self.worker.retire
+
+
+def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable[[dict[str, Any]], None],
+        address: str | None = None, grace: float | None = None) -> None:
+    ray = load_ray()
+    grace = GRACE if grace is None else grace
+    pending = deque(tasks)
+    if not pending:
+        return
+    started_here = not ray.is_initialized()
+    if started_here:
+        options: dict[str, Any] = {"include_dashboard": False, "log_to_driver": False, "logging_level": "ERROR"}
+        if address is not None:
+            options["address"] = address
+        else:
+            options["num_cpus"] = workers
+        ray.init(**options)
+    actor_class = ray.remote(num_cpus=1, max_restarts=0)(RayWorker)
+    try:
+        actors = [actor_class.remote(job) for _ in range(min(workers, len(pending)))]
+        try:
+            ray.get([a.ready.remote() for a in actors], timeout=STARTUP)
+        except Exception as exc:  # noqa: BLE001 - an actor that cannot start stops the sweep
+            raise SweepError(f"a Ray worker could not start: {exc}") from None
+        running: dict[Any, tuple[Any, Task, float]] = {}
+
+        def submit(actor: Any) -> None:
+            task = pending.popleft()
+            running[actor.run.remote(task)] = (actor, task, time.monotonic())
+
+        for actor in actors:
+            if pending:
+                submit(actor)
+        while running:
+            deadlines = [sent + job.timeout + grace for _, _, sent in running.values()] if job.timeout else []
+            wait = max(0.0, min(deadlines) - time.monotonic()) if deadlines else None
+            done, _ = ray.wait(list(running), num_returns=1, timeout=wait)
+            for ref in done:
+                actor, task, _ = running.pop(ref)
+                try:
+                    outcome, retire = ray.get(ref)
+                except Exception as exc:  # noqa: BLE001 - the actor died: record, replace, go on
+                    outcome, retire = error_record(task, f"the Ray worker died: {type(exc).__name__}"), True
+                if retire:
+                    ray.kill(actor)
+                    actor = actor_class.remote(job)
+                on_outcome(outcome)
+                if pending:
+                    submit(actor)
+            now = time.monotonic()
+            for ref, (actor, task, sent) in list(running.items()):
+                if job.timeout and now >= sent + job.timeout + grace:
+                    running.pop(ref)
+                    ray.kill(actor)
+                    on_outcome(timeout_record(task, job.timeout, how=" (the worker was stopped)"))
+                    replacement = actor_class.remote(job)
+                    if pending:
+                        submit(replacement)
+    finally:
+        if started_here:
+            ray.shutdown()
