@@ -20,7 +20,10 @@ err = Console(stderr=True, highlight=False, soft_wrap=True, width=None if sys.st
 
 
 def info(message: str) -> None:
-    err.print(f"[cyan]info[/]: {message}", markup=True) if err.is_terminal else err.print(f"info: {message}", markup=False)
+    if err.is_terminal:
+        err.print(f"[cyan]info[/]: {_escape(message)}")
+    else:
+        err.print(f"info: {message}", markup=False)
 
 
 def warning(message: str) -> None:
