@@ -154,7 +154,7 @@
   function buildTimeline() {
     const box = $("timeline");
     box.textContent = "";
-    const width = Math.max(600, box.clientWidth - 2), height = rows.length * ROW + 24;
+    const width = Math.max(600, box.clientWidth - 18), height = rows.length * ROW + 24;  // room for a scroll bar
     const span = width - LABELS - 16;
     xOf = (t) => LABELS + (t / totalTime) * span;
     timeline = svg("svg", { width, height });
