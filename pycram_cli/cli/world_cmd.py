@@ -5,7 +5,7 @@ from pathlib import Path
 
 import click
 
-from ..world.camera import IMAGE_FORMATS, encode_image, image_format, render
+from ..world.camera import IMAGE_FORMATS, encode_image, image_format, movable_objects, render, robot_camera
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
 from . import console
@@ -53,6 +53,10 @@ def show(world_file: str | None, as_json: bool, gui: bool) -> None:
                           [(r["name"], r["type"], r["file"], _fmt(r["position"]), _joint_summary(r["movable_joints"]))
                            for r in rows])
         if gui:
+            viewer = sim.viewer_camera()
+            if viewer is not None:  # the robot and what it may work on, not the outside of the walls
+                centres = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(sim)]
+                sim.set_viewer_camera(robot_camera(sim, centres, viewer.vertical_fov_deg, sim.viewer_aspect()))
             wait_for_window(sim)
     finally:
         sim.exit()
