@@ -71,3 +71,11 @@ def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     # the PR2's blue grippers are in view at the end
     blue = (view[:, :, 2] - view[:, :, 0] > 60) & (view[:, :, 2] > 100)
     assert blue.sum() > 20
+
+
+def test_the_report_plays_by_itself(report, tmp_path):
+    dom = chromium(tmp_path / "play", "--dump-dom", report.as_uri() + "#step=3&play").stdout.decode(errors="replace")
+    body = re.search(r"<body([^>]*)>", dom)
+    assert body
+    attributes = dict(re.findall(r'data-([a-z]+)="([^"]*)"', body.group(1)))
+    assert int(attributes["step"]) > 6, "playing did not move on from step 3"
