@@ -10,6 +10,7 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
+from ..errors import InputError, Location
 from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
@@ -145,6 +146,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     the plan succeeded, 1 when it failed, 2 for invalid input.
     """
     image_size, view_name = parse_size(size), parse_view(camera)
+    if camera is not None and render_file is None:
+        raise InputError("sets the camera of the --render image, but no --render FILE is given",
+                         Location("--camera"))
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
                    (report_file, REPORT_FORMATS, "report")])
     scenario = prepare(plan_file, world_file, assignments=params)

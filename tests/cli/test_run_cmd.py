@@ -197,3 +197,12 @@ def test_render_takes_a_camera_a_size_and_a_format(tmp_path):
     # checked before the plan runs
     result = CliRunner().invoke(cli, ["run", str(plan), "--render", str(tmp_path / "none" / "x.png")])
     assert result.exit_code == 2 and "x.png" in result.stderr and "running" not in result.stderr
+
+
+def test_a_camera_without_render_is_an_input_error():
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    result = CliRunner().invoke(cli, ["run", "set_table", "--camera", "robot"])
+    assert result.exit_code == 2 and "no --render FILE is given" in result.stderr
