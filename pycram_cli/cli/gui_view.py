@@ -3,7 +3,7 @@
 `GuiView` wraps the run's view (live tree, plain lines, pauses): before passing each event on,
 it points PyBullet's viewer at the robot and the objects and places of the step that just ran
 (the resolved designator slots and query arguments: `object: bowl`, `target: [x, y, z]`), and
-shows the step being executed in the top left corner of the window. With `follow=False` the
+names that step in the top left corner of the window. With `follow=False` the
 camera is placed once, on the robot and every object it may work on, and then left alone.
 """
 from __future__ import annotations

@@ -316,7 +316,7 @@ class BulletWorld:
         if self.mode != "gui" or not self.is_connected():
             return None
         info = p.getDebugVisualizerCamera(physicsClientId=self.client_id)
-        width, height, view, projection = info[0], info[1], info[2], info[3]
+        view, projection = info[2], info[3]
         rotation = np.array(view, dtype=float).reshape(4, 4, order="F")
         eye = -rotation[:3, :3].T @ rotation[:3, 3]
         target = tuple(float(v) for v in info[11])

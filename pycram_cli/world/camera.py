@@ -52,8 +52,6 @@ def default_camera(world: "BulletWorld") -> Camera:
     return Camera(tuple(eye), tuple(centre))
 
 
-overview_camera = default_camera
-
 
 def framing_camera(points: Iterable[Sequence[float]], heading: Sequence[float], fov_deg: float = 50.0,
                    aspect: float = 4 / 3, pitch_deg: float = -40.0, turn_deg: float = 35.0,
@@ -266,7 +264,3 @@ def parse_camera(text: str) -> Camera:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
                          f"got {text!r}")
     return Camera(_point(eye, "camera eye"), _point(target, "camera target"))
-
-
-def with_fov(camera: Camera, fov_deg: float) -> Camera:
-    return replace(camera, vertical_fov_deg=fov_deg)
