@@ -16,6 +16,7 @@ setup(
     + [f"pycram_cli._bundled.{name}" for name in BUNDLED],
     package_dir={"pycram_cli": "pycram_cli"}
     | {f"pycram_cli._bundled.{name}": name for name in BUNDLED},
-    package_data={f"pycram_cli._bundled.{name}": ["**/*"] for name in BUNDLED},
+    package_data={f"pycram_cli._bundled.{name}": ["**/*"] for name in BUNDLED}
+    | {"pycram_cli.report": ["assets/*"]},
     include_package_data=False,
 )

@@ -35,7 +35,10 @@ def is_quiet() -> bool:
 def info(message: str) -> None:
     if _quiet:
         return
-    err.print(f"[cyan]info[/]: {message}", markup=True) if err.is_terminal else err.print(f"info: {message}", markup=False)
+    if err.is_terminal:
+        err.print(f"[cyan]info[/]: {_escape(message)}")
+    else:
+        err.print(f"info: {message}", markup=False)
 
 
 def warning(message: str) -> None:

@@ -7,8 +7,10 @@ from typing import Callable, Iterator, TypeVar
 
 import click
 
+from ..errors import InputError, Location, did_you_mean
 from ..paths import find_world
-from ..world import BulletWorld
+from ..world import BulletWorld, Object
+from ..world.camera import VIEWS, Camera, named_camera, parse_camera
 from ..worldfile.loader import load_world
 
 F = TypeVar("F", bound=Callable[..., object])
@@ -50,3 +52,50 @@ def open_world(value: str | None, mode: str = "direct") -> Iterator[tuple[Bullet
         yield world, path
     finally:
         world.exit()
+
+
+# -- images: camera and size ----------------------------------------------------------------------
+def camera_option(func: F) -> F:
+    return click.option(
+        "--camera", metavar="VIEW|EYE:TARGET",
+        help="Camera of the image: a view (overview: the whole scene; robot: the robot over its shoulder; "
+             "target: the objects worked on) or EYE:TARGET, each x,y,z, e.g. -1.5,-1.5,2.5:1,0.8,0.9. "
+             "Default: overview.")(func)  # type: ignore[return-value]
+
+
+def size_option(func: F) -> F:
+    return click.option("--size", metavar="WxH", default="960x720", show_default=True,
+                        help="Image size in pixels (16 to 4096 each way).")(func)  # type: ignore[return-value]
+
+
+def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
+    """`960x720` -> (960, 720); an InputError naming the option otherwise."""
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+        if not (16 <= width <= 4096 and 16 <= height <= 4096):
+            raise ValueError
+    except ValueError:
+        raise InputError(f"expected WIDTHxHEIGHT between 16 and 4096, e.g. 960x720, got '{text}'",
+                         Location(option)) from None
+    return width, height
+
+
+def parse_view(text: str | None, option: str = "--camera") -> "str | Camera":
+    """A named view (overview, robot, target) or a Camera from EYE:TARGET; an InputError otherwise."""
+    if text is None:
+        return "overview"
+    if text in VIEWS:
+        return text
+    try:
+        return parse_camera(text)
+    except ValueError as exc:
+        hint = did_you_mean(text, VIEWS) if ":" not in text else None
+        raise InputError(str(exc), Location(option), suggestion=hint) from None
+
+
+def image_camera(world: BulletWorld, view: "str | Camera", size: tuple[int, int],
+                 targets: "list[Object] | None" = None) -> Camera:
+    """The camera of an image: a named view computed on `world` as it is now, or the given camera."""
+    if isinstance(view, Camera):
+        return view
+    return named_camera(world, view, targets, aspect=size[0] / size[1])

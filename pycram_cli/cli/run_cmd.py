@@ -10,13 +10,16 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
-from ..plan.trace import TraceNode, normalised, save
 from ..errors import InputError, Location
+from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
 from ..scenario.variations import beside, read_variations
-from ..world.camera import default_camera, render, write_png
+from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
-from .options import gui_option, json_option, wait_for_window
+from .files import REPORT_FORMATS, check_outputs, write_output, write_report
+from .gui_view import GuiView
+from .options import (camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
+                      wait_for_window)
 from .trace_cmd import PLAIN, build_tree, describe_node, find_node
 
 EXIT_FAILED = 1
@@ -123,24 +126,36 @@ class QuietView:
 @click.option("--trace", "trace_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the run's trace (JSON) to this file.")
 @click.option("--render", "render_file", type=click.Path(dir_okay=False, path_type=Path),
-              help="Write a PNG of the final scene (headless).")
+              help="Write an image of the final scene (headless); its extension sets the format (.png, .jpg, ...).")
+@camera_option
+@size_option
+@click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write a replay report: one HTML file with a 3D replay, the plan tree and a timeline.")
 @click.option("--pace", type=click.FloatRange(min=0.0), default=None, metavar="SECONDS",
               help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
 @click.option("--scenario", "scenario_seed", type=int, default=None, metavar="SEED",
               help="Run one scenario of a sweep: the world and parameters drawn from SEED (see `pycram sweep`).")
 @click.option("--vary", "vary_file", metavar="VARY.yaml",
               help="The variation file --scenario draws from (default: PLAN.vary.yaml beside the plan).")
+@click.option("--follow/--no-follow", default=True, show_default=True,
+              help="With --gui: the window's camera follows the robot (else it stays where it was put at the start).")
 @json_option
 @gui_option
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
-        render_file: Path | None, pace: float | None, scenario_seed: int | None, vary_file: str | None, as_json: bool,
-        gui: bool) -> None:
+        render_file: Path | None, camera: str | None, size: str, report_file: Path | None, pace: float | None,
+        scenario_seed: int | None, vary_file: str | None, follow: bool, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
     the plan succeeded, 1 when it failed, 2 for invalid input.
     """
+    image_size, view_name = parse_size(size), parse_view(camera)
+    if camera is not None and render_file is None:
+        raise InputError("sets the camera of the --render image, but no --render FILE is given",
+                         Location("--camera"))
+    check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
+                   (report_file, REPORT_FORMATS, "report")])
     scenario = prepare(plan_file, world_file, assignments=params)
     if vary_file is not None and scenario_seed is None:
         raise InputError("--vary draws a scenario only with --scenario SEED", Location("--vary"))
@@ -156,6 +171,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     plan, world_path, values = scenario.plan, scenario.world_path, scenario.params
     world = scenario.load_world(mode="gui" if gui else "direct")
     try:
+        before = poses(world)
         view: Any
         if as_json or console.is_quiet():
             view = QuietView()
@@ -170,21 +186,31 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         pace = pace if pace is not None else (0.5 if gui else 0.0)
         if pace > 0:
             view = Paced(view, pace)
-        if isinstance(view.view if isinstance(view, Paced) else view, LiveView):
-            with view:
-                result = scenario.run(world, view)
-        else:
-            result = scenario.run(world, view)
+        observer = GuiView(world, view, follow) if gui else view
+        replay = trace_file is not None or report_file is not None
+        try:
+            if isinstance(view.view if isinstance(view, Paced) else view, LiveView):
+                with view:
+                    result = scenario.run(world, observer, replay=replay)
+            else:
+                result = scenario.run(world, observer, replay=replay)
+        finally:
+            if isinstance(observer, GuiView):
+                observer.close()
         duration = time.perf_counter() - started
         if trace_file is not None:
-            save(result.trace, trace_file)
+            write_output(trace_file, dumps(result.trace), "trace", make_folders=True)
         if render_file is not None:
-            write_png(render_file, render(world, default_camera(world), 960, 720))
+            cam = image_camera(world, view_name, image_size, moved_since(world, before) or None)
+            write_output(render_file, encode_image(render(world, cam, *image_size), render_file.suffix),
+                         f"{image_size[0]}x{image_size[1]} {image_format(render_file.suffix)}")
+        if report_file is not None:
+            write_report(report_file, result.trace, scenario.world_path)
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace}))
         else:
-            _summary(plan, result, duration, trace_file)
+            _summary(plan, result, duration)
         if gui:
             wait_for_window(world)
     finally:
@@ -193,7 +219,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         ctx.exit(EXIT_FAILED)
 
 
-def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None) -> None:
+def _summary(plan: Any, result: Any, duration: float) -> None:
     name = plan.path.name
     if result.succeeded:
         console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
@@ -209,5 +235,3 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None) -
             console.out.print(f"[bold red]✗[/] {escape(message)}")
         else:
             console.plain(message)
-    if trace_file is not None:
-        console.info(f"trace written to {trace_file}")

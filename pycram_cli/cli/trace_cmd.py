@@ -10,12 +10,14 @@ from rich.markup import escape
 from rich.tree import Tree
 
 from ..plan import trace as traces
+from ..report import REPORT_FORMATS, report_world
 from . import console
+from .files import check_output, write_report
 
-STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "cancelled": ("⊘", "yellow"),
-         "skipped": ("·", "dim"), "running": ("▶", "cyan"), "pending": ("○", "dim")}
-PLAIN = {"succeeded": "ok", "failed": "FAILED", "cancelled": "cancelled", "skipped": "skipped",
-         "running": "running", "pending": "pending"}
+STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "recovered": ("↺", "yellow"),
+         "cancelled": ("⊘", "yellow"), "skipped": ("·", "dim"), "running": ("▶", "cyan"), "pending": ("○", "dim")}
+PLAIN = {"succeeded": "ok", "failed": "FAILED", "recovered": "recovered", "cancelled": "cancelled",
+         "skipped": "skipped", "running": "running", "pending": "pending"}
 
 
 def _short(value: Any, limit: int = 70) -> str:
@@ -74,8 +76,11 @@ def describe_condition(record: dict[str, Any]) -> str:
     return verdict
 
 
-def node_label(node: dict[str, Any], rich_markup: bool = True, timing: bool = True) -> str:
+def node_label(node: dict[str, Any], rich_markup: bool = True, timing: bool = True, saved: bool = False) -> str:
+    """A node's line in the tree; `saved`: something above it succeeded, so its failure was recovered from."""
     status = node.get("status", "pending")
+    if status == "failed" and saved:
+        status = "recovered"
     label = node.get("path", "?").rsplit("/", 1)[-1]
     details = describe_node(node, timing)
     if not rich_markup:
@@ -88,13 +93,15 @@ def node_label(node: dict[str, Any], rich_markup: bool = True, timing: bool = Tr
 
 
 def build_tree(root: dict[str, Any], collapse: bool = False, timing: bool = True) -> Tree:
-    """A rich Tree of a trace's nodes; with `collapse`, finished successful subtrees are folded."""
+    """The plan tree as the live view and `trace show` print it: a rich Tree of a trace's nodes, each
+    with its status (a failure that something above recovered from as recovered); with `collapse`,
+    finished successful subtrees are folded."""
     tree = Tree(node_label(root, timing=timing), guide_style="dim")
-    _add(tree, root, collapse, timing)
+    _add(tree, root, collapse, timing, root.get("status") == "succeeded")
     return tree
 
 
-def _add(tree: Tree, node: dict[str, Any], collapse: bool, timing: bool) -> None:
+def _add(tree: Tree, node: dict[str, Any], collapse: bool, timing: bool, saved: bool = False) -> None:
     children = node.get("children") or []
     if collapse and node.get("status") in ("succeeded", "skipped") and children and node.get("path") != "body":
         tree.add(f"[dim]… {len(children)} step{'s' if len(children) != 1 else ''}[/]")
@@ -104,17 +111,10 @@ def _add(tree: Tree, node: dict[str, Any], collapse: bool, timing: bool) -> None
         if collapse and child.get("status") == "pending":
             pending += 1  # upcoming steps are summed up in one line
             continue
-        branch = tree.add(node_label(child, timing=timing))
-        _add(branch, child, collapse, timing)
+        branch = tree.add(node_label(child, timing=timing, saved=saved))
+        _add(branch, child, collapse, timing, saved or child.get("status") == "succeeded")
     if pending:
         tree.add(f"[dim]○ {pending} more step{'s' if pending != 1 else ''}[/]")
-
-
-def plain_lines(node: dict[str, Any], depth: int = 0, timing: bool = True) -> list[str]:
-    lines = ["  " * depth + node_label(node, rich_markup=False, timing=timing)]
-    for child in node.get("children") or []:
-        lines.extend(plain_lines(child, depth + 1, timing))
-    return lines
 
 
 def find_node(root: dict[str, Any], path: str) -> dict[str, Any] | None:
@@ -143,21 +143,22 @@ def trace() -> None:
 @trace.command("show")
 @click.argument("file", type=click.Path(path_type=Path))
 @click.option("--no-timing", is_flag=True, help="Leave durations out.")
-def show(file: Path, no_timing: bool) -> None:
-    """Print the trace in FILE as a tree, then the world's final state."""
+@click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Also write the run's replay report (HTML), as `pycram run --report` does.")
+@click.option("--world", "world_file", metavar="WORLD",
+              help="With --report: the world file the run used (default: the one the trace names).")
+def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str | None) -> None:
+    """Print the trace in FILE as a tree (as the live view of `pycram run` shows it), then the world's final state."""
+    if report_file is not None:
+        check_output(report_file, REPORT_FORMATS, "report")
     data = traces.load(file)
     timing = not no_timing
     status = data.get("status", "?")
     header = f"{data.get('plan')} on {data.get('world')}: {status}"
     if data.get("params"):
         header += "  (" + ", ".join(f"{k}={_short(v, 30)}" for k, v in data["params"].items()) + ")"
-    if console.out.is_terminal:
-        console.out.print(f"[bold]{escape(header)}[/]")
-        console.out.print(build_tree(data["root"], timing=timing))
-    else:
-        console.plain(header)
-        for line in plain_lines(data["root"], timing=timing):
-            console.plain(line)
+    console.out.print(f"[bold]{escape(header)}[/]")
+    console.out.print(build_tree(data["root"], timing=timing))
     failure = data.get("failure")
     if failure:
         console.plain(f"failure: {failure.get('type')} at {failure.get('path')}: {failure.get('message')}")
@@ -167,6 +168,11 @@ def show(file: Path, no_timing: bool) -> None:
         console.table("final state", ["object", "type", "position", "joints"], rows)
     for att in attachments:
         console.plain(f"attached: {att['child']} to {att['parent']} ({att['parent_link']})")
+    if report_file is not None:
+        if not data.get(traces.REPLAY_KEY):
+            console.warning(f"{file} has no replay record (written by `pycram run --trace`): the report's 3D view "
+                            "shows the world as loaded")
+        write_report(report_file, data, report_world(data, world_file))
 
 
 @trace.command("diff")

@@ -5,13 +5,14 @@ from pathlib import Path
 
 import click
 
-from ..errors import InputError, Location
-from ..world.camera import default_camera, parse_camera, render, write_png
+from ..world.camera import IMAGE_FORMATS, encode_image, image_format, movable_objects, render, robot_camera
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
 from . import console
 from ..paths import find_world
-from .options import gui_option, json_option, wait_for_window
+from .files import check_output, write_output
+from .options import (camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
+                      wait_for_window)
 
 
 @click.group()
@@ -52,6 +53,10 @@ def show(world_file: str | None, as_json: bool, gui: bool) -> None:
                           [(r["name"], r["type"], r["file"], _fmt(r["position"]), _joint_summary(r["movable_joints"]))
                            for r in rows])
         if gui:
+            viewer = sim.viewer_camera()
+            if viewer is not None:  # the robot and what it may work on, not the outside of the walls
+                centres = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(sim)]
+                sim.set_viewer_camera(robot_camera(sim, centres, viewer.vertical_fov_deg, sim.viewer_aspect()))
             wait_for_window(sim)
     finally:
         sim.exit()
@@ -67,29 +72,21 @@ def _joint_summary(joints: dict[str, float]) -> str:
 @world.command("render")
 @click.argument("world_file", metavar="[WORLD]", required=False)
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=Path("scene.png"),
-              show_default=True, help="PNG file to write.")
-@click.option("--camera", metavar="EYE:TARGET", help="Camera eye and target, each x,y,z, e.g. -1.5,-1.5,2.5:1,0.8,0.9.")
-@click.option("--size", metavar="WxH", default="960x720", show_default=True, help="Image size in pixels.")
+              show_default=True, help="Image file to write; its extension sets the format (.png, .jpg, ...).")
+@camera_option
+@size_option
 def render_cmd(world_file: str | None, output: Path, camera: str | None, size: str) -> None:
-    """Render WORLD to a PNG (headless)."""
-    try:
-        width, height = (int(v) for v in size.lower().split("x"))
-        if not (16 <= width <= 4096 and 16 <= height <= 4096):
-            raise ValueError
-    except ValueError:
-        raise InputError(f"expected WIDTHxHEIGHT between 16 and 4096, e.g. 960x720, got '{size}'", Location("--size")) from None
-    try:
-        cam = parse_camera(camera) if camera else None
-    except ValueError as exc:
-        raise InputError(str(exc), Location("--camera")) from None
+    """Render WORLD to an image (headless): PNG, JPEG, WebP or BMP, by the file's extension."""
+    width, height = parse_size(size)
+    view = parse_view(camera)
+    check_output(output, IMAGE_FORMATS, "image")
     path = find_world(world_file)
     sim = load_spec(parse_world(path))
     try:
-        image = render(sim, cam or default_camera(sim), width, height)
+        image = render(sim, image_camera(sim, view, (width, height)), width, height)
     finally:
         sim.exit()
-    write_png(output, image)
-    console.success(f"wrote {output} ({width}x{height})")
+    write_output(output, encode_image(image, output.suffix), f"{width}x{height} {image_format(output.suffix)}")
 
 
 world.add_command(render_cmd, "render")

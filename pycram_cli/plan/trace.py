@@ -6,7 +6,7 @@ resolved designator slots, reasoning answers, bound values and failure (type, me
 and the path of the node where it arose). The final state of the world closes the trace.
 
 Wall-clock data lives only under `timing` keys (and `source` names the line in the plan
-file); `comparable()` drops them. Everything else is a function of the plan and the
+file); `comparable()` drops them, and the replay record (`replay`, see replay.py) too. Everything else is a function of the plan and the
 world: the tree is built in declaration order (concurrent branches by index, never by
 finishing order), floats are rounded to 6 decimals and keys sorted, so the same plan on
 the same world gives byte-identical comparable traces.
@@ -29,6 +29,7 @@ if TYPE_CHECKING:
 FORMAT = "pycram-trace"
 VERSION = 1
 IGNORED_KEYS = frozenset({"timing", "source"})
+REPLAY_KEY = "replay"  # the world's state after every step (replay.py); a top-level key comparable() drops
 STATUSES = ("pending", "running", "succeeded", "failed", "cancelled", "skipped")
 DIGITS = 6
 
@@ -157,7 +158,9 @@ def _encode(value: Any, depth: int) -> str:
 
 
 def comparable(data: Any) -> Any:
-    """The trace without its wall-clock parts (`timing`) and source places."""
+    """The trace without its wall-clock parts (`timing`), source places and replay record."""
+    if isinstance(data, dict) and data.get("format") == FORMAT:
+        data = {k: v for k, v in data.items() if k != REPLAY_KEY}
     if isinstance(data, dict):
         return {k: comparable(v) for k, v in data.items() if k not in IGNORED_KEYS}
     if isinstance(data, list):

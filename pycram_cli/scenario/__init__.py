@@ -21,6 +21,8 @@ from ..errors import InputError, PycramError, as_list, raise_if_any
 from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
 from ..plan.executor import Observer
+from ..plan.replay import Recorder
+from ..plan.trace import REPLAY_KEY
 from ..world import BulletWorld
 from ..world.state import WorldState
 from ..worldfile.loader import load_spec
@@ -79,15 +81,28 @@ class Scenario:
         """This scenario with some parameters set otherwise (values checked by `bind_params`)."""
         return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values})})
 
-    def run(self, world: BulletWorld | None = None, observer: Observer | None = None, mode: str = "direct") -> RunResult:
-        """Run the plan: on `world` if given (left open), else on a freshly loaded world (exited afterwards)."""
+    def run(self, world: BulletWorld | None = None, observer: Observer | None = None, mode: str = "direct",
+            replay: bool = False) -> RunResult:
+        """Run the plan: on `world` if given (left open), else on a freshly loaded world (exited afterwards).
+
+        With `replay`, the trace also records the world's state after every step (its `replay` key,
+        see plan/replay.py), which `pycram run --report` and `trace show --report` replay.
+        """
         if world is not None:
-            return run_plan(self.plan, world, self.params, observer, world_name=self.world_path.name, bound=True)
+            return self._run(world, observer, replay)
         sim = self.load_world(mode)
         try:
-            return run_plan(self.plan, sim, self.params, observer, world_name=self.world_path.name, bound=True)
+            return self._run(sim, observer, replay)
         finally:
             sim.exit()
+
+    def _run(self, world: BulletWorld, observer: Observer | None, replay: bool) -> RunResult:
+        recorder = Recorder(world, observer, self.world_path) if replay else None
+        result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
+                          bound=True)
+        if recorder is not None:
+            result.trace[REPLAY_KEY] = recorder.record()
+        return result
 
 
 def prepare(plan: str | Path, world: str | Path | None = None, params: Mapping[str, Any] | None = None,

@@ -5,8 +5,9 @@ with silenced():  # PyBullet prints its build banner from C when first imported
     import pybullet  # noqa: F401
 from .bullet_world import BulletWorld, ClosestPoint, WorldError, current_world
 from .events import Event
-from .object import Attachment, JointLimitError, MissingMeshWarning, Object
+from .display import NoDisplayError
+from .object import Attachment, JointLimitError, MissingMeshWarning, Object, VisualShape
 from .state import StateError, WorldState
 
 __all__ = ["BulletWorld", "ClosestPoint", "Object", "Attachment", "Event", "WorldState", "WorldError", "StateError",
-           "JointLimitError", "MissingMeshWarning", "current_world"]
+           "JointLimitError", "MissingMeshWarning", "NoDisplayError", "VisualShape", "current_world"]

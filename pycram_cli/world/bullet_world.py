@@ -16,10 +16,11 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 import numpy as np
 import pybullet as p
 
-from .camera import segmentation
+from .camera import Camera, segmentation
+from .display import check_display
 from .events import Event
-from .pose import Vec3, check_position
 from ..quiet import silenced
+from .pose import Vec3, check_position, matrix_to_quat
 from .solo import SoloRenderer
 from .state import WorldState, capture, release, restore
 
@@ -66,6 +67,8 @@ class BulletWorld:
                     "a GUI world is already open (PyBullet allows one window per process); "
                     "exit it first or create this world with mode='direct'"
                 )
+            if mode == "gui":
+                check_display()  # PyBullet would end the process (exit code 1) without a display
             with silenced():
                 client = p.connect(p.GUI if mode == "gui" else p.DIRECT)
             if client < 0:
@@ -76,6 +79,7 @@ class BulletWorld:
                 BulletWorld._gui_world = self
                 with silenced():  # the window's OpenGL set-up prints its driver names from its own thread
                     p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
+                    p.configureDebugVisualizer(p.COV_ENABLE_SHADOWS, 0, physicsClientId=client)
                     deadline = time.monotonic() + 3.0
                     while p.getDebugVisualizerCamera(physicsClientId=client)[0] <= 0 and time.monotonic() < deadline:
                         time.sleep(0.02)
@@ -95,6 +99,7 @@ class BulletWorld:
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
         self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
+        self._caption: int = -1  # the GUI's caption text item, once shown
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -241,6 +246,28 @@ class BulletWorld:
             links["linkIndexB"] = link_b
         return p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
 
+    def clear_fraction(self, start: Sequence[float], end: Sequence[float], ignore: Sequence["Object"] = ()) -> float:
+        """How far along the segment from `start` to `end` (0..1) nothing blocks it: 1.0 when the line is
+        clear. Objects in `ignore` are seen through (e.g. a camera looking past the robot at its work)."""
+        self._check_alive()
+        skip = {obj.id for obj in ignore}
+        begin = np.asarray(start, dtype=float)
+        stop = np.asarray(end, dtype=float)
+        length = float(np.linalg.norm(stop - begin))
+        if length < 1e-9:
+            return 1.0
+        done = 0.0
+        for _ in range(8):  # through at most 8 ignored objects
+            origin = begin + (stop - begin) * done
+            hit = p.rayTest(origin.tolist(), stop.tolist(), physicsClientId=self.client_id)[0]
+            if hit[0] < 0:
+                return 1.0
+            reached = done + (1.0 - done) * float(hit[2])
+            if hit[0] not in skip:
+                return reached
+            done = min(1.0, reached + 1e-3 / length)
+        return done
+
     # -- rendering --------------------------------------------------------------
     def segmentation(self, width: int, height: int, view: Sequence[float],
                      projection: Sequence[float]) -> np.ndarray:
@@ -263,6 +290,89 @@ class BulletWorld:
             if self._solo is None:
                 self._solo = SoloRenderer()
             return self._solo.mask(obj, width, height, view, projection)
+
+    # -- the GUI's viewer ---------------------------------------------------------
+    @contextlib.contextmanager
+    def rendering_paused(self) -> Iterator[None]:
+        """`with world.rendering_paused():` — the GUI window does not redraw inside (loading many bodies
+        is then about 30 times faster under a software renderer); nothing without a window."""
+        self.set_rendering(False)
+        try:
+            yield
+        finally:
+            self.set_rendering(True)
+
+    def set_rendering(self, on: bool) -> None:
+        """Let the GUI window redraw (on) or keep showing its last picture (off), nothing without a window.
+
+        While a window redraws, every PyBullet call waits for a frame (about 10 ms under a software
+        renderer), so runs switch it off while a step executes and on again to show its result.
+        """
+        if self.mode == "gui" and self.is_connected():
+            p.configureDebugVisualizer(p.COV_ENABLE_RENDERING, 1 if on else 0, physicsClientId=self.client_id)
+
+    def viewer_camera(self) -> Camera | None:
+        """Where the GUI window's camera is now (with the window's field of view); None without a window."""
+        if self.mode != "gui" or not self.is_connected():
+            return None
+        info = p.getDebugVisualizerCamera(physicsClientId=self.client_id)
+        view, projection = info[2], info[3]
+        rotation = np.array(view, dtype=float).reshape(4, 4, order="F")
+        eye = -rotation[:3, :3].T @ rotation[:3, 3]
+        target = tuple(float(v) for v in info[11])
+        fov = math.degrees(2.0 * math.atan(1.0 / projection[5])) if projection[5] else 60.0
+        return Camera(tuple(float(v) for v in eye), target, vertical_fov_deg=fov)  # type: ignore[arg-type]
+
+    def viewer_aspect(self) -> float:
+        """Width over height of the GUI window (4/3 without a window)."""
+        if self.mode != "gui" or not self.is_connected():
+            return 4 / 3
+        info = p.getDebugVisualizerCamera(physicsClientId=self.client_id)
+        return info[0] / info[1] if info[1] else 4 / 3
+
+    def set_viewer_camera(self, camera: Camera) -> None:
+        """Point the GUI window's camera from `camera.eye` at `camera.target` (nothing without a window).
+
+        The window keeps its own field of view (see `viewer_camera`)."""
+        if self.mode != "gui" or not self.is_connected():
+            return
+        offset = np.asarray(camera.target, dtype=float) - np.asarray(camera.eye, dtype=float)
+        distance = float(np.linalg.norm(offset))
+        if distance < 1e-6:
+            return
+        forward = offset / distance
+        pitch = math.degrees(math.asin(max(-1.0, min(1.0, float(forward[2])))))
+        yaw = math.degrees(math.atan2(-float(forward[0]), float(forward[1])))
+        p.resetDebugVisualizerCamera(distance, yaw, pitch, list(camera.target), physicsClientId=self.client_id)
+
+    def show_caption(self, text: str, camera: Camera | None = None) -> None:
+        """Show `text` at the top left of the GUI window (replacing the previous caption; nothing without a window).
+
+        PyBullet draws text at a point in the world, so it is placed just in front of the viewer's camera:
+        `camera` when the caller has just set it (the window reports a new camera only once it has drawn it).
+        """
+        if self.mode != "gui" or not self.is_connected():
+            return
+        camera = camera or self.viewer_camera()
+        if camera is None:
+            return
+        eye = np.asarray(camera.eye, dtype=float)
+        forward = np.asarray(camera.target, dtype=float) - eye
+        forward /= np.linalg.norm(forward) or 1.0
+        right = np.cross(forward, (0.0, 0.0, 1.0))
+        right /= np.linalg.norm(right) or 1.0
+        up = np.cross(right, forward)
+        depth = 1.0
+        half_v = math.tan(math.radians(camera.vertical_fov_deg) / 2.0) * depth
+        half_h = half_v * self.viewer_aspect()
+        where = eye + forward * depth + up * half_v * 0.9 - right * half_h * 0.96
+        # turned to face this camera: PyBullet would turn it to the camera the window still shows
+        facing = matrix_to_quat(np.column_stack([right, up, -forward]))
+        options = {"replaceItemUniqueId": self._caption} if self._caption >= 0 else {}
+        with silenced():
+            self._caption = p.addUserDebugText(text, where.tolist(), textColorRGB=[0.05, 0.05, 0.3],
+                                               textSize=0.06 * half_v, textOrientation=list(facing),
+                                               physicsClientId=self.client_id, **options)
 
     # -- objects ----------------------------------------------------------------
     def register(self, obj: "Object") -> None:

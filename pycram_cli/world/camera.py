@@ -1,20 +1,32 @@
-"""Rendering a world to pixels (PyBullet's TinyRenderer, works headless) and writing PNGs."""
+"""Rendering a world to pixels (PyBullet's TinyRenderer, works headless), cameras that frame what
+matters (the whole scene, the robot, the objects it works on), and encoding images (PNG, JPEG).
+
+Images are encoded with Pillow, the format chosen by the file's extension (`IMAGE_FORMATS`).
+"""
 from __future__ import annotations
 
+import io
 import math
-import struct
-import zlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import numpy as np
 import pybullet as p
+from PIL import Image
 
 from ..kinds import parse_vector
 
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
+    from .object import Object
+
+#: file extensions (lower case) and the image formats they are written in
+IMAGE_FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".webp": "WEBP", ".bmp": "BMP"}
+#: the named views of `named_camera`
+VIEWS = ("overview", "robot", "target")
+#: types whose objects are scenery, not things a plan works on
+SCENERY_TYPES = ("robot", "environment")
 
 
 @dataclass(frozen=True)
@@ -28,7 +40,7 @@ class Camera:
 
 
 def default_camera(world: "BulletWorld") -> Camera:
-    """A three-quarter view that frames every object except huge ones (floors)."""
+    """A three-quarter view that frames every object except huge ones (floors): the `overview`."""
     boxes = [o.get_aabb() for o in world.objects]
     boxes = [b for b in boxes if max(b[1][k] - b[0][k] for k in range(2)) < 15.0] or boxes or [((0, 0, 0), (1, 1, 1))]
     lo = np.min([b[0] for b in boxes], axis=0)
@@ -39,6 +51,159 @@ def default_camera(world: "BulletWorld") -> Camera:
     direction /= np.linalg.norm(direction)
     eye = centre + direction * radius / math.tan(math.radians(25.0)) * 0.8
     return Camera(tuple(eye), tuple(centre))
+
+
+
+def framing_camera(points: Iterable[Sequence[float]], heading: Sequence[float], fov_deg: float = 50.0,
+                   aspect: float = 4 / 3, pitch_deg: float = -40.0, turn_deg: float = 35.0,
+                   min_distance: float = 1.2) -> Camera:
+    """A camera that sees every one of `points`, looking roughly along `heading` (x, y) from above.
+
+    The camera stands behind the points as seen along `heading`, turned `turn_deg` to the side
+    and looking down by `-pitch_deg`, far enough that the points' bounding sphere fits the
+    narrower of the two fields of view (`fov_deg` is the vertical one).
+    """
+    cloud = np.asarray([list(map(float, q)) for q in points], dtype=float).reshape(-1, 3)
+    if not len(cloud):
+        cloud = np.zeros((1, 3))
+    lo, hi = cloud.min(axis=0), cloud.max(axis=0)
+    centre = (lo + hi) / 2.0
+    radius = max(float(np.linalg.norm(hi - lo)) / 2.0, 0.3)
+    yaw = math.atan2(float(heading[1]), float(heading[0])) if math.hypot(heading[0], heading[1]) > 1e-9 else 0.0
+    yaw += math.radians(turn_deg)
+    pitch = math.radians(pitch_deg)
+    forward = np.array([math.cos(pitch) * math.cos(yaw), math.cos(pitch) * math.sin(yaw), math.sin(pitch)])
+    half_v = math.radians(fov_deg) / 2.0
+    half_h = math.atan(math.tan(half_v) * aspect)
+    distance = max(radius / math.sin(min(half_v, half_h)) * 1.05, min_distance)
+    eye = centre - forward * distance
+    return Camera(tuple(float(v) for v in eye), tuple(float(v) for v in centre),  # type: ignore[arg-type]
+                  vertical_fov_deg=fov_deg)
+
+
+def _corners(box: tuple[Sequence[float], Sequence[float]]) -> list[tuple[float, float, float]]:
+    lo, hi = box
+    return [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+
+
+def heading_of(obj: "Object") -> tuple[float, float]:
+    """The direction (x, y) an object's base faces: its x axis, projected on the floor."""
+    x, y, z, w = obj.get_orientation()
+    return (1 - 2 * (y * y + z * z), 2 * (x * y + z * w))
+
+
+def clear_camera(world: "BulletWorld", points: Sequence[Sequence[float]], heading: Sequence[float],
+                 fov_deg: float, aspect: float, pitch_deg: float = -40.0, turn_deg: float = 35.0,
+                 min_distance: float = 1.2, focus: Sequence[Sequence[float]] = ()) -> Camera:
+    """`framing_camera`, turned until nothing stands between the camera and what it should show.
+
+    Indoors, a camera behind the robot can end up behind a wall or inside a cupboard, or see the
+    robot's back instead of what it holds out. Turns around the view are tried in order (the
+    given one first); the first that sees its target past every environment and sees the most
+    `focus` points past the robot as well wins. When no turn sees the target, the clearest one
+    is moved in front of what blocks it.
+    """
+    robot_and_things = [o for o in world.objects if o.type != "environment"]
+    things = [o for o in world.objects if o.type not in SCENERY_TYPES]
+    best: tuple[tuple[float, ...], Camera] | None = None
+    for order, turn in enumerate((turn_deg, -turn_deg, 2 * turn_deg, -2 * turn_deg, 0.0, 3 * turn_deg,
+                                  -3 * turn_deg, 180.0)):
+        camera = framing_camera(points, heading, fov_deg, aspect, pitch_deg, turn, min_distance)
+        clear = world.clear_fraction(camera.target, camera.eye, robot_and_things)
+        seen = 0
+        if clear >= 1.0:
+            for point in focus:
+                length = math.dist(camera.eye, point)
+                if (1.0 - world.clear_fraction(camera.eye, point, things)) * length < 0.05:
+                    seen += 1
+        score = (1.0 if clear >= 1.0 else 0.0, float(seen), clear, -float(order))
+        if best is None or score > best[0]:
+            best = (score, camera)
+        if clear >= 1.0 and seen == len(focus):
+            break
+    assert best is not None
+    score, camera = best
+    if score[0]:
+        return camera
+    clear = score[2]
+    eye, target = np.asarray(camera.eye), np.asarray(camera.target)
+    distance = float(np.linalg.norm(eye - target))
+    closer = target + (eye - target) * max(0.05, clear - 0.1 / max(distance, 1e-6))
+    return replace(camera, eye=tuple(float(v) for v in closer))
+
+
+def robot_camera(world: "BulletWorld", focus: Iterable[Sequence[float]] = (), fov_deg: float = 50.0,
+                 aspect: float = 4 / 3) -> Camera:
+    """The robot (and the points in `focus`, e.g. what it works on) seen over its shoulder.
+
+    The camera looks from the robot towards the focus (or the way the robot faces), from the
+    room behind the robot, never from behind a wall (see `clear_camera`).
+    """
+    robot = world.robot
+    focus = [tuple(map(float, q)) for q in focus]
+    if robot is None:
+        return framing_camera(focus, (1.0, 0.0), fov_deg, aspect) if focus else default_camera(world)
+    position = robot.get_position()
+    heading = heading_of(robot)
+    if focus:
+        centre = np.mean(np.asarray(focus), axis=0)
+        towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
+        if math.hypot(*towards) > 0.3:
+            heading = towards
+    return clear_camera(world, _corners(robot.get_aabb()) + focus, heading, fov_deg, aspect, pitch_deg=-50.0,
+                        focus=focus)
+
+
+def movable_objects(world: "BulletWorld") -> list["Object"]:
+    """The things a plan works on: every object that is neither a robot nor an environment."""
+    return [o for o in world.objects if o.type not in SCENERY_TYPES]
+
+
+def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = None, fov_deg: float = 50.0,
+                   aspect: float = 4 / 3) -> Camera:
+    """`objects` (default: every movable one) framed close, seen from the robot's side of them."""
+    chosen = list(objects) if objects is not None else movable_objects(world)
+    if not chosen:
+        return robot_camera(world, (), fov_deg, aspect)
+    points = [c for o in chosen for c in _corners(o.get_aabb())]
+    centre = np.mean(np.asarray(points), axis=0)
+    heading: tuple[float, float] = (1.0, 0.0)
+    if world.robot is not None:
+        position = world.robot.get_position()
+        towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
+        heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
+    centres = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in chosen]
+    return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=-45.0, turn_deg=20.0, min_distance=0.8,
+                        focus=centres)
+
+
+def poses(world: "BulletWorld") -> dict[str, tuple[tuple[float, ...], tuple[float, ...]]]:
+    """Every object's pose by name, to tell later what moved (`moved_since`)."""
+    return {o.name: o.get_pose() for o in world.objects}
+
+
+def moved_since(world: "BulletWorld", before: dict[str, tuple[tuple[float, ...], tuple[float, ...]]],
+                tolerance: float = 1e-3) -> list["Object"]:
+    """The movable objects whose position changed by more than `tolerance` m since `before` (see `poses`)."""
+    moved = []
+    for obj in movable_objects(world):
+        old = before.get(obj.name)
+        if old is None or max(abs(a - b) for a, b in zip(obj.get_position(), old[0])) > tolerance:
+            moved.append(obj)
+    return moved
+
+
+def named_camera(world: "BulletWorld", name: str, targets: Sequence["Object"] | None = None,
+                 aspect: float = 4 / 3) -> Camera:
+    """One of VIEWS: `overview` (the whole scene), `robot` (the robot, over its shoulder) or `target`
+    (`targets`, e.g. the objects a plan moved; default: every movable object)."""
+    if name == "overview":
+        return default_camera(world)
+    if name == "robot":
+        return robot_camera(world, aspect=aspect)
+    if name == "target":
+        return objects_camera(world, targets, aspect=aspect)
+    raise ValueError(f"unknown view {name!r} (expected one of {', '.join(VIEWS)}, or EYE:TARGET)")
 
 
 def view_matrix(eye: Sequence[float], target: Sequence[float], up: Sequence[float]) -> tuple[float, ...]:
@@ -70,17 +235,25 @@ def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int =
     return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]
 
 
-def write_png(path: Path, rgb: np.ndarray) -> None:
-    """A minimal PNG writer (8-bit RGB), so rendering needs no imaging library."""
-    height, width, _ = rgb.shape
-    raw = b"".join(b"\x00" + rgb[row].astype(np.uint8).tobytes() for row in range(height))
+def image_format(suffix: str) -> str | None:
+    """The image format a file extension stands for (`.jpg` -> JPEG), or None when it is not one of ours."""
+    return IMAGE_FORMATS.get(suffix.lower())
 
-    def chunk(kind: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
 
-    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
-    png += chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b"")
-    Path(path).write_bytes(png)
+def encode_image(rgb: np.ndarray, suffix: str = ".png") -> bytes:
+    """An RGB image (height, width, 3) encoded in the format of the extension `suffix` (see IMAGE_FORMATS)."""
+    kind = image_format(suffix)
+    if kind is None:
+        raise ValueError(f"unknown image type {suffix!r} (expected {', '.join(sorted(IMAGE_FORMATS))})")
+    buffer = io.BytesIO()
+    options = {"quality": 90} if kind in ("JPEG", "WEBP") else {}
+    Image.fromarray(np.ascontiguousarray(rgb[:, :, :3], dtype=np.uint8), "RGB").save(buffer, kind, **options)
+    return buffer.getvalue()
+
+
+def write_png(path: Path | str, rgb: np.ndarray) -> None:
+    """Write an RGB image as a PNG file (for pictures the program draws itself: sweep and location maps)."""
+    Path(path).write_bytes(encode_image(rgb, ".png"))
 
 
 def _point(text: str, what: str) -> tuple[float, float, float]:
@@ -94,5 +267,6 @@ def parse_camera(text: str) -> Camera:
     """`EYE:TARGET`, each `x,y,z`, e.g. `-1.5,-1.5,2.5:1,0.8,0.9`."""
     eye, sep, target = text.partition(":")
     if not sep:
-        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, got {text!r}")
+        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
+                         f"got {text!r}")
     return Camera(_point(eye, "camera eye"), _point(target, "camera target"))

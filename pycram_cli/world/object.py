@@ -73,6 +73,29 @@ class Joint:
         return self.type in ("revolute", "prismatic") and self.lower <= self.upper
 
 
+@dataclass(frozen=True)
+class VisualShape:
+    """One visual shape of a link, as drawn: kind, size, colour, and pose in the link's URDF frame.
+
+    `kind` is box (`size`: full extents), sphere (`radius`), cylinder or capsule (`radius`, `length`
+    along the z axis), mesh (`mesh_file`, `scale`) or plane.
+    """
+
+    link: int  # -1: the base
+    kind: str
+    origin: tuple[Vec3, Quat]
+    rgba: tuple[float, float, float, float]
+    size: Vec3 = (0.0, 0.0, 0.0)
+    radius: float = 0.0
+    length: float = 0.0
+    mesh_file: Path | None = None
+    scale: Vec3 = (1.0, 1.0, 1.0)
+
+
+_SHAPE_KINDS = {p.GEOM_SPHERE: "sphere", p.GEOM_BOX: "box", p.GEOM_CYLINDER: "cylinder", p.GEOM_MESH: "mesh",
+                p.GEOM_PLANE: "plane", p.GEOM_CAPSULE: "capsule"}
+
+
 _JOINT_TYPES = {p.JOINT_REVOLUTE: "revolute", p.JOINT_PRISMATIC: "prismatic", p.JOINT_FIXED: "fixed",
                 p.JOINT_SPHERICAL: "spherical", p.JOINT_PLANAR: "planar", p.JOINT_POINT2POINT: "point2point",
                 p.JOINT_GEAR: "gear"}
@@ -250,6 +273,42 @@ class Object:
 
     def get_link_orientation(self, link: str | int) -> Quat:
         return self.get_link_position_and_orientation(link)[1]
+
+    def link_poses(self, links: Iterable[int]) -> dict[int, tuple[Vec3, Quat]]:
+        """The URDF frames of several links (by index, -1: the base) in the world frame, read at once."""
+        wanted = sorted(set(links))
+        poses: dict[int, tuple[Vec3, Quat]] = {}
+        if -1 in wanted:
+            poses[-1] = self.get_pose()
+        indices = [i for i in wanted if i >= 0]
+        if indices:
+            states = p.getLinkStates(self.id, indices, computeForwardKinematics=True,
+                                     physicsClientId=self.world.client_id)
+            for index, state in zip(indices, states):
+                poses[index] = (tuple(state[4]), tuple(state[5]))  # type: ignore[assignment]
+        return poses
+
+    def visual_shapes(self) -> list[VisualShape]:
+        """What the object looks like: every visual shape of every link, in the links' URDF frames."""
+        shapes = []
+        for row in p.getVisualShapeData(self.id, physicsClientId=self.world.client_id):
+            link, geometry, dimensions, file_name = row[1], row[2], tuple(row[3]), row[4]
+            origin = (tuple(float(v) for v in row[5]), tuple(float(v) for v in row[6]))
+            rgba = tuple(float(v) for v in row[7])
+            kind = _SHAPE_KINDS.get(geometry, "unknown")
+            fields: dict[str, object] = {}
+            if kind == "box":
+                fields["size"] = tuple(float(v) for v in dimensions[:3])
+            elif kind == "sphere":
+                fields["radius"] = float(dimensions[0])
+            elif kind in ("cylinder", "capsule"):
+                fields["length"], fields["radius"] = float(dimensions[0]), float(dimensions[1])
+            elif kind == "mesh":
+                name = file_name.decode(errors="replace") if isinstance(file_name, bytes) else str(file_name)
+                fields["mesh_file"] = Path(name) if name else None
+                fields["scale"] = tuple(float(v) for v in dimensions[:3])
+            shapes.append(VisualShape(link, kind, origin, rgba, **fields))  # type: ignore[arg-type]
+        return shapes
 
     def get_aabb(self, link: str | int | None = None) -> tuple[Vec3, Vec3]:
         """Axis-aligned bounding box (min corner, max corner) of a link or the whole object."""

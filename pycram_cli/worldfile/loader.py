@@ -25,24 +25,30 @@ def _reported_at(where: Location) -> Iterator[None]:
 def load_spec(spec: WorldSpec, mode: str = "direct") -> BulletWorld:
     world = BulletWorld(mode=mode, gravity=spec.gravity)
     try:
-        objects: dict[str, Object] = {}
-        for item in spec.objects:
-            with _reported_at(item.where):
-                objects[item.name] = Object(item.name, item.type, item.file, item.position, item.orientation,
-                                            world=world, color=item.color, fixed=item.fixed, mass=item.mass)
-                if item.joints:
-                    objects[item.name].set_joint_positions(item.joints)
-                if item is spec.robot:
-                    assign_description(objects[item.name], spec.robot_description)
-        for item in spec.objects:
-            for att in item.attach:
-                with _reported_at(item.where):
-                    objects[att.to].attach(objects[item.name], att.parent_link, att.child_link)
+        with world.rendering_paused():
+            _load_objects(world, spec)
         world.source = spec.path
     except BaseException:
         world.exit()
         raise
     return world
+
+
+def _load_objects(world: BulletWorld, spec: WorldSpec) -> None:
+    """The file's objects, their joints, robot description and attachments, into `world`."""
+    objects: dict[str, Object] = {}
+    for item in spec.objects:
+        with _reported_at(item.where):
+            objects[item.name] = Object(item.name, item.type, item.file, item.position, item.orientation,
+                                        world=world, color=item.color, fixed=item.fixed, mass=item.mass)
+            if item.joints:
+                objects[item.name].set_joint_positions(item.joints)
+            if item is spec.robot:
+                assign_description(objects[item.name], spec.robot_description)
+    for item in spec.objects:
+        for att in item.attach:
+            with _reported_at(item.where):
+                objects[att.to].attach(objects[item.name], att.parent_link, att.child_link)
 
 
 def load_world(path: str | Path | None = None, mode: str = "direct") -> BulletWorld:

@@ -180,3 +180,29 @@ def test_render_writes_a_png_of_the_final_scene(tmp_path):
     result = CliRunner().invoke(cli, ["run", str(plan), "--render", str(out)])
     assert result.exit_code == 0, result.output
     assert out.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_render_takes_a_camera_a_size_and_a_format(tmp_path):
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: kitchen\nbody:\n  - moving: {target: [0.65, 0.7, 0]}\n")
+    out = tmp_path / "after.jpeg"
+    result = CliRunner().invoke(cli, ["run", str(plan), "--render", str(out), "--camera", "target", "--size", "64x48"])
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes()[:3] == b"\xff\xd8\xff"
+    assert f"wrote {out} (64x48 JPEG)" in result.stderr
+    # checked before the plan runs
+    result = CliRunner().invoke(cli, ["run", str(plan), "--render", str(tmp_path / "none" / "x.png")])
+    assert result.exit_code == 2 and "x.png" in result.stderr and "running" not in result.stderr
+
+
+def test_a_camera_without_render_is_an_input_error():
+    from click.testing import CliRunner
+
+    from pycram_cli.cli.main import cli
+
+    result = CliRunner().invoke(cli, ["run", "set_table", "--camera", "robot"])
+    assert result.exit_code == 2 and "no --render FILE is given" in result.stderr

@@ -76,3 +76,27 @@ def test_pybullet_console_noise_stays_off_the_terminal(tmp_path, data_dir):
     assert result.returncode == 0
     assert "pybullet build time" not in result.stdout + result.stderr
     assert "b3Printf" not in result.stdout + result.stderr
+
+
+def test_world_render_format_follows_the_extension_and_views_are_named(tmp_path, data_dir):
+    world = small_world(tmp_path, data_dir)
+    out = tmp_path / "scene.jpg"
+    result = run("world", "render", str(world), "-o", str(out), "--size", "80x60", "--camera", "robot")
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes()[:3] == b"\xff\xd8\xff"  # JPEG
+    assert f"wrote {out} (80x60 JPEG)" in result.stderr and result.stdout == ""
+    for view in ("overview", "target"):
+        assert run("world", "render", str(world), "-o", str(tmp_path / f"{view}.png"), "--size", "32x32",
+                   "--camera", view).exit_code == 0
+
+
+def test_world_render_output_problems_are_input_errors_naming_the_file(tmp_path, data_dir):
+    world = small_world(tmp_path, data_dir)
+    for out, message in ((tmp_path / "scene.gif", "cannot tell the image's format from '.gif'"),
+                         (tmp_path / "no" / "such" / "scene.png", "does not exist"),
+                         (tmp_path, "is a directory")):
+        result = run("world", "render", str(world), "-o", str(out))
+        assert result.exit_code == 2, result.output
+        assert str(out) in result.stderr and message in result.stderr
+    result = run("world", "render", str(world), "--camera", "robt")
+    assert result.exit_code == 2 and "did you mean 'robot'?" in result.stderr

@@ -1,11 +1,16 @@
-"""GUI mode opens PyBullet's window (under Xvfb when xvfb-run is available; skipped otherwise)."""
+"""GUI mode opens PyBullet's window (under Xvfb when it is installed; skipped otherwise); without a display, --gui
+says so and exits 2."""
 from __future__ import annotations
 
+import os
 import shutil
+import signal
 import subprocess
 import sys
 import textwrap
+import time
 
+import numpy as np
 import pytest
 
 SCRIPT = textwrap.dedent("""
@@ -38,3 +43,85 @@ def test_gui_world_opens_a_window_and_a_second_one_is_refused(data_dir):
     assert "refused: a GUI world is already open" in done.stdout
     assert done.stdout.strip().endswith("ok")
     assert "ven = " not in done.stdout + done.stderr  # the OpenGL driver chatter stays off the terminal
+
+
+def test_without_a_display_the_gui_is_an_input_error_with_advice(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    for args in (["run", "set_table", "--gui"], ["world", "show", "--gui"]):
+        done = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", *args], capture_output=True, text=True,
+                              timeout=120, env=env, cwd=tmp_path)
+        assert done.returncode == 2, done.stderr
+        assert "cannot open a window: no display" in done.stderr
+        assert "run under xvfb-run or without --gui" in done.stderr
+
+
+def _start_xvfb() -> tuple[subprocess.Popen, str]:
+    """An X server of our own on a free display number (Xvfb picks it and writes it to a pipe)."""
+    read, write = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "1280x1024x24", "-nolisten", "tcp"],
+                              pass_fds=[write], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write)
+    number = b""
+    deadline = time.monotonic() + 30
+    while not number.endswith(b"\n") and time.monotonic() < deadline:
+        chunk = os.read(read, 16)
+        if not chunk:
+            break
+        number += chunk
+    os.close(read)
+    if not number.strip():
+        server.kill()
+        pytest.skip("Xvfb did not start")
+    return server, ":" + number.decode().strip()
+
+
+def _robot_pixels(image) -> int:
+    """Pixels of the PR2's blue grippers: nothing else in the kitchen is blue."""
+    rgb = np.asarray(image.convert("RGB")).astype(int)
+    return int(((rgb[:, :, 2] - rgb[:, :, 0] > 60) & (rgb[:, :, 2] > 100)).sum())
+
+
+def _caption_pixels(image) -> int:
+    """Pixels of the caption's dark blue text in the window's top left corner."""
+    rgb = np.asarray(image.convert("RGB")).astype(int)[:60, :500]
+    return int((np.abs(rgb - (13, 13, 77)).sum(axis=2) < 60).sum())
+
+
+@pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed")
+def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path):
+    """A real window under Xvfb, real screenshots of the X display: the camera frames the robot."""
+    from PIL import ImageGrab
+
+    server, display = _start_xvfb()
+    env = dict(os.environ, DISPLAY=display)
+    run = subprocess.Popen([sys.executable, "-m", "pycram_cli.cli.main", "run", "set_table", "--gui", "--pace", "0.8"],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=tmp_path)
+    shots: dict[str, list] = {"start": [], "end": []}
+    try:
+        assert run.stderr is not None
+        for line in run.stderr:
+            if line.startswith("ok ") and not shots["start"]:
+                for _ in range(4):  # during the pause after the first step
+                    time.sleep(0.15)
+                    shots["start"].append(ImageGrab.grab(xdisplay=display))
+            if "close the window" in line:  # the plan has finished; the window stays open
+                time.sleep(0.8)
+                shots["end"].append(ImageGrab.grab(xdisplay=display))
+                break
+        else:
+            pytest.fail("the run ended without keeping its window open")
+    finally:
+        run.send_signal(signal.SIGINT)
+        try:
+            run.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            run.kill()
+        server.terminate()
+        server.wait(timeout=30)
+    for moment, images in shots.items():
+        assert images, f"no screenshot at the {moment}"
+        best = max(images, key=_robot_pixels)
+        best.save(tmp_path / f"{moment}.png")
+        assert _robot_pixels(best) > 100, f"the robot is not in view at the {moment} (see {tmp_path / moment}.png)"
+        assert _caption_pixels(best) > 20, f"no caption naming the step at the {moment}"
+    assert run.returncode in (0, 130, -signal.SIGINT)

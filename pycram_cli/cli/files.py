@@ -1,0 +1,62 @@
+"""The files commands write (traces, images, reports): checked before any work, written in one place.
+
+`check_output` runs when a command starts, so a missing folder or an unknown image type is
+reported at once (exit 2, the file named) instead of after a whole plan has run.
+`write_output` is the one function that puts bytes on disk and says so on stderr.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Iterable
+
+from ..errors import InputError, Location
+from ..report import REPORT_FORMATS, build_report
+from . import console
+
+__all__ = ["REPORT_FORMATS", "check_output", "check_outputs", "write_output", "write_report"]
+
+
+def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "file",
+                 make_folders: bool = False) -> None:
+    """`path` can be written: it is not a folder, its folder exists (unless `make_folders`: then it is
+    made when the file is written), and (with `kinds`, extension -> format) its extension names a
+    format we write."""
+    where = Location(str(path))
+    folder = path.parent if str(path.parent) else Path(".")
+    if path.is_dir():
+        raise InputError(f"is a folder, expected a {what} to write", where)
+    if not make_folders and not folder.exists():
+        raise InputError(f"cannot write the {what}: folder '{folder}' does not exist", where)
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"cannot write the {what}: '{folder}' is not a folder", where)
+    if kinds is not None and path.suffix.lower() not in kinds:
+        known = ", ".join(sorted(kinds))
+        got = f"'{path.suffix}'" if path.suffix else "no extension"
+        raise InputError(f"cannot tell the {what}'s format from {got} (expected {known})", where)
+
+
+def check_outputs(items: Iterable[tuple[Path | None, dict[str, str] | None, str]]) -> None:
+    """`check_output` for each (path, kinds, what) whose path is given; traces may go to new folders."""
+    for path, kinds, what in items:
+        if path is not None:
+            check_output(path, kinds, what, make_folders=what == "trace")
+
+
+def write_output(path: Path, data: bytes | str, what: str, make_folders: bool = False) -> None:
+    """Write `data` to `path` (making its folders with `make_folders`) and report it on stderr:
+    `wrote PATH (WHAT)`."""
+    payload = data.encode() if isinstance(data, str) else data
+    try:
+        if make_folders:
+            path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(payload)
+    except OSError as exc:
+        raise InputError(f"cannot write the file: {exc.strerror or exc}", Location(str(path))) from None
+    console.info(f"wrote {path} ({what})")
+
+
+def write_report(path: Path, trace: dict[str, Any], world_path: Path) -> None:
+    """Build the replay report of a run (see pycram_cli/report) and write it."""
+    page = build_report(trace, world_path)
+    size = len(page.encode())
+    write_output(path, page, f"replay report, {size / 1e6:.1f} MB" if size >= 1e5 else f"replay report, {size // 1000} kB")

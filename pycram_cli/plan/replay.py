@@ -1,0 +1,130 @@
+"""Recording a run so that it can be replayed: the world's state after every step.
+
+A `Recorder` is an observer of a run (it passes every event on to the observer it wraps).
+It reads the state of the world when the run starts (every object's pose and movable joint
+values) and again whenever a leaf step has finished, and keeps what changed:
+
+    {"world_file": "/.../kitchen.yaml",
+     "initial": {"pr2": {"position": [...], "orientation": [...], "joints": {...}}, ...},
+     "steps": [{"path": "body/0:for_each/item 0/0:world-state-detecting", "status": "succeeded",
+                "changed": {"pr2": {"joints": {"torso_lift_joint": 0.3}}, "milk": {"position": [...]}}}, ...]}
+
+The trace keeps this under its `replay` key, which `trace.comparable()` leaves out: golden traces
+and `trace diff` compare behaviour, not the replay. The record is still deterministic: a leaf's
+`finished` event comes while its thread holds the scheduler's turn (see scheduler.py), so the
+steps are recorded in the same order, with the same states, however the threads interleave.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Iterable
+
+from .trace import DIGITS, TraceNode, canonical_quaternion
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld
+    from .executor import Observer
+
+State = dict[str, dict[str, Any]]
+Point = tuple[float, float, float]
+
+#: slot and argument names whose values are places (objects are recognised by their names)
+PLACES = ("target", "look", "position")
+#: object types that are scenery, never what a step works on
+SCENERY = ("robot", "environment")
+
+
+def world_state(world: "BulletWorld") -> State:
+    """Every object's pose and movable joint values, rounded as traces are (6 decimals)."""
+    state: State = {}
+    with world.lock:
+        for obj in world.objects:
+            position, orientation = obj.get_pose()
+            entry: dict[str, Any] = {"position": [round(float(v), DIGITS) + 0.0 for v in position],
+                                     "orientation": [round(v, DIGITS) + 0.0 for v in canonical_quaternion(orientation)]}
+            joints = obj.get_joint_positions()
+            if joints:
+                entry["joints"] = {name: round(value, DIGITS) + 0.0 for name, value in joints.items()}
+            state[obj.name] = entry
+    return state
+
+
+def changes(before: State, after: State) -> State:
+    """What differs from `before` in `after`: per object, the pose (position and orientation together) and
+    the joints whose values changed."""
+    found: State = {}
+    for name, entry in after.items():
+        old = before.get(name, {})
+        delta: dict[str, Any] = {}
+        if entry["position"] != old.get("position") or entry["orientation"] != old.get("orientation"):
+            delta["position"], delta["orientation"] = entry["position"], entry["orientation"]
+        old_joints = old.get("joints", {})
+        moved = {k: v for k, v in entry.get("joints", {}).items() if old_joints.get(k) != v}
+        if moved:
+            delta["joints"] = moved
+        if delta:
+            found[name] = delta
+    return found
+
+
+class Recorder:
+    """Observes a run, passing every event on to `inner`, and records the world after each leaf step."""
+
+    def __init__(self, world: "BulletWorld", inner: "Observer | None" = None,
+                 world_file: Path | str | None = None) -> None:
+        self.world = world
+        self.inner = inner
+        self.world_file = str(world_file) if world_file is not None else None
+        self.initial = world_state(world)
+        self._last = self.initial
+        self.steps: list[dict[str, Any]] = []
+
+    def started(self, node: TraceNode) -> None:
+        if self.inner is not None:
+            self.inner.started(node)
+
+    def finished(self, node: TraceNode) -> None:
+        if not node.children:  # a leaf step (or an empty composite: recorded as a step that changed nothing)
+            state = world_state(self.world)
+            self.steps.append({"path": node.path, "status": node.status, "changed": changes(self._last, state)})
+            self._last = state
+        if self.inner is not None:
+            self.inner.finished(node)
+
+    def log(self, node: TraceNode, message: str) -> None:
+        if self.inner is not None:
+            self.inner.log(node, message)
+
+    def record(self) -> dict[str, Any]:
+        """The replay record (see the module docstring), ready for the trace's `replay` key."""
+        return {"world_file": self.world_file, "initial": self.initial, "steps": list(self.steps)}
+
+
+# -- what a step works on -------------------------------------------------------------------------
+def focus_points(world: "BulletWorld", info: dict[str, Any]) -> list[Point]:
+    """The objects (their bounding boxes' centres) and places a step names in its resolved designator
+    slots or query arguments (`object: bowl`, `target: [x, y, z]`): what a camera should show with the robot."""
+    values: dict[str, Any] = {}
+    if isinstance(info.get("designator"), dict):
+        values.update(info["designator"].get("resolved") or info["designator"].get("slots") or {})
+    if isinstance(info.get("query"), dict):
+        values.update(info["query"].get("args") or {})
+    points: list[Point] = []
+    for key, value in values.items():
+        points.extend(_points(world, key, value))
+    return points
+
+
+def _points(world: "BulletWorld", key: str, value: Any) -> Iterable[Point]:
+    if isinstance(value, str):
+        obj = world.get_object_by_name(value)
+        if obj is not None and obj.type not in SCENERY:
+            lo, hi = obj.get_aabb()
+            yield ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2)
+    elif (key in PLACES and isinstance(value, (list, tuple)) and len(value) == 3
+          and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
+        yield (float(value[0]), float(value[1]), float(value[2]))
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            if isinstance(item, str):
+                yield from _points(world, key, item)

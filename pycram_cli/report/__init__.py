@@ -1,0 +1,10 @@
+"""Replay reports: one self-contained HTML file that shows what a run did.
+
+`build_report(trace, world_path)` returns the page: a 3D replay of the run (three.js), the plan
+tree with every node's status, duration, failure and reasoning answers, and a timeline. It
+needs the trace's replay record (`Scenario.run(replay=True)`, `pycram run --trace/--report`)
+to move anything; without one the 3D view shows the world as loaded.
+"""
+from .page import REPORT_FORMATS, build_report, report_data, report_world
+
+__all__ = ["REPORT_FORMATS", "build_report", "report_data", "report_world"]

@@ -1,0 +1,492 @@
+// pycram replay report: a 3D replay of a run (three.js), its plan tree and its timeline.
+// Data: the JSON element #pycram-data, written by pycram_cli/report/page.py:
+//   trace   the trace (plan, world, status, failure, params, root: the tree of nodes with timing)
+//   scene   bodies -> links -> visual shapes (boxes, spheres, cylinders, capsules, meshes by index), meshes
+//   frames  [0]: every drawn link's pose before the first step; [k]: after step k, only the links that moved;
+//           each with the step's path and status and a camera [eye, target] on the robot and its work.
+// URL: #step=N or #step=last opens the report at that step; #play (also #step=N&play) starts playing.
+(function () {
+  "use strict";
+  const DATA = JSON.parse(document.getElementById("pycram-data").textContent);
+  const trace = DATA.trace, scene = DATA.scene, frames = DATA.frames;
+  const STEPS = frames.length - 1;
+  const $ = (id) => document.getElementById(id);
+  const ICON = { succeeded: "✓", failed: "✗", recovered: "↺", cancelled: "⊘", skipped: "·", running: "▶", pending: "○" };
+
+  // ---------------------------------------------------------------- the plan tree as a model
+  const nodes = [];
+  const byPath = new Map();
+  function index(data, parent, depth) {
+    const node = { data, parent, depth, children: [], first: Infinity, last: -1, li: null, row: -1 };
+    nodes.push(node);
+    byPath.set(data.path, node);
+    for (const child of data.children || []) node.children.push(index(child, node, depth + 1));
+    return node;
+  }
+  const root = index(trace.root || { path: "body", type: "seq", status: trace.status }, null, 0);
+  // a failure is recovered when something above it (a retry, a catch, try_all...) still succeeded
+  for (const node of nodes) {
+    let up = node.parent, recovered = false;
+    while (up && !recovered) { recovered = up.data.status === "succeeded"; up = up.parent; }
+    node.final = node.data.status === "failed" && recovered ? "recovered" : node.data.status;
+  }
+  // the steps (frames) below every node, and the time each step ended
+  const frameTime = [0];
+  frames.forEach((frame, k) => {
+    if (k === 0) return;
+    const node = byPath.get(frame.path);
+    for (let up = node; up; up = up.parent) { up.first = Math.min(up.first, k); up.last = Math.max(up.last, k); }
+    const t = node && node.data.timing;
+    frameTime.push(t && t.started != null ? t.started + (t.duration || 0) : frameTime[k - 1]);
+  });
+  const timed = (n) => n.data.timing && n.data.timing.started != null;
+  const endOf = (n) => n.data.timing.started + (n.data.timing.duration || 0);
+  const totalTime = Math.max(1e-6, (trace.timing && trace.timing.duration) || (timed(root) ? endOf(root) : 0),
+    ...nodes.filter(timed).map(endOf));
+
+  function stateAt(node, k) {
+    if (k >= STEPS) return node.final;
+    if (node.last >= 0) return node.last <= k ? node.final : node.first <= k ? "running" : "pending";
+    if (timed(node) && k > 0) {
+      const now = frameTime[k];
+      return endOf(node) <= now ? node.final : node.data.timing.started <= now ? "running" : "pending";
+    }
+    if (!node.parent) return "pending";
+    const above = stateAt(node.parent, k);
+    return above === "running" || above === "pending" ? "pending" : node.final;
+  }
+
+  // ---------------------------------------------------------------- words for nodes (as `pycram trace show`)
+  function short(value, limit) {
+    limit = limit || 70;
+    const text = typeof value === "string" ? value : JSON.stringify(value);
+    return text === undefined ? "" : text.length <= limit ? text : text.slice(0, limit - 1) + "…";
+  }
+  const slots = (values) => Object.entries(values || {}).map(([k, v]) => `${k}=${short(v, 40)}`).join(", ");
+  function condition(record) {
+    const verdict = (record.holds !== undefined ? record.holds : record.value) ? "holds" : "does not hold";
+    if (record.query) return `${record.query.name}(${slots(record.query.args)}) → ${short(record.query.result)}: ${verdict}`;
+    if (record.variable !== undefined) return `${record.variable} = ${short(record.value, 50)}: ${verdict}`;
+    if (record.not) return `not (${condition(record.not)})`;
+    if (record.equal) return `${short(record.equal[0], 30)} = ${short(record.equal[1], 30)}: ${verdict}`;
+    return verdict;
+  }
+  function describe(data) {
+    const parts = [];
+    if (data.designator) parts.push(slots(data.designator.resolved || data.designator.slots));
+    if (data.query) parts.push(`${slots(data.query.args)} → ${short(data.query.result)}`);
+    if (data.condition) parts.push(condition(data.condition));
+    if (data.call) parts.push(slots(data.call.args));
+    if (data.item !== undefined) parts.push(`= ${short(data.item)}`);
+    if (data.message !== undefined) parts.push(`“${data.message}”`);
+    if (data.caught) parts.push(`caught ${data.caught.type}`);
+    if (data.retries) parts.push(`${data.retries} retr${data.retries === 1 ? "y" : "ies"}`);
+    if (data.bound) parts.push(Object.entries(data.bound).map(([k, v]) => `$${k} = ${short(v, 50)}`).join("; "));
+    const failure = data.failure;
+    if (failure && data.status === "failed" && failure.path === data.path) parts.push(`${failure.type}: ${failure.message}`);
+    return parts.filter(Boolean).join("  ");
+  }
+  const label = (data) => String(data.path || "?").split("/").pop();
+  const seconds = (data) => data.timing && data.timing.duration != null ? `${data.timing.duration.toFixed(2)} s` : "";
+  function el(tag, attrs, ...children) {
+    const element = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (k === "class") element.className = v; else if (k === "text") element.textContent = v; else element.setAttribute(k, v);
+    }
+    for (const child of children) if (child != null) element.append(child);
+    return element;
+  }
+
+  // ---------------------------------------------------------------- header
+  (function header() {
+    const h = $("header");
+    h.append(el("h1", { text: `${trace.plan || "plan"} on ${trace.world || DATA.world_file}` }),
+      el("span", { class: `badge ${trace.status}`, text: trace.status || "?" }),
+      el("span", { class: "meta", text: `${STEPS} steps · ${totalTime.toFixed(2)} s` }));
+    const params = Object.entries(trace.params || {});
+    if (params.length) h.append(el("span", { class: "meta", text: params.map(([k, v]) => `${k}=${short(v, 40)}`).join(", ") }));
+    h.append(el("span", { class: "meta", text: DATA.generator || "" }));
+    if (trace.failure) {
+      h.append(el("div", { class: "failure", text: `${trace.failure.type} at ${trace.failure.path}: ${trace.failure.message}` }));
+    }
+  })();
+
+  // ---------------------------------------------------------------- the tree
+  function buildTree(node) {
+    const data = node.data;
+    const info = describe(data);
+    const answer = data.query || (data.condition && data.condition.query);
+    const row = el("div", { class: "row", title: data.path },
+      el("span", { class: "fold", text: node.children.length ? "▾" : "" }),
+      el("span", { class: "icon", text: ICON[node.final] || "?" }),
+      el("span", { class: "label", text: label(data) }),
+      info ? el("span", { class: answer ? "info answer" : "info", text: info }) : null,
+      el("span", { class: "dur", text: seconds(data) }));
+    const li = el("li", { class: `st-${node.final}`, "data-path": data.path }, row);
+    node.li = li;
+    row.addEventListener("click", (event) => {
+      if (event.target.classList.contains("fold")) { li.classList.toggle("folded"); event.target.textContent = li.classList.contains("folded") ? "▸" : "▾"; return; }
+      seek(stepOf(node));
+    });
+    if (node.children.length) li.append(el("ul", {}, ...node.children.map(buildTree)));
+    return li;
+  }
+  $("tree").append(el("ul", {}, buildTree(root)));
+
+  function stepOf(node) {
+    if (node.last >= 0) return node.last;
+    if (timed(node)) { let k = 0; while (k < STEPS && frameTime[k + 1] <= node.data.timing.started) k++; return k; }
+    return node.parent ? stepOf(node.parent) : 0;
+  }
+
+  // ---------------------------------------------------------------- the timeline (Gantt)
+  const ROW = 16, LABELS = 250;
+  const rows = nodes.filter(timed);
+  rows.forEach((node, i) => { node.row = i; });
+  const svgNS = "http://www.w3.org/2000/svg";
+  function svg(tag, attrs, text) {
+    const element = document.createElementNS(svgNS, tag);
+    for (const [k, v] of Object.entries(attrs || {})) element.setAttribute(k, v);
+    if (text !== undefined) element.textContent = text;
+    return element;
+  }
+  let timeline = null, cursor = null, currentRow = null, xOf = () => 0;
+  function buildTimeline() {
+    const box = $("timeline");
+    box.textContent = "";
+    const width = Math.max(600, box.clientWidth - 18), height = rows.length * ROW + 24;  // room for a scroll bar
+    const span = width - LABELS - 16;
+    xOf = (t) => LABELS + (t / totalTime) * span;
+    timeline = svg("svg", { width, height });
+    currentRow = svg("rect", { class: "current-row", x: 0, y: 0, width, height: ROW, visibility: "hidden" });
+    timeline.append(currentRow);
+    for (let i = 0; i <= 5; i++) {
+      const x = xOf((totalTime * i) / 5);
+      timeline.append(svg("line", { class: "grid", x1: x, x2: x, y1: 0, y2: height }));
+      timeline.append(svg("text", { class: "axis", x: x + 2, y: height - 6 }, `${((totalTime * i) / 5).toFixed(2)} s`));
+    }
+    // branches that run side by side: one shaded band per concurrent composite, over its children's rows
+    for (const node of rows) {
+      if (!["par", "pursue", "try_all"].includes(node.data.type) || !node.children.length) continue;
+      const inside = rows.filter((r) => r !== node && r.data.path.startsWith(node.data.path + "/"));
+      if (!inside.length) continue;
+      const top = Math.min(...inside.map((r) => r.row)), bottom = Math.max(...inside.map((r) => r.row));
+      timeline.append(svg("rect", { class: "band", x: 0, y: top * ROW, width, height: (bottom - top + 1) * ROW }));
+    }
+    const colour = { succeeded: "#51cf66", failed: "#ff6b6b", recovered: "#ffa94d", cancelled: "#adb5bd", skipped: "#dee2e6" };
+    for (const node of rows) {
+      const y = node.row * ROW;
+      const text = svg("text", { class: "lbl", x: 4 + node.depth * 9, y: y + 12 }, label(node.data));
+      text.append(svg("title", {}, node.data.path));
+      const start = node.data.timing.started, end = endOf(node);
+      const bar = svg("rect", { class: "bar", x: xOf(start), y: y + 3, width: Math.max(2, xOf(end) - xOf(start)), height: ROW - 6,
+        rx: 2, fill: colour[node.final] || "#74c0fc" });
+      bar.append(svg("title", {}, `${node.data.path}\n${node.final}, ${seconds(node.data) || "0 s"} from ${start.toFixed(3)} s`));
+      for (const element of [text, bar]) element.addEventListener("click", () => seek(stepOf(node)));
+      timeline.append(text, bar);
+    }
+    cursor = svg("line", { class: "cursor", x1: LABELS, x2: LABELS, y1: 0, y2: height - 18 });
+    timeline.append(cursor);
+    box.append(timeline);
+  }
+  buildTimeline();
+
+  // ---------------------------------------------------------------- the 3D view
+  const view = $("view");
+  let renderer = null;
+  try {
+    const canvas = document.createElement("canvas");
+    const context = canvas.getContext("webgl2", { preserveDrawingBuffer: true, antialias: true }) ||
+      canvas.getContext("webgl", { preserveDrawingBuffer: true, antialias: true });
+    if (context) renderer = new THREE.WebGLRenderer({ canvas, context, antialias: true, preserveDrawingBuffer: true });
+  } catch (error) {
+    renderer = null;
+  }
+  document.body.dataset.webgl = renderer ? "ok" : "unavailable";
+  const notices = [];
+  if (!renderer) notices.push("This browser cannot draw 3D here (WebGL is off or unavailable): the plan tree, the step details and the timeline still work.");
+  if (!DATA.replayed) notices.push("This trace has no replay record, so the 3D view shows the world as it was loaded (record one with pycram run --trace).");
+  if ((scene.skipped || []).length) notices.push(`Not drawn (unsupported shapes): ${scene.skipped.slice(0, 6).join(", ")}${scene.skipped.length > 6 ? ", …" : ""}`);
+  if (notices.length) { $("notice").hidden = false; $("notice").textContent = notices.join(" "); }
+
+  THREE.Object3D.DEFAULT_UP.set(0, 0, 1);
+  const world = new THREE.Scene();
+  world.background = new THREE.Color(0xdde3ea);
+  const camera = new THREE.PerspectiveCamera(50, 1.6, 0.05, 100);
+  camera.up.set(0, 0, 1);
+  world.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 1.9));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+  sun.position.set(-3, -2, 6);
+  world.add(sun);
+  const fill = new THREE.DirectionalLight(0xffffff, 0.5);
+  fill.position.set(4, 3, 2);
+  world.add(fill);
+
+  function bytes(text) {
+    const raw = atob(text), out = new Uint8Array(raw.length);
+    for (let i = 0; i < raw.length; i++) out[i] = raw.charCodeAt(i);
+    return out.buffer;
+  }
+  const meshGeometry = (scene.meshes || []).map((mesh) => {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(bytes(mesh.positions)), 3));
+    const indices = mesh.index_bytes === 4 ? new Uint32Array(bytes(mesh.indices)) : new Uint16Array(bytes(mesh.indices));
+    geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+    return THREE.toCreasedNormals(geometry, Math.PI / 6);
+  });
+  const geometries = new Map(), materials = new Map();
+  function cached(map, key, make) { if (!map.has(key)) map.set(key, make()); return map.get(key); }
+  function geometryOf(shape) {
+    switch (shape.kind) {
+      case "box": return cached(geometries, `b${shape.size}`, () => new THREE.BoxGeometry(...shape.size));
+      case "sphere": return cached(geometries, `s${shape.radius}`, () => new THREE.SphereGeometry(shape.radius, 24, 16));
+      case "cylinder": return cached(geometries, `c${shape.radius},${shape.length}`,
+        () => new THREE.CylinderGeometry(shape.radius, shape.radius, shape.length, 28).rotateX(Math.PI / 2));
+      case "capsule": return cached(geometries, `p${shape.radius},${shape.length}`,
+        () => new THREE.CapsuleGeometry(shape.radius, shape.length, 8, 20).rotateX(Math.PI / 2));
+      case "mesh": return meshGeometry[shape.mesh];
+      default: return null;
+    }
+  }
+  function materialOf(rgba) {
+    return cached(materials, rgba.join(","), () => {
+      const material = new THREE.MeshLambertMaterial({ side: THREE.DoubleSide });
+      material.color.setRGB(rgba[0], rgba[1], rgba[2], THREE.SRGBColorSpace);
+      if (rgba[3] < 1) { material.transparent = true; material.opacity = rgba[3]; }
+      return material;
+    });
+  }
+  const links = [];     // every drawn link (a Group), in the order of the frames' (body, slot) pairs
+  const offset = [];    // body index -> index of its first link in `links`
+  let robotLink = -1;
+  (scene.bodies || []).forEach((body, b) => {
+    offset.push(links.length);
+    body.links.forEach((link, slot) => {
+      const group = new THREE.Group();
+      group.name = `${body.name}/${link.name}`;
+      for (const shape of link.shapes) {
+        const geometry = geometryOf(shape);
+        if (!geometry) continue;
+        const mesh = new THREE.Mesh(geometry, materialOf(shape.color));
+        const o = shape.origin;
+        mesh.position.set(o[0], o[1], o[2]);
+        mesh.quaternion.set(o[3], o[4], o[5], o[6]);
+        if (shape.scale) mesh.scale.set(...shape.scale);
+        group.add(mesh);
+      }
+      group.matrixAutoUpdate = true;
+      world.add(group);
+      if (body.type === "robot" && robotLink < 0) robotLink = links.length;
+      links.push(group);
+    });
+  });
+
+  // every frame's full pose list (frames only carry what moved)
+  const L = links.length;
+  const full = [];
+  frames.forEach((frame, k) => {
+    const poses = k === 0 ? new Float32Array(L * 7) : full[k - 1].slice();
+    const flat = frame.poses || [];
+    for (let i = 0; i + 9 <= flat.length; i += 9) {
+      const at = (offset[flat[i]] + flat[i + 1]) * 7;
+      for (let j = 0; j < 7; j++) poses[at + j] = flat[i + 2 + j];
+    }
+    full.push(poses);
+  });
+  const qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+  function pose(t) {
+    const k = Math.max(0, Math.min(STEPS, Math.floor(t)));
+    const a = k >= STEPS ? 0 : t - k;
+    const s = a * a * (3 - 2 * a);  // ease in and out
+    const from = full[k], to = full[Math.min(STEPS, k + 1)];
+    for (let i = 0; i < L; i++) {
+      const p = i * 7, group = links[i];
+      if (s === 0 || from === to) {
+        group.position.set(from[p], from[p + 1], from[p + 2]);
+        group.quaternion.set(from[p + 3], from[p + 4], from[p + 5], from[p + 6]);
+      } else {
+        group.position.set(from[p] + (to[p] - from[p]) * s, from[p + 1] + (to[p + 1] - from[p + 1]) * s,
+          from[p + 2] + (to[p + 2] - from[p + 2]) * s);
+        qa.set(from[p + 3], from[p + 4], from[p + 5], from[p + 6]);
+        qb.set(to[p + 3], to[p + 4], to[p + 5], to[p + 6]);
+        group.quaternion.copy(qa.slerp(qb, s));
+      }
+    }
+    if (follow.checked) {
+      const c0 = frames[k].camera, c1 = frames[Math.min(STEPS, k + 1)].camera;
+      if (c0) {
+        const c = c1 && s > 0 ? c0.map((v, i) => v + (c1[i] - v) * s) : c0;
+        camera.position.set(c[0], c[1], c[2]);
+        if (controls) { controls.target.set(c[3], c[4], c[5]); controls.update(); } else camera.lookAt(c[3], c[4], c[5]);
+      }
+    }
+  }
+
+  const follow = $("follow");
+  let controls = null;
+  if (renderer) {
+    renderer.setPixelRatio(Math.min(2, window.devicePixelRatio || 1));
+    view.prepend(renderer.domElement);
+    controls = new THREE.OrbitControls(camera, renderer.domElement);
+    controls.enableDamping = false;
+    controls.addEventListener("start", () => { follow.checked = false; });
+    controls.addEventListener("change", () => { dirty = true; });
+  }
+  follow.addEventListener("change", () => { pose(position); dirty = true; });
+  function resize() {
+    const width = Math.max(1, view.clientWidth), height = Math.max(1, view.clientHeight);
+    camera.aspect = width / height;
+    camera.updateProjectionMatrix();
+    if (renderer) renderer.setSize(width, height, false);
+    const rect = view.getBoundingClientRect();
+    document.body.dataset.view = [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(",");
+    dirty = true;
+  }
+  window.addEventListener("resize", () => { resize(); buildTimeline(); showStep(shown, true); });
+
+  // ---------------------------------------------------------------- playing, seeking and what is shown
+  let position = 0, playing = false, shown = -1, dirty = true, last = null;
+  const scrub = $("scrub"), stepno = $("stepno"), playButton = $("play");
+  scrub.max = String(STEPS);
+  stepno.max = String(STEPS);
+  $("count").textContent = String(STEPS);
+
+  function details(k) {
+    const box = $("details");
+    box.textContent = "";
+    if (k === 0) {
+      box.append(el("h2", { text: "Before the first step" }),
+        el("div", { text: `${STEPS} steps; press ▶ to play, or click a step in the tree or the timeline.` }));
+      return;
+    }
+    const node = byPath.get(frames[k].path);
+    if (!node) return;
+    const data = node.data;
+    box.append(el("h2", { text: `Step ${k} of ${STEPS}: ${label(data)}` }));
+    const table = el("table");
+    const add = (name, value) => { if (value !== undefined && value !== null && value !== "") table.append(el("tr", {}, el("td", { text: name }), el("td", {}, value))); };
+    const pretty = (value) => {
+      if (typeof value === "string") return value;
+      const flat = JSON.stringify(value);
+      if (flat === undefined || flat.length <= 90 || value === null || typeof value !== "object" || Array.isArray(value)) return flat;
+      return Object.entries(value).map(([k, v]) => `${k}: ${JSON.stringify(v)}`).join("\n");
+    };
+    const code = (value) => el("code", { text: pretty(value) });
+    add("path", code(data.path));
+    add("status", el("span", { text: node.final }));
+    add("took", seconds(data));
+    if (data.designator) { add("slots", code(data.designator.slots)); add("resolved", code(data.designator.resolved)); }
+    if (data.query) { add("query", code(`${data.type}(${slots(data.query.args)})`)); add("answer", code(data.query.result)); add("details", code(data.query.details)); }
+    if (data.condition) add("condition", code(condition(data.condition)));
+    if (data.message !== undefined) add("message", code(data.message));
+    if (data.bound) add("bound", code(data.bound));
+    const failure = data.failure;
+    if (failure) {
+      const fatal = node.final !== "recovered";
+      add("failure", el("span", {}, el("span", { class: `tag ${fatal ? "fatal" : "recovered"}`, text: fatal ? "fatal" : "recovered" }), " ",
+        code(`${failure.type}: ${failure.message}`)));
+    }
+    box.append(table);
+  }
+
+  function showStep(k, force) {
+    if (k === shown && !force) return;
+    shown = k;
+    scrub.value = String(k);
+    stepno.value = String(k);
+    document.body.dataset.step = String(k);
+    const current = k > 0 ? byPath.get(frames[k].path) : null;
+    const above = new Set();
+    for (let up = current && current.parent; up; up = up.parent) above.add(up);
+    for (const node of nodes) {
+      const state = stateAt(node, k);
+      node.li.className = `st-${state}` + (node === current ? " current" : "") + (above.has(node) ? " ancestor" : "") +
+        (node.li.classList.contains("folded") ? " folded" : "");
+      node.li.firstChild.children[1].textContent = ICON[state] || "?";
+    }
+    if (current) {
+      const row = current.li.firstChild, box = $("tree");
+      const top = row.offsetTop - box.offsetTop;
+      if (top < box.scrollTop || top > box.scrollTop + box.clientHeight - 24) box.scrollTop = top - box.clientHeight / 3;
+    }
+    const x = xOf(frameTime[k]);
+    cursor.setAttribute("x1", x); cursor.setAttribute("x2", x);
+    if (current && current.row >= 0) {
+      currentRow.setAttribute("y", current.row * ROW);
+      currentRow.setAttribute("visibility", "visible");
+      const box = $("timeline"), y = current.row * ROW;
+      if (y < box.scrollTop || y > box.scrollTop + box.clientHeight - 40) box.scrollTop = y - box.clientHeight / 3;
+    } else {
+      currentRow.setAttribute("visibility", "hidden");
+    }
+    $("caption").innerHTML = "";
+    $("caption").append(k === 0 ? el("span", { text: "before the first step" }) :
+      el("span", {}, el("b", { text: `step ${k}/${STEPS} ` }), `${frames[k].path}  ${current ? describe(current.data) : ""}`));
+    details(k);
+  }
+
+  function seek(k) {
+    playing = false;
+    playButton.textContent = "▶";
+    position = Math.max(0, Math.min(STEPS, k));
+    pose(position);
+    showStep(Math.round(position));
+    dirty = true;
+  }
+  function stepSeconds(k) {  // a step that moved nothing passes quickly
+    const next = frames[Math.min(STEPS, k + 1)];
+    return (next && next.poses && next.poses.length ? 0.9 : 0.3) / Number($("speed").value);
+  }
+  function tick() {  // playing runs on a timer: it goes on where no frames are drawn (a hidden tab, a headless browser)
+    const now = performance.now();
+    if (playing && last !== null) {
+      position += (now - last) / 1000 / stepSeconds(Math.floor(position));
+      if (position >= STEPS) { position = STEPS; playing = false; playButton.textContent = "▶"; }
+      pose(position);
+      showStep(Math.floor(position));
+      dirty = true;
+    }
+    last = now;
+  }
+  function draw() {  // drawing follows the browser's frames
+    if (dirty && renderer) { renderer.render(world, camera); dirty = false; }
+    requestAnimationFrame(draw);
+  }
+
+  playButton.addEventListener("click", () => {
+    if (!playing && position >= STEPS) position = 0;
+    playing = !playing;
+    playButton.textContent = playing ? "❚❚" : "▶";
+  });
+  $("first").addEventListener("click", () => seek(0));
+  $("last").addEventListener("click", () => seek(STEPS));
+  $("prev").addEventListener("click", () => seek(Math.ceil(position) - 1));
+  $("next").addEventListener("click", () => seek(Math.floor(position) + 1));
+  scrub.addEventListener("input", () => seek(Number(scrub.value)));
+  stepno.addEventListener("change", () => seek(Number(stepno.value) || 0));
+  document.addEventListener("keydown", (event) => {
+    if (event.target.tagName === "INPUT" || event.target.tagName === "SELECT") return;
+    if (event.key === " ") { playButton.click(); event.preventDefault(); }
+    else if (event.key === "ArrowRight") seek(Math.floor(position) + 1);
+    else if (event.key === "ArrowLeft") seek(Math.ceil(position) - 1);
+    else if (event.key === "Home") seek(0);
+    else if (event.key === "End") seek(STEPS);
+  });
+  function fromHash() {
+    const match = /step=(\d+|last)/.exec(location.hash);
+    if (match) seek(match[1] === "last" ? STEPS : Number(match[1]));
+    if (/\bplay\b/.test(location.hash) && !playing) playButton.click();
+  }
+  window.addEventListener("hashchange", fromHash);
+
+  resize();
+  pose(0);
+  showStep(0, true);
+  fromHash();
+  if (renderer) renderer.render(world, camera);
+  dirty = false;
+  document.body.dataset.steps = String(STEPS);
+  document.body.dataset.ready = "1";
+  setInterval(tick, 30);
+  requestAnimationFrame(draw);
+})();

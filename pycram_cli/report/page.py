@@ -1,0 +1,100 @@
+"""The report page: one self-contained HTML file (no network, no server) that replays a run.
+
+The file holds the page's own script and style (assets/report.js, assets/report.css), three.js
+(assets/three.min.js, a bundle of the npm package made by assets/build-three.sh) and the data:
+the trace (its tree with statuses, timings, failures and reasoning answers), the world's
+visual shapes with each mesh stored once, and the frames (see scene.py).
+"""
+from __future__ import annotations
+
+import json
+import re
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any
+
+from ..errors import InputError, Location
+from ..paths import find_world
+from ..plan.trace import REPLAY_KEY
+from ..worldfile.loader import load_world
+from .scene import Scene, frames
+
+ASSETS = Path(__file__).resolve().parent / "assets"
+REPORT_FORMATS = {".html": "HTML", ".htm": "HTML"}
+
+
+def _asset(name: str) -> str:
+    return (ASSETS / name).read_text(encoding="utf-8")
+
+
+def _pycram_version() -> str:
+    try:
+        return version("pycram-cli")
+    except PackageNotFoundError:  # running from a checkout that is not installed
+        return "dev"
+
+
+def report_world(trace: dict[str, Any], override: str | None = None) -> Path:
+    """The world file to draw a trace's run in: `override` if given, else the file the replay record names,
+    else the trace's world by name (a bundled world)."""
+    if override is not None:
+        return find_world(override)
+    recorded = (trace.get(REPLAY_KEY) or {}).get("world_file")
+    if recorded and Path(recorded).is_file():
+        return Path(recorded)
+    name = trace.get("world")
+    try:
+        return find_world(str(name)) if name else find_world(None)
+    except InputError:
+        raise InputError(f"cannot find the world the trace ran in ('{recorded or name}')", Location("--world"),
+                         suggestion="name it with --world") from None
+
+
+def _index(node: dict[str, Any], into: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    into[node.get("path", "")] = node
+    for child in node.get("children") or []:
+        _index(child, into)
+    return into
+
+
+def report_data(trace: dict[str, Any], world_path: Path) -> dict[str, Any]:
+    """Everything the page shows, as one JSON-ready dict."""
+    replay = trace.get(REPLAY_KEY)
+    world = load_world(world_path)
+    try:
+        scene = Scene(world)
+        steps = frames(scene, replay, _index(trace.get("root") or {}, {}))
+        drawn = scene.to_dict()
+    finally:
+        world.exit()
+    shown = {k: v for k, v in trace.items() if k != REPLAY_KEY}
+    return {"trace": shown, "scene": drawn, "frames": steps, "replayed": bool(replay),
+            "world_file": world_path.name, "generator": f"pycram {_pycram_version()}"}
+
+
+def _script_safe(text: str) -> str:
+    """Text that cannot end the <script> element it is put in."""
+    return text.replace("</", "<\\/")
+
+
+def build_report(trace: dict[str, Any], world_path: Path) -> str:
+    """The report of a run (a trace, with or without its replay record) in the world file `world_path`."""
+    data = report_data(trace, world_path)
+    three = _asset("three.min.js")
+    if "</script" in three.lower():
+        raise RuntimeError("the bundled three.js contains '</script': it cannot be inlined")
+    title = f"{trace.get('plan', 'plan')} on {trace.get('world', world_path.name)}: {trace.get('status', '?')}"
+    page = _asset("report.html")
+    parts = {
+        "{{TITLE}}": _html(title),
+        "{{STYLE}}": _asset("report.css"),
+        "{{THREE}}": three,
+        "{{DATA}}": _script_safe(json.dumps(data, separators=(",", ":"), ensure_ascii=False, allow_nan=False)),
+        "{{APP}}": _asset("report.js"),
+    }
+    # one pass over the template: what is put in is never searched for placeholders itself
+    return re.sub(r"\{\{[A-Z]+\}\}", lambda match: parts.get(match.group(0), match.group(0)), page)
+
+
+def _html(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")

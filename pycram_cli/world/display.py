@@ -1,0 +1,57 @@
+"""Whether a window can be opened: asked before PyBullet is, because PyBullet cannot say.
+
+On Linux, PyBullet's GUI client opens the X display from its own thread and, when that
+fails, prints "cannot connect to X server" and ends the whole process with exit code 1
+(the code the CLI uses for "the plan failed"). So the display is opened once here, with
+libX11 through ctypes (the same library PyBullet loads), and a `NoDisplayError` says
+what to do instead. Other platforms have a window system of their own: nothing to ask.
+"""
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+import sys
+import time
+
+from ..errors import PycramError
+
+ADVICE = "run under xvfb-run or without --gui"
+
+
+class NoDisplayError(RuntimeError, PycramError):
+    """No window can be opened (no X display); the CLI reports it as invalid input (exit 2)."""
+
+
+def display_problem() -> str | None:
+    """Why a window cannot be opened here, or None when it can (always None outside Linux)."""
+    if not sys.platform.startswith("linux"):
+        return None
+    name = os.environ.get("DISPLAY", "")
+    if not name:
+        return "no display (DISPLAY is not set)"
+    library = ctypes.util.find_library("X11") or "libX11.so.6"
+    try:
+        x11 = ctypes.CDLL(library)
+    except OSError:
+        return f"no X11 library to open display {name!r} with (install libx11)"
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    handle = None
+    for attempt in range(5):  # a display server that is still starting (xvfb-run on a busy machine) gets a moment
+        handle = x11.XOpenDisplay(name.encode())
+        if handle:
+            break
+        time.sleep(0.2 * (attempt + 1))
+    if not handle:
+        return f"no display (cannot open DISPLAY={name!r})"
+    x11.XCloseDisplay(handle)
+    return None
+
+
+def check_display() -> None:
+    """Raise NoDisplayError with a message a person can act on when no window can be opened."""
+    problem = display_problem()
+    if problem is not None:
+        raise NoDisplayError(f"cannot open a window: {problem}; {ADVICE}")

@@ -1,0 +1,117 @@
+"""The replay record: the world after every step, deterministic, outside the comparable trace."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from pycram_cli.plan import trace as traces
+from pycram_cli.plan.replay import Recorder, changes, focus_points, world_state
+from pycram_cli.scenario import prepare
+from pycram_cli.scenario.golden import golden_path
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def set_table():
+    return prepare(REPO / "plans" / "set_table.yaml").run(replay=True)
+
+
+def _leaves(node):
+    children = node.get("children") or []
+    if not children:
+        yield node
+    for child in children:
+        yield from _leaves(child)
+
+
+def test_every_finished_leaf_is_a_step_in_execution_order(set_table):
+    replay = set_table.trace[traces.REPLAY_KEY]
+    steps = replay["steps"]
+    finished = {n["path"]: n for n in _leaves(set_table.trace["root"]) if n["status"] not in ("pending", "skipped")}
+    assert [s["path"] for s in steps if s["path"] in finished] == [s["path"] for s in steps]
+    assert len(steps) >= set_table.steps == 67
+    starts = [finished[s["path"]]["timing"]["started"] for s in steps]
+    assert starts == sorted(starts)
+    assert replay["world_file"].endswith("kitchen.yaml")
+
+
+def test_the_initial_state_and_the_changes_give_the_final_state(set_table):
+    replay = set_table.trace[traces.REPLAY_KEY]
+    state = json.loads(json.dumps(replay["initial"]))
+    for step in replay["steps"]:
+        for name, change in step["changed"].items():
+            state[name].update({k: v for k, v in change.items() if k != "joints"})
+            state[name].setdefault("joints", {}).update(change.get("joints", {}))
+    final = set_table.trace["final_state"]["objects"]
+    for name, entry in final.items():
+        assert state[name]["position"] == pytest.approx(entry["position"], abs=1e-6)
+    assert state["kitchen"]["joints"]["sink_area_left_upper_drawer_main_joint"] == pytest.approx(0.3)
+    # the moving steps moved the robot, the place steps the objects
+    moving = [s for s in replay["steps"] if s["path"].endswith("moving")]
+    assert moving and all("position" in s["changed"].get("pr2", {}) for s in moving[:1])
+
+
+def test_the_golden_trace_ignores_the_replay(set_table):
+    assert traces.REPLAY_KEY not in traces.comparable(set_table.trace)
+    golden = traces.load(golden_path(REPO / "plans" / "set_table.yaml", REPO / "tests" / "golden"))
+    assert traces.diff(golden, set_table.trace) == []
+
+
+def test_the_replay_is_the_same_byte_for_byte_on_every_run(set_table):
+    again = prepare(REPO / "plans" / "set_table.yaml").run(replay=True)
+    assert traces.dumps(again.trace[traces.REPLAY_KEY]) == traces.dumps(set_table.trace[traces.REPLAY_KEY])
+
+
+def test_changes_keep_only_what_moved():
+    before = {"a": {"position": [0, 0, 0], "orientation": [0, 0, 0, 1], "joints": {"j": 0.1, "k": 0.2}},
+              "b": {"position": [1, 0, 0], "orientation": [0, 0, 0, 1]}}
+    after = {"a": {"position": [0, 0, 0], "orientation": [0, 0, 0, 1], "joints": {"j": 0.1, "k": 0.5}},
+             "b": {"position": [1, 0, 1], "orientation": [0, 0, 0, 1]}}
+    assert changes(before, after) == {"a": {"joints": {"k": 0.5}},
+                                      "b": {"position": [1, 0, 1], "orientation": [0, 0, 0, 1]}}
+    assert changes(after, after) == {}
+
+
+def test_recorder_passes_every_event_on(world, data_dir):
+    from pycram_cli import Object
+    from pycram_cli.plan.trace import TraceNode
+
+    Object("cube", "box", data_dir / "cube.obj")
+    seen = []
+
+    class Inner:
+        def started(self, node):
+            seen.append(("started", node.path))
+
+        def finished(self, node):
+            seen.append(("finished", node.path))
+
+        def log(self, node, message):
+            seen.append(("log", message))
+
+    recorder = Recorder(world, Inner())
+    node = TraceNode("body/0:log", "log")
+    recorder.started(node)
+    recorder.log(node, "hi")
+    recorder.finished(node)
+    assert seen == [("started", "body/0:log"), ("log", "hi"), ("finished", "body/0:log")]
+    assert recorder.record()["steps"] == [{"path": "body/0:log", "status": "pending", "changed": {}}]
+    assert set(world_state(world)) == {"cube"}
+
+
+def test_focus_points_are_the_objects_and_places_a_step_names(set_table):
+    from pycram_cli import load_world
+
+    world = load_world()
+    try:
+        info = {"designator": {"resolved": {"object": "milk", "arm": "left", "target": [1.0, 2.0, 0.9]}}}
+        points = focus_points(world, info)
+        assert len(points) == 2 and points[1] == (1.0, 2.0, 0.9)
+        assert points[0][0] == pytest.approx(1.3, abs=0.01)
+        assert focus_points(world, {"query": {"args": {"a": "kitchen", "b": "bowl"}}})[0][1] == pytest.approx(0.8, abs=0.01)
+        assert focus_points(world, {"message": "hi"}) == []
+    finally:
+        world.exit()

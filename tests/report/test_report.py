@@ -1,0 +1,105 @@
+"""`pycram run --report` and `pycram trace show --report`: one self-contained HTML file that replays a run."""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+
+REPO = Path(__file__).resolve().parents[2]
+MAX_BYTES = 10 * 1000 * 1000
+
+
+def run(*args: str):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def page_data(path: Path) -> dict:
+    text = path.read_text(encoding="utf-8")
+    match = re.search(r'<script type="application/json" id="pycram-data">(.*?)</script>', text, re.S)
+    assert match, "the page carries its data"
+    return json.loads(match.group(1))
+
+
+@pytest.fixture(scope="module")
+def set_table_report(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("report")
+    result = run("run", "set_table", "--report", folder / "run.html", "--trace", folder / "run.json")
+    assert result.exit_code == 0, result.output
+    assert f"wrote {folder / 'run.html'} (replay report" in result.stderr
+    return folder / "run.html", folder / "run.json"
+
+
+def test_the_report_is_one_small_self_contained_file(set_table_report):
+    report, _ = set_table_report
+    text = report.read_text(encoding="utf-8")
+    assert report.stat().st_size <= MAX_BYTES
+    assert text.startswith("<!DOCTYPE html>")
+    # nothing is loaded from elsewhere: no external scripts, styles, images or fetches
+    assert not re.search(r"<(script|link|img|iframe)[^>]+(src|href)=", text)
+    assert "fetch(" not in text.split('id="pycram-data"')[1]
+    assert "var THREE=" in text  # three.js is inline
+
+
+def test_the_report_holds_the_scene_once_and_a_frame_per_step(set_table_report):
+    data = page_data(set_table_report[0])
+    scene, frames = data["scene"], data["frames"]
+    assert [b["name"] for b in scene["bodies"]] == ["floor", "pr2", "kitchen", "milk", "cereal", "bowl", "spoon", "bottle"]
+    names = [m["name"] for m in scene["meshes"]]
+    assert sorted(names) == sorted(set(names)) == sorted(["milk.obj", "breakfast_cereal.obj", "bowl.obj", "spoon.obj",
+                                                          "bottle.obj"])
+    assert scene["skipped"] == []
+    trace = data["trace"]
+    assert "replay" not in trace and trace["status"] == "succeeded"
+    assert len(frames) == len(json.loads(set_table_report[1].read_text())["replay"]["steps"]) + 1
+    drawn = sum(len(b["links"]) for b in scene["bodies"])
+    assert len(frames[0]["poses"]) == 9 * drawn  # frame 0: every drawn link
+    assert all(len(f["poses"]) < len(frames[0]["poses"]) for f in frames[1:])  # then only what moved
+    assert all(len(f["camera"]) == 6 for f in frames)
+    # the bowl was carried: its pose changes in some frame
+    bowl = [b["name"] for b in scene["bodies"]].index("bowl")
+    assert any(f["poses"][i] == bowl for f in frames[1:] for i in range(0, len(f["poses"]), 9))
+
+
+def test_trace_show_writes_the_same_report_from_the_saved_trace(set_table_report, tmp_path):
+    report, saved = set_table_report
+    again = tmp_path / "again.html"
+    result = run("trace", "show", saved, "--report", again)
+    assert result.exit_code == 0, result.output
+    first, second = page_data(report), page_data(again)
+    assert first["scene"] == second["scene"]
+    assert [f["path"] for f in first["frames"]] == [f["path"] for f in second["frames"]]
+    assert first["frames"][-1]["poses"] == second["frames"][-1]["poses"]
+
+
+def test_a_trace_without_replay_still_gets_a_report(tmp_path):
+    golden = REPO / "tests" / "golden" / "fetch_spoon.trace.json"
+    out = tmp_path / "golden.html"
+    result = run("trace", "show", golden, "--report", out)
+    assert result.exit_code == 0, result.output
+    assert "has no replay record" in result.stderr
+    data = page_data(out)
+    assert len(data["frames"]) == 1 and data["replayed"] is False
+
+
+def test_report_file_problems_are_input_errors(tmp_path):
+    for bad, message in ((tmp_path / "r.pdf", "cannot tell the report's format from '.pdf'"),
+                         (tmp_path / "no" / "r.html", "folder")):
+        result = run("run", "set_table", "--report", bad)
+        assert result.exit_code == 2 and str(bad) in result.stderr and message in result.stderr
+
+
+def test_a_failure_recovered_from_is_marked_recovered_in_the_page_data(tmp_path):
+    (tmp_path / "p.yaml").write_text(
+        "world: kitchen\nbody:\n  - try: [{fail: GripperFailure, message: slipped}]\n"
+        "    catch: {GripperFailure: [{log: handled}]}\n")
+    out = tmp_path / "r.html"
+    assert run("run", tmp_path / "p.yaml", "--report", out).exit_code == 0
+    data = page_data(out)
+    node = data["trace"]["root"]["children"][0]["children"][0]
+    assert node["status"] == "failed" and data["trace"]["status"] == "succeeded"  # the page shows it as recovered
+    assert "recovered" in out.read_text()
