@@ -258,6 +258,11 @@ def _is_reference_text(value: Any) -> bool:
     return isinstance(value, str) and value.startswith("$")
 
 
+def _link_name(value: Any) -> list[tuple[str, str, str]]:
+    """A link name as a slot value (the slot's own name is the key)."""
+    return [("", value, "link")] if isinstance(value, str) and value and not _is_reference_text(value) else []
+
+
 def location_names(value: Any) -> list[tuple[str, str, str]]:
     """(key, name, what) for every literal name a location mapping gives: `object`, `link`, or `object or link`."""
     value = location_mapping(value)
@@ -317,7 +322,7 @@ KINDS: dict[str, Kind] = {k.name: k for k in (
     Kind("distance", "a positive distance in metres", _distance, _float_or_text),
     Kind("fraction", "a fraction between 0 and 1", _fraction, _float_or_text),
     Kind("joint", "a joint name of the part-of object", _plain_name),
-    Kind("link", "a link name", _plain_name),
+    Kind("link", "a link name", _plain_name, names_in=_link_name),
     Kind("object-type", "an object type, e.g. milk", _plain_name),
     Kind("types", "an object type or a list of types", _types),
     Kind("camera", "a link of the robot or a position [x, y, z]", _camera, _vector_or_name(3)),

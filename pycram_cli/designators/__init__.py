@@ -11,6 +11,7 @@ from .declaration import (ANY_ARM, DESIGNATORS, Designator, Slot, SlotProblem, c
                           drives, drives_arm, robot_resources)
 from .performing import perform
 from .result import Performed
+from . import actions  # noqa: E402,I001  (action designators, one level up: their own registry, ACTIONS)
 
 __all__ = ["ANY_ARM", "DESIGNATORS", "Designator", "Performed", "Slot", "SlotProblem", "check_designator",
            "declare_designator", "drives", "drives_arm", "perform", "robot_resources"]
