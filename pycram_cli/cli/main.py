@@ -10,7 +10,7 @@ import click
 
 from ..errors import InputError, InputErrors, PycramError, as_list
 from ..world import quiet
-from . import console, designators_cmd, query_cmd, run_cmd, trace_cmd, validate_cmd, world_cmd
+from . import console, designators_cmd, locate_cmd, query_cmd, run_cmd, trace_cmd, validate_cmd, world_cmd
 
 EXIT_INPUT = 2
 EXIT_INTERNAL = 3
@@ -77,7 +77,8 @@ def cli(verbose: bool, be_quiet: bool) -> None:
     warnings.showwarning = _show_warning
 
 
-for _command in (*world_cmd.COMMANDS, *validate_cmd.COMMANDS, *query_cmd.COMMANDS, *run_cmd.COMMANDS,
+for _command in (*world_cmd.COMMANDS, *validate_cmd.COMMANDS, *query_cmd.COMMANDS, *locate_cmd.COMMANDS,
+                 *run_cmd.COMMANDS,
                  *trace_cmd.COMMANDS, *designators_cmd.COMMANDS):
     cli.add_command(_command)
 
