@@ -226,15 +226,19 @@ def _signature(robot: Robot, held: Sequence[Object]) -> tuple:
     return tuple(parts)
 
 
-def floor_map(robot: Robot, held: Sequence[Object]) -> floor.FloorMap:
-    """The floor map for the world as it is (built again whenever anything has moved)."""
+def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> floor.FloorMap:
+    """The floor map for the world as it is (built again whenever anything has moved). `saved`: the caller
+    restores the world afterwards (building turns the robot in place)."""
     world = robot.world
     key = _signature(robot, held)
     cached = _MAPS.get(world)
     if cached is not None and cached[0] == key:
         return cached[1]
-    with world.snapshot():
+    if saved:
         built = floor.build(robot.body, held)
+    else:
+        with world.snapshot():
+            built = floor.build(robot.body, held)
     _MAPS[world] = (key, built)
     return built
 
@@ -242,8 +246,13 @@ def floor_map(robot: Robot, held: Sequence[Object]) -> floor.FloorMap:
 # -- touching -----------------------------------------------------------------------------------------------
 
 
+#: links of what an object rests on that touch the supporting link's box (grown by this much, m) hold it up too
+SUPPORT_NEIGHBOURS = 0.005
+
+
 def supports_of(world: "BulletWorld", obj: Object) -> set[tuple[int, str]]:
-    """(object id, link) of everything `obj` rests on."""
+    """(object id, link) of everything `obj` rests on: the supporting links, and the links of the same object
+    right against them (a counter top's carcass, under it), which fingers closing around a flat object graze."""
     found = set()
     for other in world.objects:
         if other is obj or other.type == "robot":
@@ -252,6 +261,11 @@ def supports_of(world: "BulletWorld", obj: Object) -> set[tuple[int, str]]:
             continue
         for link, _ in support_points(other, obj):
             found.add((other.id, link))
+            lo, hi = (np.asarray(v) for v in other.get_aabb(link))
+            for index in [-1, *range(len(other.joints))]:
+                blo, bhi = (np.asarray(v) for v in other.get_aabb(index))
+                if np.all(blo <= hi + SUPPORT_NEIGHBOURS) and np.all(bhi >= lo - SUPPORT_NEIGHBOURS):
+                    found.add((other.id, other.get_link_name(index)))
     return found
 
 
@@ -312,9 +326,16 @@ class _Resolution:
         return self._prepared
 
     def prepare(self) -> None:
+        """The candidates, ranked (resolving does this first; the world is left as it was)."""
         if not self._prepared:
-            with self.robot.world.lock:
-                self._prepare()
+            world = self.robot.world
+            with world.lock, world.snapshot():
+                self._prepared_inside()
+
+    def _prepared_inside(self) -> None:
+        """Inside the caller's snapshot: the candidates, once."""
+        if not self._prepared:
+            self._prepare()
             self._prepared = True
 
     def __iter__(self) -> Iterator[Any]:
@@ -366,7 +387,7 @@ class BasePoseResolution(_Resolution):
     def _prepare(self) -> None:
         robot, spec = self.robot, self.spec
         self.held = robot.held_objects()
-        self.map = floor_map(robot, self.held)
+        self.map = floor_map(robot, self.held, saved=True)
         self.floor_z = self.map.floor_z
         arms = arm_geometry(robot)
         if spec.arm is not None:
@@ -491,7 +512,7 @@ class BasePoseResolution(_Resolution):
         handle = self.spec.accessing
         assert handle is not None
         obj = handle.obj
-        with self.robot.world.snapshot():
+        with obj.joints_kept([handle.joint]):
             obj.reset_joints({handle.joint: self._goal(obj.get_joint_position(handle.joint))})
             return floor.build(self.robot.body, self.held)
 
@@ -517,10 +538,10 @@ class BasePoseResolution(_Resolution):
     # -- the tests ----------------------------------------------------------------------------------------------
     def next(self) -> BasePose:
         """The next base pose (best first); LocationFailure when none is left."""
-        self.prepare()
         world = self.robot.world
-        order = self.candidates.order
         with world.lock, world.snapshot():
+            self._prepared_inside()
+            order = self.candidates.order
             while self.cursor < len(order) and self.expensive < self.limit:
                 chunk = order[self.cursor:self.cursor + CHUNK]
                 self._map_test(chunk)
@@ -694,11 +715,10 @@ class SpotResolution(_Resolution):
         lo, hi = surface.box()
         self.top = float(hi[2])
         self.upright = level(obj.get_orientation())
-        with world.snapshot():
-            position = obj.get_position()
-            _quiet_let_go(obj)
-            obj.set_position_and_orientation(position, self.upright)
-            olo, ohi = obj.get_aabb()
+        position = obj.get_position()  # inside the caller's snapshot: the object stood upright where it is
+        _quiet_let_go(obj)
+        obj.set_position_and_orientation(position, self.upright)
+        olo, ohi = obj.get_aabb()
         corners = np.array([[olo[0], olo[1]], [olo[0], ohi[1]], [ohi[0], olo[1]], [ohi[0], ohi[1]]]) - np.asarray(position[:2])
         self.radius = float(np.max(np.hypot(corners[:, 0], corners[:, 1])))
         self.height = float(ohi[2] - olo[2])
@@ -744,12 +764,12 @@ class SpotResolution(_Resolution):
         return found
 
     def next(self) -> Spot:
-        self.prepare()
         world = self.robot.world
         obj, surface = self.spec.for_object, self.spec.on
         assert obj is not None and surface is not None
-        cand = self.candidates
-        with world.lock:
+        with world.lock, world.snapshot() as saved:
+            self._prepared_inside()
+            cand = self.candidates
             while self.cursor < len(cand) and self.expensive < self.limit:
                 i = int(cand.order[self.cursor])
                 self.cursor += 1
@@ -757,17 +777,17 @@ class SpotResolution(_Resolution):
                     continue
                 self.expensive += 1
                 position = (float(cand.xs[i]), float(cand.ys[i]), self.top)
-                with world.snapshot():
-                    _quiet_let_go(obj)
-                    obj.set_position_and_orientation(position, self.upright)
-                    hits = self._touching(obj, surface)
-                    if hits:
-                        cand.mark(i, "collides", ", ".join(hits))
-                        continue
-                    answer = stable(obj)
-                    if not answer.stable:
-                        cand.mark(i, "unstable", f"moved {answer.displacement * 1000:.1f} mm")
-                        continue
+                world.restore_state(saved)
+                _quiet_let_go(obj)
+                obj.set_position_and_orientation(position, self.upright)
+                hits = self._touching(obj, surface)
+                if hits:
+                    cand.mark(i, "collides", ", ".join(hits))
+                    continue
+                answer = stable(obj)
+                if not answer.stable:
+                    cand.mark(i, "unstable", f"moved {answer.displacement * 1000:.1f} mm")
+                    continue
                 cand.outcome[i] = CODE["ok"]
                 spot = Spot(position, self.upright, float(cand.scores[i]), surface.name, len(self.found))
                 self.found.append(spot)

@@ -95,6 +95,8 @@ class LocationSpec:
         if self.accessing is not None:
             parts.append(f"accessing {self.accessing.link}")
         extra = [f"arm {self.arm}"] if self.arm else []
+        if self.placing is not None:
+            extra.append(f"placing {self.placing.name}")
         if self.grasp is not None:
             extra.append(f"grasp {name(self.grasp)}")
         if self.near is not None:
@@ -119,6 +121,8 @@ class LocationSpec:
             data["near"] = list(self.near)
         if self.accessing is not None:
             data["accessing"] = self.accessing.link
+        if self.placing is not None:  # set by the place action: the held object's origin goes to reachable-for
+            data["placing"] = self.placing.name
         return data
 
 
