@@ -26,6 +26,7 @@ randomness, no clock; the same world gives the same answer.
 from __future__ import annotations
 
 import math
+import threading
 import weakref
 from collections import Counter
 from dataclasses import dataclass
@@ -34,6 +35,7 @@ from typing import TYPE_CHECKING, Any, Iterator, Sequence
 import numpy as np
 
 from ..failures import LocationFailure
+from ..kinds import arm_phrase
 from ..process_modules import Robot
 from ..process_modules.arms import reach
 from ..process_modules.head import look_at
@@ -209,20 +211,22 @@ def _centre(obj: Object) -> np.ndarray:
 # -- the floor map, kept while the world stands still ----------------------------------------------------------
 
 _MAPS: "weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, floor.FloorMap]]" = weakref.WeakKeyDictionary()
+_MAPS_LOCK = threading.Lock()  # worlds may resolve locations in threads of their own
 
 
 def _signature(robot: Robot, held: Sequence[Object]) -> tuple:
-    """What the floor map depends on: every object's pose and joints but the robot's base pose (the map is in
-    world coordinates, the robot's footprint in its own), and what the robot holds, with how it holds it."""
-    parts: list[Any] = [tuple((o.id, tuple(round(v, 6) for p in robot.body.attachments[o].transform for v in p))
-                              for o in held if o in robot.body.attachments)]
+    """What the floor map depends on, exactly (a map is reused only for the very same state): every object's
+    pose and joints but the robot's base pose (the map is in world coordinates, the robot's footprint in its
+    own frame), and what the robot holds, with how it holds it."""
+    parts: list[Any] = [tuple((o.id, tuple(robot.body.attachments[o].transform)) for o in held
+                              if o in robot.body.attachments)]
     for obj in robot.world.objects:
-        joints = tuple(round(v, 6) for v in obj.get_joint_positions().values())
+        joints = tuple(obj.get_joint_positions().values())
         if obj is robot.body or obj in held:
             parts.append((obj.id, joints))
             continue
         pose = obj.get_com_pose()
-        parts.append((obj.id, tuple(round(v, 6) for v in pose[0]), tuple(round(v, 6) for v in pose[1]), joints))
+        parts.append((obj.id, tuple(pose[0]), tuple(pose[1]), joints))
     return tuple(parts)
 
 
@@ -231,7 +235,8 @@ def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> floo
     restores the world afterwards (building turns the robot in place)."""
     world = robot.world
     key = _signature(robot, held)
-    cached = _MAPS.get(world)
+    with _MAPS_LOCK:
+        cached = _MAPS.get(world)
     if cached is not None and cached[0] == key:
         return cached[1]
     if saved:
@@ -239,7 +244,8 @@ def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> floo
     else:
         with world.snapshot():
             built = floor.build(robot.body, held)
-    _MAPS[world] = (key, built)
+    with _MAPS_LOCK:
+        _MAPS[world] = (key, built)
     return built
 
 
@@ -398,9 +404,13 @@ class BasePoseResolution(_Resolution):
         elif spec.reachable_for is not None or spec.accessing is not None:  # a full hand takes nothing, opens nothing
             arms = {name: geo for name, geo in arms.items() if not robot.held_objects(name)}
         if not arms and (spec.reachable_for is not None or spec.accessing is not None):
-            raise LocationFailure(f"no pose for {spec.describe()}: " + (
-                f"the robot does not hold {spec.placing.name}" if spec.placing is not None
-                else "every gripper that could holds something"), location=spec.describe())
+            if spec.placing is not None:
+                why = f"the robot does not hold {spec.placing.name}" + (f" in {arm_phrase(spec.arm)}" if spec.arm else "")
+            elif spec.arm is not None:
+                why = f"{arm_phrase(spec.arm)} holds {', '.join(o.name for o in robot.held_objects(spec.arm))}"
+            else:
+                why = "every gripper holds something"
+            raise LocationFailure(f"no pose for {spec.describe()}: {why}", location=spec.describe())
         self.arm_names = list(arms)
         camera = camera_offset(robot)
         reach_target = None

@@ -219,8 +219,8 @@ def parse_location(world: BulletWorld, value: Any, for_object: Object | None = N
         value = {k: v for k, v in value.items() if v is not None}
     problem = KINDS["location"].check(value, robots)
     if problem:
-        key = next((k for k in (value if isinstance(value, Mapping) else ()) if problem.startswith(f"{k}:")), None)
-        raise _error(key or "location", problem)
+        key = next((k for k in (value if isinstance(value, Mapping) else ()) if problem.startswith(f"{k}: ")), None)
+        raise InputError(problem[len(key) + 2:] if key else problem, WHERE, key=key)
     assert isinstance(value, Mapping)
     reach: Any = None
     if "reachable-for" in value:
