@@ -106,6 +106,15 @@ def test_unknown_objects_surfaces_and_handles_are_input_errors(kitchen, value, k
         assert caught.value.suggestion.startswith(suggestion)
 
 
+def test_a_bad_value_is_reported_at_its_key_once(kitchen):
+    with pytest.raises(InputError) as caught:
+        parse_location(kitchen, {"reachable-for": "milk", "arm": "arm"})
+    assert (caught.value.key, caught.value.message) == ("arm", "pr2 has no arm 'arm' (arms: left, right)")
+    with pytest.raises(InputError) as caught:
+        parse_location(kitchen, {"visible-for": "milk", "near": [1, 2, 3]})
+    assert (caught.value.key, caught.value.message) == (None, "'near' goes with on")
+
+
 def test_a_handle_is_found_with_the_joint_that_opens_it(kitchen):
     spec = parse_location(kitchen, {"accessing": HANDLE})
     assert spec.accessing.joint == "sink_area_left_upper_drawer_main_joint"
