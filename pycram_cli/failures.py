@@ -47,10 +47,15 @@ class ManipulationFailure(Failure):
     """Manipulating an object or an articulated part failed (wrong object held, drawer stuck, ...)."""
 
 
+class LocationFailure(Failure):
+    """No pose satisfies a location designator; the message says which tests ruled the candidates out
+    ("412 candidates: 380 collide, 32 out of reach")."""
+
+
 FAILURES: dict[str, type[Failure]] = {
     cls.__name__: cls
     for cls in (Failure, PerceptionFailure, ReasoningFailure, NavigationFailure, ReachabilityFailure,
-                GripperFailure, ManipulationFailure)
+                GripperFailure, ManipulationFailure, LocationFailure)
 }
 # the design's own names for two of them
 ALIASES = {"PerceptionError": "PerceptionFailure", "ReasoningError": "ReasoningFailure"}

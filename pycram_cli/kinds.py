@@ -195,6 +195,88 @@ def _arm_configs(value: Any, robots: Robots) -> str | None:
     return None
 
 
+# -- locations ---------------------------------------------------------------------------------
+
+#: the keys of a location mapping, what each takes, and what it means (docs and checks)
+LOCATION_KEYS: dict[str, str] = {
+    "reachable-for": "an object or a position [x, y, z]: base poses from which an arm reaches it",
+    "visible-for": "an object: base poses from which the robot's camera sees it",
+    "arm": "with reachable-for (or accessing): the arm that must reach",
+    "grasp": "with reachable-for: the grasp it must reach with",
+    "on": "a surface: a link (kitchen_island_surface) or an object: a free spot on it",
+    "for": "with on: the object that must fit there (inferred when placing)",
+    "near": "with on: a position [x, y, z] the spot should be close to",
+    "accessing": "a handle link: base poses from which an arm opens its drawer or door",
+}
+#: a location asks for one of these (reachable-for and visible-for may go together)
+LOCATION_GOALS = ("reachable-for", "visible-for", "on", "accessing")
+#: the keys that go with each goal
+LOCATION_WITH = {"arm": ("reachable-for", "accessing"), "grasp": ("reachable-for",), "for": ("on",), "near": ("on",)}
+
+
+def location_mapping(value: Any) -> Any:
+    """A location mapping with YAML 1.1's reading of an unquoted `on` key (true) put back to "on"."""
+    if isinstance(value, Mapping) and True in value:
+        return {("on" if key is True else key): item for key, item in value.items()}
+    return value
+
+
+def location_goals(value: Mapping[str, Any]) -> list[str]:
+    return [key for key in LOCATION_GOALS if key in value]
+
+
+def _location(value: Any, robots: Robots) -> str | None:
+    value = location_mapping(value)
+    if not isinstance(value, Mapping):
+        return ("expected a location mapping such as {reachable-for: milk}, {visible-for: milk}, "
+                "{on: kitchen_island_surface, for: milk} or {accessing: HANDLE_LINK}")
+    for key in value:
+        if key not in LOCATION_KEYS:
+            return f"a location has no key '{key}' ({_hint(key, list(LOCATION_KEYS), 'key')})"
+    goals = location_goals(value)
+    if not goals:
+        return f"a location needs one of {', '.join(LOCATION_GOALS)}"
+    if len(goals) > 1 and set(goals) != {"reachable-for", "visible-for"}:
+        return f"{' and '.join(goals)} do not go together (only reachable-for and visible-for do)"
+    for key, goes_with in LOCATION_WITH.items():
+        if key in value and not any(goal in value for goal in goes_with):
+            return f"'{key}' goes with {' or '.join(goes_with)}"
+    checks: dict[str, Callable[[Any, Robots], str | None]] = {
+        "reachable-for": _target, "visible-for": _object, "arm": _arm, "grasp": _grasp, "on": _plain_name,
+        "for": _object, "near": _position, "accessing": _plain_name}
+    for key, item in value.items():
+        if _is_reference_text(item):
+            continue
+        problem = checks[key](item, robots)
+        if problem:
+            return f"{key}: {problem}"
+    return None
+
+
+def _is_reference_text(value: Any) -> bool:
+    """A plan variable (`$obj`): only known when the step runs."""
+    return isinstance(value, str) and value.startswith("$")
+
+
+def _link_name(value: Any) -> list[tuple[str, str, str]]:
+    """A link name as a slot value (the slot's own name is the key)."""
+    return [("", value, "link")] if isinstance(value, str) and value and not _is_reference_text(value) else []
+
+
+def location_names(value: Any) -> list[tuple[str, str, str]]:
+    """(key, name, what) for every literal name a location mapping gives: `object`, `link`, or `object or link`."""
+    value = location_mapping(value)
+    if not isinstance(value, Mapping):
+        return []
+    found = []
+    for key, what in (("reachable-for", "object"), ("visible-for", "object"), ("for", "object"),
+                      ("on", "object or link"), ("accessing", "link")):
+        item = value.get(key)
+        if isinstance(item, str) and item and not _is_reference_text(item) and parse_vector(item, 3) is None:
+            found.append((key, item, what))
+    return found
+
+
 # -- reading values from the command line ---------------------------------------------------------
 
 
@@ -224,6 +306,8 @@ class Kind:
     check: Callable[[Any, Robots], str | None]
     from_text: Callable[[str], Any] = field(default=_text)
     names_object: bool = False
+    #: the names of objects and links inside a value (location mappings): (key, name, `object`/`link`/`object or link`)
+    names_in: Callable[[Any], list[tuple[str, str, str]]] | None = None
 
 
 KINDS: dict[str, Kind] = {k.name: k for k in (
@@ -238,12 +322,15 @@ KINDS: dict[str, Kind] = {k.name: k for k in (
     Kind("distance", "a positive distance in metres", _distance, _float_or_text),
     Kind("fraction", "a fraction between 0 and 1", _fraction, _float_or_text),
     Kind("joint", "a joint name of the part-of object", _plain_name),
-    Kind("link", "a link name", _plain_name),
+    Kind("link", "a link name", _plain_name, names_in=_link_name),
     Kind("object-type", "an object type, e.g. milk", _plain_name),
     Kind("types", "an object type or a list of types", _types),
     Kind("camera", "a link of the robot or a position [x, y, z]", _camera, _vector_or_name(3)),
     Kind("arm-config", "a named pose (park), joint values in order, or {joint: value}", _arm_config),
     Kind("arm-configs", "{arm: configuration}, each a named pose, joint values, or {joint: value}", _arm_configs),
+    Kind("location", "a mapping: {reachable-for: OBJECT|[x, y, z], arm?, grasp?}, {visible-for: OBJECT} (or both), "
+         "{on: SURFACE, for: OBJECT?, near: [x, y, z]?}, or {accessing: HANDLE_LINK}", _location,
+         names_in=location_names),
 )}
 
 

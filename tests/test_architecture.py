@@ -19,10 +19,10 @@ PLAN_DIR = Path(__file__).resolve().parents[1] / "pycram_cli" / "plan"
 PLAN_PACKAGE = "pycram_cli.plan"
 
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
-                       "params", "validate", "language"}
+                       "actions", "params", "validate", "language"}
 PLAN_RUNNING_FLOOR = {"scheduler", "trace", "executor", "replay"}
 PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
-PLAN_NODE_MODULES = {"composites", "decorators", "leaves"}
+PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions"}
 
 
 def _plan_modules() -> dict[str, Path]:
@@ -182,8 +182,8 @@ def test_plan_has_no_import_inside_a_function():
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
 #: bottom to top; a module may import its own layer and the layers below it
-LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "designators", "plan", "scenario", "sweep",
-          "report", "cli"]
+LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "locations", "designators", "plan", "scenario",
+          "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
 SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet"}
 

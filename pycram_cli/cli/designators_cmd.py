@@ -1,9 +1,12 @@
-"""`pycram designators [TYPE]`: the reference for every motion designator and its slots, from their declarations."""
+"""`pycram designators [TYPE]`: the reference for every motion and action designator and its slots, from their
+declarations. `pick-up` and `place` are both: motion designators (`- pick-up: {...}` in a plan) and actions
+(`- action: pick-up`); `--motions` and `--actions` show one level only."""
 from __future__ import annotations
 
 import click
 
 from ..designators import DESIGNATORS, Designator
+from ..designators.actions import ACTIONS, Action
 from ..errors import InputError, Location, did_you_mean
 from ..kinds import KINDS
 from ..robots import RobotDescription, bundled_descriptions
@@ -27,10 +30,12 @@ def _per_robot(kind: str, robots: list[RobotDescription]) -> dict[str, list[str]
     return {name: v for name, v in values.items() if v is not None}
 
 
-def _as_dict(spec: Designator, robots: list[RobotDescription]) -> dict[str, object]:
+def _as_dict(spec: Designator | Action, robots: list[RobotDescription]) -> dict[str, object]:
+    head: dict[str, object] = {"type": spec.name, "level": "action", "doc": spec.doc, "returns": spec.returns,
+                               "written": f"action: {spec.name}"} if isinstance(spec, Action) else {
+        "type": spec.name, "level": "motion", "doc": spec.doc, "resource": spec.resource, "process_module": spec.module}
     return {
-        "type": spec.name, "doc": spec.doc, "resource": spec.resource, "process_module": spec.module,
-        "one_of": list(spec.one_of), "needs": list(spec.needs),
+        **head, "one_of": list(spec.one_of), "needs": list(spec.needs),
         "slots": [{"name": s.name, "required": s.required, "kind": s.kind, "kind_doc": KINDS[s.kind].doc,
                    "default": s.default, "doc": s.doc, **({"values_per_robot": _per_robot(s.kind, robots)}
                                                           if _per_robot(s.kind, robots) else {})}
@@ -40,13 +45,25 @@ def _as_dict(spec: Designator, robots: list[RobotDescription]) -> dict[str, obje
 
 @click.command("designators")
 @click.argument("type_name", metavar="[TYPE]", required=False)
+@click.option("--motions", "only", flag_value="motions", help="Only the motion designators.")
+@click.option("--actions", "only", flag_value="actions", help="Only the action designators.")
 @json_option
-def designators(type_name: str | None, as_json: bool) -> None:
-    """List every motion designator type with its slots (or just TYPE)."""
-    if type_name is not None and type_name not in DESIGNATORS:
-        raise InputError(f"unknown designator type '{type_name}'", Location("TYPE"),
-                         suggestion=did_you_mean(type_name, DESIGNATORS) or f"known types: {', '.join(DESIGNATORS)}")
-    specs = [DESIGNATORS[type_name]] if type_name else list(DESIGNATORS.values())
+def designators(type_name: str | None, only: str | None, as_json: bool) -> None:
+    """List every motion designator and action designator with its slots (or just TYPE).
+
+    In a plan a motion designator is a step `- TYPE: {SLOT: value}`; an action is `- action: TYPE` with its
+    slots beside it. pick-up and place are both.
+    """
+    motions = [] if only == "actions" else list(DESIGNATORS.values())
+    actions = [] if only == "motions" else list(ACTIONS.values())
+    if type_name is not None:
+        motions = [s for s in motions if s.name == type_name]
+        actions = [s for s in actions if s.name == type_name]
+        if not motions and not actions:
+            known = ([] if only == "actions" else list(DESIGNATORS)) + ([] if only == "motions" else list(ACTIONS))
+            raise InputError(f"unknown designator type '{type_name}'", Location("TYPE"),
+                             suggestion=did_you_mean(type_name, known) or f"known types: {', '.join(dict.fromkeys(known))}")
+    specs: list[Designator | Action] = [*motions, *actions]
     robots = bundled_descriptions()
     if as_json:
         console.emit_json([_as_dict(s, robots) for s in specs])
@@ -60,7 +77,8 @@ def designators(type_name: str | None, as_json: bool) -> None:
             if per_robot:
                 value += "; " + "; ".join(f"{robot}: {', '.join(names) or 'none'}" for robot, names in per_robot.items())
             rows.append((slot.name, need, value, slot.default or "-", slot.doc))
-        console.table(f"{spec.name} — {spec.doc}", ["slot", "", "value", "default", "meaning"], rows)
+        title = f"action {spec.name} — {spec.doc}" if isinstance(spec, Action) else f"{spec.name} — {spec.doc}"
+        console.table(title, ["slot", "", "value", "default", "meaning"], rows)
         if spec.one_of:
             console.plain(f"  give at least one of: {', '.join(spec.one_of)}")
         console.plain("")

@@ -29,8 +29,10 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
                  "Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every "
                  "problem with file, line and key."),
     "query": ("query_cmd", "query", "Ask a reasoning question (stable, visible, reachable, ...) about a world."),
+    "locate": ("locate_cmd", "locate_cmd", "Resolve a location designator: where to stand, or a free spot on a surface."),
     "world": ("world_cmd", "world", "Inspect and render world files."),
-    "designators": ("designators_cmd", "designators", "List every motion designator type with its slots (or just TYPE)."),
+    "designators": ("designators_cmd", "designators",
+                    "List every motion designator and action designator with its slots (or just TYPE)."),
     "trace": ("trace_cmd", "trace", "Show saved plan traces and compare them."),
 }
 

@@ -12,7 +12,8 @@ import sys
 from pathlib import Path
 
 from ..designators import DESIGNATORS
-from ..kinds import KINDS
+from ..designators.actions import ACTIONS
+from ..kinds import KINDS, LOCATION_KEYS
 from ..reasoning import QUERIES
 
 def _cell(text: object) -> str:
@@ -36,6 +37,26 @@ def render() -> str:
         if spec.one_of:
             lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in spec.one_of)}."]
         lines.append("")
+    lines += ["## Action designators", "",
+              "Written in a plan as `- action: TYPE` with the slots beside it (`pick-up` and `place` are motion "
+              "designators too: `- pick-up: {...}` is the motion). Slots left open are inferred; `as:` binds what the "
+              "action gives.", ""]
+    for action in ACTIONS.values():
+        needs = f" Needs a robot with: {', '.join(action.needs)}." if action.needs else ""
+        gives = f" Gives: {action.returns}." if action.returns else ""
+        lines += [f"### action `{action.name}`", "", f"{action.doc}{gives}{needs}", "",
+                  "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
+        for slot in action.slots:
+            need = "required" if slot.required else ("one of" if slot.name in action.one_of else "optional")
+            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default or '-')} | "
+                         f"{_cell(slot.doc)} |")
+        if action.one_of:
+            lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in action.one_of)}."]
+        lines.append("")
+    lines += ["## Location designators", "", "A slot of kind `location` is a mapping with these keys "
+              "(`pycram locate` resolves one from the command line):", "", "| key | takes |", "|---|---|"]
+    lines += [f"| `{key}` | {_cell(doc)} |" for key, doc in LOCATION_KEYS.items()]
+    lines.append("")
     lines += ["## Reasoning queries", "", "In a plan: `QUERY: {PARAMETER: value, ...}`; on the command line: "
               "`pycram query QUERY ARGS [--OPTION VALUE]`.", ""]
     for query in QUERIES.values():

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -38,6 +39,10 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
     if "query" in node:
         q = node["query"]
         parts.append(f"{_slots(q.get('args', {}))} → {_short(q.get('result'))}")
+    if "action" in node:
+        parts.append(_slots(node["action"].get("slots", {})))
+    if "location" in node:
+        parts.append(describe_location(node["location"]))
     if "condition" in node:
         parts.append(describe_condition(node["condition"]))
     if "call" in node:
@@ -58,6 +63,20 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
     if timing and isinstance(node.get("timing"), dict) and node["timing"].get("duration") is not None:
         parts.append(f"{node['timing']['duration']:.2f} s")
     return "  ".join(p for p in parts if p)
+
+
+def describe_location(record: dict[str, Any]) -> str:
+    """`{reachable-for: milk} → (0.75, 0.95) 5° left front (14 of 5845 tried)`."""
+    spec = ", ".join(f"{k}: {_short(v, 30)}" for k, v in (record.get("spec") or {}).items())
+    found = record.get("found")
+    where = "none"
+    if isinstance(found, dict):
+        position = found.get("position") or []
+        where = "(" + ", ".join(f"{v:.2f}" for v in position[:2]) + ")"
+        if "yaw" in found:
+            where += f" {math.degrees(found['yaw']):.0f}°"
+        where += "".join(f" {found[k]}" for k in ("arm", "grasp") if isinstance(found.get(k), str))
+    return f"{{{spec}}} → {where} ({record.get('tried', 0)} of {record.get('candidates', 0)} tried)"
 
 
 def describe_condition(record: dict[str, Any]) -> str:

@@ -5,12 +5,13 @@ drives, its default process module) in a module of its own family, imported here
 validation, the scheduler's resources, `pycram designators` and `perform` are generated from
 `DESIGNATORS`. A new designator is a module with its `declare_designator(...)`, imported here.
 """
-# the design's eleven designators, declared in this order (pycram designators lists them so)
-from . import navigation, manipulation, perception, arms  # noqa: F401,I001
+# the design's eleven designators, declared in this order (pycram designators lists them so), then ours
+from . import navigation, manipulation, perception, arms, torso  # noqa: F401,I001
 from .declaration import (ANY_ARM, DESIGNATORS, Designator, Slot, SlotProblem, check_designator, declare_designator,
                           drives, drives_arm, robot_resources)
 from .performing import perform
 from .result import Performed
+from . import actions  # noqa: E402,I001  (action designators, one level up: their own registry, ACTIONS)
 
 __all__ = ["ANY_ARM", "DESIGNATORS", "Designator", "Performed", "Slot", "SlotProblem", "check_designator",
            "declare_designator", "drives", "drives_arm", "perform", "robot_resources"]

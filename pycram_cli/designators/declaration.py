@@ -119,7 +119,8 @@ class SlotProblem:
     suggestion: str | None = None
 
 
-def _lacks(need: str, desc: "RobotDescription") -> str | None:
+def lacks(need: str, desc: "RobotDescription") -> str | None:
+    """Why a robot lacks what a designator needs (`mobile base`, `head`, `camera`, `arms`), or None."""
     if need == "mobile base" and not desc.mobile:
         return "its base cannot move (mobile: false in its description)"
     if need == "head" and desc.head is None:
@@ -128,6 +129,8 @@ def _lacks(need: str, desc: "RobotDescription") -> str | None:
         return "it has no camera (no camera: in its description)"
     if need == "arms" and not desc.arms:
         return "it has no arms"
+    if need == "torso" and desc.torso_joint is None:
+        return "it has no torso (no torso: in its description)"
     return None
 
 
@@ -145,7 +148,7 @@ def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Cal
     problems: list[SlotProblem] = []
     if robots.known and len(robots.descriptions) == 1:
         for need in spec.needs:
-            why = _lacks(need, robots.descriptions[0])
+            why = lacks(need, robots.descriptions[0])
             if why:
                 problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{type_name}': {why}"))
     for name, value in slots.items():

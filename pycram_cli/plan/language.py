@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..world import BulletWorld
-from . import composites, decorators, leaves  # noqa: F401  (importing them registers their node types)
+from . import actions, composites, decorators, leaves  # noqa: F401  (importing them registers their node types)
 from .syntax import NODE_TYPES, Plan, read_plan
 from .validate import check_plan
 

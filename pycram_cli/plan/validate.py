@@ -24,6 +24,7 @@ from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
 from .context import references
 from ..paths import find_world
+from ..world.model_files import describe_model
 from .syntax import Node, Plan
 
 if TYPE_CHECKING:
@@ -42,18 +43,30 @@ class WorldFacts:
     robot: str | None = None
     robot_file: str = ""
     description: RobotDescription | None = None
+    #: the link names of the objects (but the robot) whose models could be read; None: not known
+    links: frozenset[str] | None = None
 
     @classmethod
     def of_spec(cls, spec: "WorldSpec") -> "WorldFacts":
         robot = spec.robot
+        links: set[str] | None = set()
+        for obj in spec.objects:
+            if obj is robot or obj.file.suffix.lower() != ".urdf":
+                continue
+            try:
+                links |= set(describe_model(obj.file).links)  # type: ignore[operator]
+            except Exception:  # noqa: BLE001 - a model that cannot be read: its links are not checked
+                links = None
+                break
         return cls(tuple(spec.object_names), robot.name if robot else None, robot.file.name if robot else "",
-                   spec.robot_description)
+                   spec.robot_description, frozenset(links) if links is not None else None)
 
     @classmethod
     def of_world(cls, world: "BulletWorld") -> "WorldFacts":
         robot = world.robot
+        links = frozenset(link for o in world.objects if o is not robot for link in o.link_names)
         return cls(tuple(o.name for o in world.objects), robot.name if robot else None,
-                   robot.path.name if robot else "", description_for(robot) if robot is not None else None)
+                   robot.path.name if robot else "", description_for(robot) if robot is not None else None, links)
 
     @property
     def robots(self) -> Robots:

@@ -1,5 +1,5 @@
 """Process modules: one per physical resource, chosen by designator type and robot."""
-from . import accessing, arms, head, manipulation, navigation, perception  # noqa: F401  (registration)
+from . import accessing, arms, head, manipulation, navigation, perception, torso  # noqa: F401  (registration)
 from .base import ProcessModule, Robot
 from .registry import PROCESS_MODULES, choose, process_module
 

@@ -42,7 +42,8 @@ def tool_position(world, arm):
 def test_every_designator_names_a_registered_process_module():
     assert {name: spec.module in PROCESS_MODULES for name, spec in DESIGNATORS.items()} == {
         name: True for name in ("moving", "pick-up", "place", "accessing", "looking", "opening-gripper",
-                                "closing-gripper", "detecting", "move-tcp", "move-arm-joints", "world-state-detecting")}
+                                "closing-gripper", "detecting", "move-tcp", "move-arm-joints", "world-state-detecting",
+                                "moving-torso")}
 
 
 def test_moving_teleports_the_base_and_keeps_the_orientation_by_default(world):

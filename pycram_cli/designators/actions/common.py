@@ -1,0 +1,120 @@
+"""What several actions share: objects by name, resting poses of the arms, standing somewhere, trying choices."""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable, Mapping
+
+from ...errors import InputError, Location, did_you_mean
+from ...failures import Failure, LocationFailure
+from ...kinds import KINDS, Robots, location_goals
+from ...process_modules import Robot
+from ...world import Object
+from ..declaration import SlotProblem
+from .actor import Actor, Finder, as_failure
+
+#: how many poses (or spots) an action tries before it gives up
+CHOICES = 3
+#: the arm poses actions rest the arms in (robot descriptions name them): an empty arm parks, a full one carries
+PARK, CARRY = "park", "carry"
+
+
+def object_of(actor: Actor, value: Any, slot: str) -> Object:
+    """The object a slot names (or holds); an unknown name fails the action, naming it."""
+    if isinstance(value, Object):
+        return value
+    found = actor.world.get_object_by_name(str(value))
+    if found is None:
+        names = [o.name for o in actor.world.objects]
+        raise as_failure(InputError(f"no object '{value}'", Location(f"slot {slot}"), key=slot,
+                                    suggestion=did_you_mean(str(value), names)), slot)
+    return found
+
+
+def rest_pose(robot: Robot, arm: str) -> str | None:
+    """The pose an arm rests in: `carry` when it holds something and has one, else `park` (None: it has neither)."""
+    poses = robot.description.arm(arm).poses
+    if robot.held_objects(arm) and CARRY in poses:
+        return CARRY
+    return PARK if PARK in poses else None
+
+
+def resting(robot: Robot, arms: list[str] | None = None) -> dict[str, str]:
+    """The resting pose of each arm (given, or every arm) that is not in it already."""
+    moves = {}
+    for arm in arms if arms is not None else list(robot.description.arms):
+        pose = rest_pose(robot, arm)
+        if pose is None:
+            continue
+        desc = robot.description.arm(arm)
+        target = dict(zip(desc.joints, desc.poses[pose]))
+        current = robot.body.get_joint_positions(list(target))
+        if any(abs(_wrap(current[j] - v)) > 1e-3 for j, v in target.items()):
+            moves[arm] = pose
+    return moves
+
+
+def _wrap(angle: float) -> float:
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def stands_at(robot: Robot, pose: Any) -> bool:
+    """Whether the base already stands at a base pose (then there is nowhere to drive)."""
+    x, y, _ = robot.body.get_position()
+    here_yaw = _yaw(robot.body.get_orientation())
+    return math.hypot(x - pose.position[0], y - pose.position[1]) < 1e-6 and abs(_wrap(here_yaw - pose.yaw)) < 1e-6
+
+
+def _yaw(q: Any) -> float:
+    x, y, z, w = q
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def go(actor: Actor, pose: Any) -> None:
+    """Drive to a base pose (`moving`), unless the robot stands there already."""
+    if not stands_at(actor.robot, pose):
+        actor.motion("moving", {"target": list(pose.position), "orientation": list(pose.orientation)})
+
+
+def try_choices(actor: Actor, finder: Finder, attempt: Callable[[Actor, Any], Any], what: str,
+                retry_on: tuple[type[Failure], ...] = (Failure,)) -> Any:
+    """CPL-style: the next pose of a location, then `attempt(actor, pose)` in a child of its own; when it fails,
+    the next pose, up to `CHOICES`. No pose left: the location's failure; all tried: the last failure."""
+    failures: list[Failure] = []
+    for number in range(1, CHOICES + 1):
+        try:
+            choice = actor.locate(finder)
+        except LocationFailure as exc:
+            if not failures:
+                raise
+            raise _gave_up(what, failures, exc) from exc
+        try:
+            return actor.attempt(number, lambda a, c=choice: attempt(a, c))
+        except Failure as exc:
+            if isinstance(exc, LocationFailure) or not isinstance(exc, retry_on):
+                raise
+            failures.append(exc)
+    raise _gave_up(what, failures, None)
+
+
+def _gave_up(what: str, failures: list[Failure], last: LocationFailure | None) -> Failure:
+    tail = failures[-1]
+    more = f"; {last.message}" if last is not None else f" ({len(failures)} choices tried)"
+    error = type(tail)(f"{what}: {tail.message}{more}", **tail.details)
+    error.failures = failures  # type: ignore[attr-defined]
+    return error
+
+
+# -- static checks of location slots ---------------------------------------------------------------------
+
+
+def location_slot(slot: str, goals: tuple[str, ...], what: str) -> Callable[[Mapping[str, Any], Robots], list[SlotProblem]]:
+    """A check that a location slot asks for one of `goals` (e.g. a spot `on` a surface, not a base pose)."""
+    def check(slots: Mapping[str, Any], robots: Robots) -> list[SlotProblem]:
+        value = slots.get(slot)
+        if not isinstance(value, Mapping) or KINDS["location"].check(value, Robots()):
+            return []
+        if not any(goal in goals for goal in location_goals(value)):
+            return [SlotProblem(f"slot '{slot}': {what} (got {', '.join(location_goals(value))})", slot)]
+        return []
+
+    return check

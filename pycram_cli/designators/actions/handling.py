@@ -1,0 +1,190 @@
+"""`pick-up`, `place`, `open`, `close` and `transport`: actions that take, put down, pull and carry.
+
+Where to stand, which arm and which grasp are found by location designators when the slots
+leave them open; each choice that fails (the robot cannot stand there, the grasp slips) is
+followed by the next candidate before the action fails.
+"""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ...errors import InputError, Location, did_you_mean
+from ...failures import ManipulationFailure, ReasoningFailure
+from ...locations import Handle, LocationSpec, find_handle, handle_of
+from ...locations.spec import find_object
+from ..declaration import ANY_ARM, Slot, drives
+from .actor import Actor, Finder, as_failure
+from .common import PARK, go, location_slot, object_of, rest_pose, resting, try_choices
+from .declaration import Action, declare_action
+
+EVERYTHING = drives("base", "head", ANY_ARM)
+
+
+def _rest_first(actor: Actor) -> None:
+    """Arms parked (or carrying) before the base moves, unless they are already."""
+    if resting(actor.robot):
+        actor.action("park-arms", {})
+
+
+# -- pick-up -----------------------------------------------------------------------------------------------------
+
+
+def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
+    obj = object_of(actor, slots["object"], "object")
+    _rest_first(actor)
+    location = {"reachable-for": obj, "arm": slots.get("arm"), "grasp": slots.get("grasp")}
+
+    def take(a: Actor, pose: Any) -> Any:
+        go(a, pose)
+        a.motion("pick-up", {"object": obj, "arm": pose.arm, "grasp": pose.grasp})
+        lift = rest_pose(a.robot, pose.arm)
+        if lift is not None:
+            a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
+        return obj
+
+    return try_choices(actor, Finder(location, here=True), take, f"pick up {obj.name}")
+
+
+declare_action(Action(
+    "pick-up", "Pick an object up: stand where an arm reaches it untouched, grasp it, lift it into the carry pose.", (
+        Slot("object", "object", True, "the object to pick up"),
+        Slot("arm", "arm", False, "the arm to use", "found with where to stand: the arm that reaches"),
+        Slot("grasp", "grasp", False, "the grasp", "found with where to stand: the first grasp that works"),
+    ), run=_pick_up, uses=EVERYTHING, needs=("mobile base", "arms"), returns="the object"))
+
+
+# -- place -------------------------------------------------------------------------------------------------------
+
+
+def _place(actor: Actor, slots: Mapping[str, Any]) -> Any:
+    obj = object_of(actor, slots["object"], "object")
+    robot = actor.robot
+    arm = slots.get("arm") or robot.arm_holding(obj)
+    if arm is None or robot.arm_holding(obj) != arm:
+        raise ManipulationFailure(f"cannot place {obj.name}: the robot is not holding it"
+                                  + (f" in {arm}" if arm else ""), object=obj.name)
+    spots = Finder(slots["target"], for_object=obj)
+
+    def put(a: Actor, spot: Any) -> Any:
+        surface = spots.resolution.spec.on if spots.resolution is not None else None
+        stand = Finder(LocationSpec(reachable_for=spot.position, placing=obj, onto=surface, arm=arm), here=True)
+
+        def release(b: Actor, pose: Any) -> Any:
+            go(b, pose)
+            b.motion("place", {"object": obj, "target": list(spot.position), "arm": arm})
+            if rest_pose(b.robot, arm) == PARK:
+                b.motion("move-arm-joints", {"arms": {arm: PARK}})
+            return obj
+
+        return try_choices(a, stand, release, f"place {obj.name}")
+
+    _rest_first(actor)
+    return try_choices(actor, spots, put, f"place {obj.name}")
+
+
+declare_action(Action(
+    "place", "Put a held object down on a free spot of a surface: stand where the arm reaches the spot, place it, "
+             "park the arm.", (
+        Slot("object", "object", True, "the held object"),
+        Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?} (for: the object, inferred)"),
+        Slot("arm", "arm", False, "the arm holding it", "the arm that holds it"),
+    ), run=_place, uses=EVERYTHING, needs=("mobile base", "arms"), returns="the object",
+    check=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")))
+
+
+# -- open and close ----------------------------------------------------------------------------------------------
+
+
+def handle_from(actor: Actor, slots: Mapping[str, Any]) -> Handle:
+    """The handle (and its joint) from the `handle` slot, or from `joint` (and `part-of`)."""
+    try:
+        if slots.get("handle") is not None:
+            handle = find_handle(actor.world, slots["handle"], "handle")
+        else:
+            handle = _handle_of_joint(actor, slots["joint"], slots.get("part-of"))
+    except InputError as exc:
+        raise as_failure(exc, "handle" if slots.get("handle") is not None else "joint") from exc
+    if slots.get("joint") is not None and slots["joint"] != handle.joint:
+        raise ManipulationFailure(f"{handle.link} is on {handle.joint}, not on {slots['joint']}")
+    return handle
+
+
+def _handle_of_joint(actor: Actor, joint: str, part_of: Any) -> Handle:
+    world = actor.world
+    owners = ([find_object(world, part_of, "part-of")] if part_of is not None
+              else [o for o in world.objects if o is not world.robot and joint in o.joint_names])
+    if not owners or joint not in owners[0].joint_names:
+        known = [j.name for o in (owners or [o for o in world.objects if o is not world.robot]) for j in o.movable_joints]
+        raise InputError(f"no joint '{joint}'" + (f" in {owners[0].name}" if owners else " in the world"),
+                         Location("joint"), key="joint", suggestion=did_you_mean(joint, known))
+    name = handle_of(owners[0], joint)
+    if name is None:
+        raise ManipulationFailure(f"{joint} carries no link named like a handle: name the handle with 'handle:'")
+    return Handle(owners[0], name, joint)
+
+
+def _access(actor: Actor, slots: Mapping[str, Any], distance: float | None, verb: str) -> None:
+    handle = handle_from(actor, slots)
+    _rest_first(actor)
+    spec = LocationSpec(accessing=handle, distance=distance, arm=slots.get("arm"))
+
+    def pull(a: Actor, pose: Any) -> None:
+        go(a, pose)
+        a.motion("accessing", {"drawer-handle": handle.link, "drawer-joint": handle.joint, "part-of": handle.obj,
+                               "distance": distance if distance is not None else slots.get("distance"), "arm": pose.arm})
+        lift = rest_pose(a.robot, pose.arm)
+        if lift is not None:
+            a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
+
+    try_choices(actor, Finder(spec, here=True), pull, f"{verb} {handle.joint}")
+
+
+def _open(actor: Actor, slots: Mapping[str, Any]) -> None:
+    _access(actor, slots, slots.get("distance"), "open")
+
+
+def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
+    _access(actor, slots, 0.0, "close")
+
+
+_HANDLE = (Slot("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)"),
+           Slot("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)"),
+           Slot("part-of", "object", False, "the object the joint belongs to", "the object that has the joint"))
+_ARM = Slot("arm", "arm", False, "the arm that pulls", "found with where to stand: a free arm that reaches")
+
+declare_action(Action(
+    "open", "Open a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
+            "open, pull it open, park the arm.",
+    (*_HANDLE, Slot("distance", "distance", False, "how far to open, in metres", "0.3, or the joint's range if smaller"),
+     _ARM), run=_open, uses=EVERYTHING, one_of=("handle", "joint"), needs=("mobile base", "arms")))
+
+declare_action(Action(
+    "close", "Close a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
+             "closed, push it shut, park the arm.",
+    (*_HANDLE, _ARM), run=_close, uses=EVERYTHING, one_of=("handle", "joint"), needs=("mobile base", "arms")))
+
+
+# -- transport ---------------------------------------------------------------------------------------------------
+
+
+def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
+    wanted = {"object": slots["object"]} if slots.get("object") is not None else {"object-type": slots["object-type"]}
+    found = actor.action("search", wanted)
+    actor.action("pick-up", {"object": found, "arm": slots.get("arm"), "grasp": slots.get("grasp")})
+    actor.action("place", {"object": found, "target": slots["target"]})
+    actor.action("park-arms", {})
+    if not actor.query("stable", {"object": found}):
+        raise ReasoningFailure(f"{found.name} is not stable where it was placed", object=found.name)
+    return found
+
+
+declare_action(Action(
+    "transport", "Bring an object (or one of a type) to a location: find it, stand, pick it up, carry it, stand, "
+                 "place it, park, and check that it stands stably (ReasoningFailure if not).", (
+        Slot("object", "object", False, "the object to bring"),
+        Slot("object-type", "object-type", False, "or the type of object to bring (found by search)"),
+        Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),
+        Slot("arm", "arm", False, "the arm to carry it with", "found when picking it up"),
+        Slot("grasp", "grasp", False, "the grasp", "found when picking it up"),
+    ), run=_transport, uses=EVERYTHING, one_of=("object", "object-type"), needs=("mobile base", "arms", "camera"),
+    returns="the object", check=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")))

@@ -1,0 +1,306 @@
+"""The floor map: where the robot's base can stand, as a 2-D grid built from the world.
+
+Everything is made of axis-aligned boxes: the links of every object but the robot, what it
+holds and the floor (each link's bounding box), and the robot's own links, read with its
+base turned to yaw 0 in its current configuration (arms parked or carrying). The height
+from the floor to the robot's top is cut into *bands* at every height where the set of
+robot links or the set of obstacles changes; bands with the same obstacles share one
+footprint (the union of the robot's links there) and bands with the same footprint share
+one occupancy grid, which keeps the test exact at box level and cheap: a base pose
+(x, y, yaw) collides when any sample of a band's footprint (its outline, and its inside
+every few cells), turned by yaw and moved to (x, y), falls on an occupied cell of that band.
+
+The grid is a prefilter, conservative by about one cell: the robot's true collision shapes
+decide (`exact_collisions`), as the navigation process module does.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Iterable, Sequence
+
+import numpy as np
+
+from ..process_modules.collisions import PENETRATION, collisions, supports_from_below
+from ..world.pose import yaw_quaternion
+
+if TYPE_CHECKING:
+    from ..world import Object
+
+#: grid cell size (m)
+RESOLUTION = 0.02
+#: how far the map reaches beyond the obstacles (m)
+MARGIN = 1.0
+#: inside a footprint, one sample every this many cells (the outline is sampled at every cell)
+INTERIOR_STRIDE = 5
+#: boxes thinner than this (m) are frames without geometry (URDF links with no shape)
+THIN = 1e-3
+#: heights are rounded outwards to this step (m) before the bands are cut: fewer, slightly fuller bands
+HEIGHT_STEP = 0.02
+#: the outline of a footprint is sampled every this many cells
+OUTLINE_STRIDE = 2
+#: the robot's base: its links that start in this lowest fraction of its height
+BASE_FRACTION = 0.2
+
+Box = tuple[np.ndarray, np.ndarray]  # (lo xyz, hi xyz)
+
+
+@dataclass
+class Band:
+    """One height band: the cells occupied by obstacles and the robot's footprint samples (base frame)."""
+
+    low: float
+    high: float
+    occupied: np.ndarray  # (nx, ny) bool
+    samples: np.ndarray  # (k, 2) points of the footprint in the base frame
+    robot_links: tuple[str, ...] = ()
+    obstacles: tuple[str, ...] = ()
+
+
+@dataclass
+class FloorMap:
+    """Occupancy of the floor for one robot configuration; `collides` answers for many base poses at once."""
+
+    origin: np.ndarray  # (x, y) of cell (0, 0)'s corner
+    shape: tuple[int, int]
+    resolution: float
+    bands: list[Band]
+    floor_z: float
+    #: every obstacle box projected on the floor (for plots): (nx, ny) bool
+    any_occupied: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=bool))
+    #: the robot's footprint at the floor (all bands), base frame: (k, 2) samples
+    footprint: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    radius: float = 0.0  # the farthest point of the robot from its base origin (horizontally)
+    core: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))  # a few samples inside the lowest band
+    #: the rectangles (lo xy, hi xy) of the robot's base links, base frame (the cheap test, plots)
+    base_boxes: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    #: cells occupied at the height of the base
+    core_occupied: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), dtype=bool))
+
+    def cell_centres(self) -> tuple[np.ndarray, np.ndarray]:
+        xs = self.origin[0] + (np.arange(self.shape[0]) + 0.5) * self.resolution
+        ys = self.origin[1] + (np.arange(self.shape[1]) + 0.5) * self.resolution
+        return xs, ys
+
+    def index(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Cell indices (ix, iy) of world points (..., 2) and whether they fall on the map."""
+        ix = np.floor((points[..., 0] - self.origin[0]) / self.resolution).astype(np.int64)
+        iy = np.floor((points[..., 1] - self.origin[1]) / self.resolution).astype(np.int64)
+        inside = (ix >= 0) & (iy >= 0) & (ix < self.shape[0]) & (iy < self.shape[1])
+        return np.clip(ix, 0, self.shape[0] - 1), np.clip(iy, 0, self.shape[1] - 1), inside
+
+    def collides(self, x: np.ndarray, y: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+        """For base poses (arrays of x, y, yaw): whether the map says the robot would hit something.
+
+        Samples off the map are clipped to its border cells, which are free (the map reaches
+        `MARGIN` beyond every obstacle).
+        """
+        x, y, yaw = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (x, y, yaw))
+        hit = np.zeros(x.shape, dtype=bool)
+        c, s = np.cos(yaw)[:, None], np.sin(yaw)[:, None]
+        x0, y0 = x[:, None] - self.origin[0], y[:, None] - self.origin[1]
+        for band in self.bands:
+            px, py = band.samples[None, :, 0], band.samples[None, :, 1]
+            ix = np.floor((x0 + c * px - s * py) / self.resolution).astype(np.int32)
+            iy = np.floor((y0 + s * px + c * py) / self.resolution).astype(np.int32)
+            np.clip(ix, 0, self.shape[0] - 1, out=ix)
+            np.clip(iy, 0, self.shape[1] - 1, out=iy)
+            hit |= band.occupied[ix, iy].any(axis=1)
+        return hit
+
+    def core_collides(self, x: np.ndarray, y: np.ndarray, yaw: np.ndarray) -> np.ndarray:
+        """The cheap first pass, for every candidate at once: the inside of the base's footprint (a few
+        samples) on a cell occupied at the base's height — the base would stand in the furniture."""
+        x, y, yaw = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (x, y, yaw))
+        if not len(self.core):
+            return np.zeros(x.shape, dtype=bool)
+        c, s = np.cos(yaw)[:, None], np.sin(yaw)[:, None]
+        px, py = self.core[None, :, 0], self.core[None, :, 1]
+        ix = np.clip(np.floor((x[:, None] - self.origin[0] + c * px - s * py) / self.resolution).astype(np.int32),
+                     0, self.shape[0] - 1)
+        iy = np.clip(np.floor((y[:, None] - self.origin[1] + s * px + c * py) / self.resolution).astype(np.int32),
+                     0, self.shape[1] - 1)
+        return self.core_occupied[ix, iy].any(axis=1)
+
+    def clearance_cells(self) -> np.ndarray:
+        """(nx, ny) bool: cells whose centre no obstacle covers at any height the robot has (for plots)."""
+        return ~self.any_occupied
+
+
+# -- building --------------------------------------------------------------------------------------------
+
+
+def _link_boxes(obj: "Object") -> list[tuple[str, Box]]:
+    boxes = []
+    for index in [-1, *range(len(obj.joints))]:
+        lo, hi = obj.get_aabb(index)
+        lo_a, hi_a = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+        if np.any(hi_a - lo_a < THIN):
+            continue
+        name = obj.get_link_name(index)
+        boxes.append((f"{obj.name}/{name}" if obj.joints else obj.name, (lo_a, hi_a)))
+    return boxes
+
+
+def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Box]]:
+    """The robot's links (and what it holds) as boxes in its base frame, read with the base at yaw 0.
+
+    The robot is turned in place and put back (position, orientation and held objects as they were).
+    """
+    position, orientation = robot.get_pose()
+    robot.set_position_and_orientation(position, (0.0, 0.0, 0.0, 1.0))
+    try:
+        base = np.array([position[0], position[1], position[2]])
+        boxes = [(name, (lo - base, hi - base)) for name, (lo, hi) in _link_boxes(robot)]
+        for obj in held:
+            lo, hi = obj.get_aabb()
+            boxes.append((obj.name, (np.asarray(lo) - base, np.asarray(hi) - base)))
+    finally:
+        robot.set_position_and_orientation(position, orientation)
+    return boxes
+
+
+def obstacle_boxes(robot: "Object", held: Sequence["Object"], extra_ignore: Iterable["Object"] = ()) -> list[tuple[str, Box]]:
+    """The boxes of everything the base could hit: every object's links but the robot's, what it holds and the floor."""
+    skip = {robot.id, *(o.id for o in held), *(o.id for o in extra_ignore)}
+    boxes = []
+    for obj in robot.world.objects:
+        if obj.id in skip or supports_from_below(robot, obj):
+            continue
+        boxes.extend(_link_boxes(obj))
+    return boxes
+
+
+def _footprint_samples(boxes: Sequence[Box], resolution: float) -> np.ndarray:
+    """Sample points of the union of boxes' (x, y) rectangles: every outline cell, every few inside cells."""
+    lo = np.min([b[0][:2] for b in boxes], axis=0)
+    hi = np.max([b[1][:2] for b in boxes], axis=0)
+    n = np.maximum(np.ceil((hi - lo) / resolution).astype(int), 1)
+    xs = lo[0] + (np.arange(n[0]) + 0.5) * (hi[0] - lo[0]) / n[0]
+    ys = lo[1] + (np.arange(n[1]) + 0.5) * (hi[1] - lo[1]) / n[1]
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    mask = np.zeros(gx.shape, dtype=bool)
+    for blo, bhi in boxes:
+        mask |= (gx >= blo[0]) & (gx <= bhi[0]) & (gy >= blo[1]) & (gy <= bhi[1])
+    padded = np.pad(mask, 1)
+    inner = padded[1:-1, 1:-1] & padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & padded[1:-1, 2:]
+    outline = mask & ~inner
+    ii, jj = np.meshgrid(np.arange(n[0]), np.arange(n[1]), indexing="ij")
+    sparse = mask & (ii % INTERIOR_STRIDE == 0) & (jj % INTERIOR_STRIDE == 0)
+    keep = (outline & ((ii + jj) % OUTLINE_STRIDE == 0)) | sparse
+    # the corners of every box exactly, so that a footprint is never smaller than its boxes
+    corners = np.array([[b[i][0], b[j][1]] for b in boxes for i in (0, 1) for j in (0, 1)])
+    return np.concatenate([np.stack([gx[keep], gy[keep]], axis=-1), corners])
+
+
+def _rasterise(boxes: Sequence[Box], origin: np.ndarray, shape: tuple[int, int], resolution: float) -> np.ndarray:
+    grid = np.zeros(shape, dtype=bool)
+    for lo, hi in boxes:
+        i0 = max(int(math.floor((lo[0] - origin[0]) / resolution)), 0)
+        j0 = max(int(math.floor((lo[1] - origin[1]) / resolution)), 0)
+        i1 = min(int(math.floor((hi[0] - origin[0]) / resolution)) + 1, shape[0])
+        j1 = min(int(math.floor((hi[1] - origin[1]) / resolution)) + 1, shape[1])
+        if i0 < i1 and j0 < j1:
+            grid[i0:i1, j0:j1] = True
+    return grid
+
+
+def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RESOLUTION,
+          ignore: Iterable["Object"] = ()) -> FloorMap:
+    """The floor map of the robot's world for its current configuration (the world is left as it was)."""
+    own = robot_boxes(robot, held)
+    obstacles = obstacle_boxes(robot, held, ignore)
+    floor_z = float(robot.get_position()[2])
+    robot_top = max(float(b[1][2]) for _, b in own) if own else 1.0
+    low_limit = 0.01  # the floor the base rests on is not an obstacle
+    if obstacles:
+        lo = np.min([b[0][:2] for _, b in obstacles], axis=0) - MARGIN
+        hi = np.max([b[1][:2] for _, b in obstacles], axis=0) + MARGIN
+    else:
+        here = np.asarray(robot.get_position()[:2])
+        lo, hi = here - 3.0, here + 3.0
+    shape = (int(math.ceil((hi[0] - lo[0]) / resolution)), int(math.ceil((hi[1] - lo[1]) / resolution)))
+    # heights where something changes (relative to the floor under the robot), rounded outwards
+    def down(z: float) -> float:
+        return math.floor(z / HEIGHT_STEP + 1e-9) * HEIGHT_STEP
+
+    def up(z: float) -> float:
+        return math.ceil(z / HEIGHT_STEP - 1e-9) * HEIGHT_STEP
+
+    mine_z = [(down(float(b[0][2])), up(float(b[1][2]))) for _, b in own]
+    theirs_z = [(down(float(b[0][2]) - floor_z), up(float(b[1][2]) - floor_z)) for _, b in obstacles]
+    cuts = {low_limit, robot_top, *(z for pair in mine_z + theirs_z for z in pair)}
+    levels = sorted(c for c in cuts if low_limit <= c <= robot_top)
+    by_obstacles: dict[frozenset[int], set[int]] = {}
+    spans: dict[frozenset[int], list[float]] = {}
+    for a, b in zip(levels, levels[1:]):
+        if b - a < THIN:
+            continue
+        mine = frozenset(i for i, (z0, z1) in enumerate(mine_z) if z0 < b and z1 > a)
+        theirs = frozenset(i for i, (z0, z1) in enumerate(theirs_z) if z0 < b and z1 > a)
+        if not mine or not theirs:
+            continue
+        by_obstacles.setdefault(theirs, set()).update(mine)
+        span = spans.setdefault(theirs, [a, b])
+        span[0], span[1] = min(span[0], a), max(span[1], b)
+    # bands with the same footprint share one occupancy grid (the union of their obstacles): still exact
+    by_footprint: dict[frozenset[int], set[int]] = {}
+    heights: dict[frozenset[int], list[float]] = {}
+    for theirs, mine in by_obstacles.items():
+        key = frozenset(mine)
+        by_footprint.setdefault(key, set()).update(theirs)
+        span = heights.setdefault(key, list(spans[theirs]))
+        span[0], span[1] = min(span[0], spans[theirs][0]), max(span[1], spans[theirs][1])
+    bands = []
+    for mine, theirs in sorted(by_footprint.items(), key=lambda kv: (heights[kv[0]][0], sorted(kv[0]))):
+        occupied = _rasterise([obstacles[i][1] for i in sorted(theirs)], lo, shape, resolution)
+        samples = _footprint_samples([own[i][1] for i in sorted(mine)], resolution)
+        bands.append(Band(heights[mine][0], heights[mine][1], occupied, samples,
+                          tuple(own[i][0] for i in sorted(mine)), tuple(obstacles[i][0] for i in sorted(theirs))))
+    reachable_boxes = [b for _, b in obstacles if b[0][2] - floor_z < robot_top and b[1][2] - floor_z > low_limit]
+    everything = _rasterise(reachable_boxes, lo, shape, resolution)
+    footprint = _footprint_samples([b for _, b in own], resolution) if own else np.zeros((0, 2))
+    corners = np.array([[b[i][0], b[j][1]] for _, b in own for i in (0, 1) for j in (0, 1)]) if own else np.zeros((1, 2))
+    radius = float(np.max(np.hypot(corners[:, 0], corners[:, 1])))
+    # the base: the robot's links in the lowest fifth of its height, and what stands in their way
+    base = [b for _, b in own if float(b[0][2]) < BASE_FRACTION * robot_top]
+    core = _inside_samples(base, 5 * resolution) if base else np.zeros((0, 2))
+    base_top = max((float(b[1][2]) for b in base), default=0.0)
+    core_occupied = _rasterise([b for _, b in obstacles if b[0][2] - floor_z < base_top and b[1][2] - floor_z > low_limit],
+                               lo, shape, resolution)
+    return FloorMap(np.asarray(lo, dtype=float), shape, resolution, bands, floor_z, everything, footprint, radius, core,
+                    [(b[0][:2], b[1][:2]) for b in base], core_occupied)
+
+
+def _inside_samples(boxes: Sequence[Box], spacing: float) -> np.ndarray:
+    """Points on a coarse lattice inside the union of boxes' (x, y) rectangles, kept off their edges."""
+    points = []
+    for lo, hi in boxes:
+        nx = max(int((hi[0] - lo[0]) / spacing), 1)
+        ny = max(int((hi[1] - lo[1]) / spacing), 1)
+        xs = lo[0] + (np.arange(nx) + 0.5) * (hi[0] - lo[0]) / nx
+        ys = lo[1] + (np.arange(ny) + 0.5) * (hi[1] - lo[1]) / ny
+        gx, gy = np.meshgrid(xs, ys, indexing="ij")
+        points.append(np.stack([gx.ravel(), gy.ravel()], axis=-1))
+    return np.concatenate(points) if points else np.zeros((0, 2))
+
+
+# -- the exact test ------------------------------------------------------------------------------------------
+
+
+def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: float, yaw: float,
+                     ignore: Iterable["Object"] = ()) -> list[str]:
+    """Teleport the robot to (x, y, yaw) and name what it (or what it holds) penetrates; the caller restores the world.
+
+    The robot's own test is the navigation process module's (`collisions`); held objects count too.
+    """
+    skip = set(held) | set(ignore)
+    robot.set_position_and_orientation((x, y, robot.get_position()[2]), yaw_quaternion(yaw))
+    hits = sorted(o.name for o in collisions(robot, ignore=skip))
+    for obj in held:
+        for other in robot.world.objects:
+            if other is robot or other in skip or supports_from_below(robot, other):
+                continue
+            if robot.world.distance(obj, other, 0.0) < -PENETRATION and other.name not in hits:
+                hits.append(other.name)
+    return sorted(hits)

@@ -1,0 +1,234 @@
+"""A picture of a location's resolution, seen from above: the floor map, the candidates, the answer, the target.
+
+    rgb = draw(resolution)                  # (height, width, 3) uint8; write it with world.camera.write_png
+
+* the floor: white where the robot's base may stand, grey where obstacles are (at any height the
+  robot has), every object's outline darker;
+* the candidates: one square per position, coloured by the test that ruled it out (the
+  furthest test any of its turns reached), green for the poses found; spots on a surface the same;
+* the poses found: the robot's footprint outline with an arrow for its heading (the first one
+  thicker), the target as a black cross;
+* a legend with the colours and how many candidates each test ruled out (drawn with a small
+  built-in pixel font, so no imaging library is needed).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .resolve import OUTCOMES, REASONS, BasePoseResolution, SpotResolution
+from .resolve import floor_map as build_floor_map
+
+#: colour of each outcome (RGB)
+COLOURS: dict[str, tuple[int, int, int]] = {
+    "ok": (30, 160, 60),
+    "collides": (220, 60, 50),
+    "occupied": (220, 60, 50),
+    "out of reach": (250, 190, 120),
+    "out of view": (200, 170, 230),
+    "cannot hold": (150, 100, 60),
+    "blocked": (200, 40, 200),
+    "not visible": (60, 110, 230),
+    "unstable": (240, 150, 20),
+    "not tried": (205, 205, 205),
+}
+FLOOR = (255, 255, 255)
+OBSTACLE = (150, 150, 150)
+OUTLINE = (90, 90, 90)
+#: which outcome a position shows when its turns differ: the one furthest along the tests
+RANK = ["", "not tried", "out of reach", "out of view", "collides", "occupied", "cannot hold", "blocked",
+        "not visible", "unstable", "ok"]
+
+
+def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: float = 120.0,
+         margin: float = 0.4) -> np.ndarray:
+    """The picture of a (partly) resolved location."""
+    resolution.prepare()
+    robot = resolution.robot
+    world = robot.world
+    held = robot.held_objects()
+    floor_map = resolution.map if isinstance(resolution, BasePoseResolution) else None
+    if floor_map is None:  # a spot resolution keeps no map: the (cached) one of the world as it is
+        floor_map = build_floor_map(robot, held)
+    cand = resolution.candidates
+    target = _target(resolution)
+    xs = np.concatenate([cand.xs, [target[0]], [robot.body.get_position()[0]]])
+    ys = np.concatenate([cand.ys, [target[1]], [robot.body.get_position()[1]]])
+    lo = np.array([xs.min(), ys.min()]) - margin - floor_map.radius
+    hi = np.array([xs.max(), ys.max()]) + margin + floor_map.radius
+    width = int(math.ceil((hi[0] - lo[0]) * pixels_per_metre))
+    height = int(math.ceil((hi[1] - lo[1]) * pixels_per_metre))
+    canvas = Canvas(width, height, lo, pixels_per_metre)
+    canvas.image[:] = FLOOR
+    # the floor map: every cell occupied at some height the robot has
+    cx, cy = floor_map.cell_centres()
+    px = canvas.to_px(np.stack(np.meshgrid(cx, cy, indexing="ij"), axis=-1).reshape(-1, 2))
+    occupied = floor_map.any_occupied.reshape(-1)
+    canvas.put(px[occupied], OBSTACLE, radius=max(1, int(round(floor_map.resolution * pixels_per_metre / 2))))
+    # the candidates, one square per position
+    step = 0.05 if isinstance(resolution, BasePoseResolution) else 0.025
+    best: dict[tuple[int, int], int] = {}
+    for i in range(len(cand)):
+        key = (int(round(cand.xs[i] / 0.005)), int(round(cand.ys[i] / 0.005)))
+        outcome = OUTCOMES[cand.outcome[i]] or "not tried"
+        if key not in best or RANK.index(outcome) > RANK.index(OUTCOMES[best[key]] or "not tried"):
+            best[key] = int(cand.outcome[i])
+    half = max(1, int(step * pixels_per_metre * 0.35))
+    for (kx, ky), code in sorted(best.items(), key=lambda kv: RANK.index(OUTCOMES[kv[1]] or "not tried")):
+        outcome = OUTCOMES[code] or "not tried"
+        canvas.put(canvas.to_px(np.array([[kx * 0.005, ky * 0.005]])), COLOURS[outcome], radius=half, alpha=0.7)
+    for obj in world.objects:  # every object's outline (but the floor's, the robot's and what it holds)
+        if obj is robot.body or obj in held:
+            continue
+        lo_b, hi_b = obj.get_aabb()
+        if hi_b[0] - lo_b[0] > 20 or hi_b[1] - lo_b[1] > 20:
+            continue
+        if obj.joints:
+            for index in [-1, *range(len(obj.joints))]:
+                llo, lhi = obj.get_aabb(index)
+                if lhi[0] - llo[0] > 0.01 and lhi[1] - llo[1] > 0.01 and lhi[2] > floor_map.floor_z + 0.01:
+                    canvas.rectangle(llo[:2], lhi[:2], OUTLINE)
+        else:
+            canvas.rectangle(lo_b[:2], hi_b[:2], OUTLINE)
+    # the poses (or spots) found, the first one last (on top), and the target
+    for index, found in reversed(list(enumerate(resolution.found))):
+        if isinstance(resolution, BasePoseResolution):
+            _pose(canvas, floor_map.base_boxes, found.position, found.yaw, thick=index == 0)
+        else:
+            canvas.put(canvas.to_px(np.array([found.position[:2]])), COLOURS["ok"], radius=half + 2)
+    canvas.cross(target[:2], (0, 0, 0), 7)
+    _legend(canvas, resolution)
+    return canvas.image
+
+
+def _target(resolution: BasePoseResolution | SpotResolution) -> np.ndarray:
+    if isinstance(resolution, BasePoseResolution):
+        assert resolution.target is not None
+        return resolution.target
+    spec = resolution.spec
+    if spec.near is not None:
+        return np.asarray(spec.near)
+    assert spec.on is not None
+    lo, hi = spec.on.box()
+    return (np.asarray(lo) + np.asarray(hi)) / 2.0
+
+
+def _pose(canvas: "Canvas", boxes: list[tuple[np.ndarray, np.ndarray]], position: Any, yaw: float,
+          thick: bool) -> None:
+    """The robot's base outline at a pose, and an arrow for its heading."""
+    c, s = math.cos(yaw), math.sin(yaw)
+
+    def world(x: float, y: float) -> tuple[float, float]:
+        return position[0] + c * x - s * y, position[1] + s * x + c * y
+
+    colour = (0, 110, 30) if thick else (110, 190, 130)
+    if thick:
+        for lo, hi in boxes:
+            corners = [world(lo[0], lo[1]), world(hi[0], lo[1]), world(hi[0], hi[1]), world(lo[0], hi[1])]
+            for a, b in zip(corners, corners[1:] + corners[:1]):
+                canvas.line(a, b, colour, 1)
+    tip = world(0.3, 0.0)
+    canvas.line(position[:2], tip, colour, 2 if thick else 1)
+    for side in (0.08, -0.08):
+        canvas.line(tip, world(0.22, side), colour, 2 if thick else 1)
+    canvas.put(canvas.to_px(np.array([position[:2]])), colour, radius=3 if thick else 2)
+
+
+def _legend(canvas: "Canvas", resolution: BasePoseResolution | SpotResolution) -> None:
+    counts = resolution.counts()
+    rows = [("found", COLOURS["ok"], len(resolution.found))]
+    if isinstance(resolution, BasePoseResolution):
+        rows[0] = ("pose found (base, heading)", COLOURS["ok"], len(resolution.found))
+    rows += [(REASONS[key], COLOURS[key], counts[key]) for key in REASONS if counts.get(key)]
+    lines: list[tuple[str, tuple[int, int, int] | None]] = [(resolution.spec.describe(), None)]
+    lines += [(f"{text} {number}", colour) for text, colour, number in rows]
+    lines += [("x target", None), ("grey: obstacles", OBSTACLE)]
+    x, y = 6, 6
+    box_w = 8 + max(len(text) for text, _ in lines) * 6 + 8
+    canvas.image[y - 3:y + 12 * len(lines) + 2, x - 3:x - 3 + box_w + 12] = (250, 250, 250)
+    for text, colour in lines:
+        if colour is not None:
+            canvas.image[y:y + 8, x:x + 8] = colour
+            canvas.text(x + 12, y, text, (20, 20, 20))
+        else:
+            canvas.text(x + 1, y, text, (20, 20, 20))
+        y += 12
+
+
+class Canvas:
+    """An RGB image with world (x, y) coordinates: +x to the right, +y up."""
+
+    def __init__(self, width: int, height: int, origin: np.ndarray, scale: float) -> None:
+        self.image = np.zeros((height, width, 3), dtype=np.uint8)
+        self.origin, self.scale = origin, scale
+
+    def to_px(self, points: np.ndarray) -> np.ndarray:
+        """(n, 2) world points -> (n, 2) integer (column, row)."""
+        col = np.floor((points[:, 0] - self.origin[0]) * self.scale).astype(int)
+        row = self.image.shape[0] - 1 - np.floor((points[:, 1] - self.origin[1]) * self.scale).astype(int)
+        return np.stack([col, row], axis=-1)
+
+    def put(self, px: np.ndarray, colour: tuple[int, int, int], radius: int = 0, alpha: float = 1.0) -> None:
+        h, w = self.image.shape[:2]
+        for dc in range(-radius, radius + 1):
+            for dr in range(-radius, radius + 1):
+                c, r = px[:, 0] + dc, px[:, 1] + dr
+                keep = (c >= 0) & (c < w) & (r >= 0) & (r < h)
+                if alpha >= 1.0:
+                    self.image[r[keep], c[keep]] = colour
+                else:
+                    under = self.image[r[keep], c[keep]].astype(float)
+                    self.image[r[keep], c[keep]] = (under * (1 - alpha) + np.asarray(colour) * alpha).astype(np.uint8)
+
+    def line(self, a: Any, b: Any, colour: tuple[int, int, int], radius: int = 0) -> None:
+        n = max(2, int(math.dist(a, b) * self.scale * 2))
+        t = np.linspace(0.0, 1.0, n)[:, None]
+        points = np.asarray(a)[None, :2] * (1 - t) + np.asarray(b)[None, :2] * t
+        self.put(self.to_px(points), colour, radius)
+
+    def rectangle(self, lo: Any, hi: Any, colour: tuple[int, int, int]) -> None:
+        corners = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
+        for a, b in zip(corners, corners[1:] + corners[:1]):
+            self.line(a, b, colour)
+
+    def cross(self, at: Any, colour: tuple[int, int, int], size: int) -> None:
+        d = size / self.scale
+        self.line((at[0] - d, at[1] - d), (at[0] + d, at[1] + d), colour, 1)
+        self.line((at[0] - d, at[1] + d), (at[0] + d, at[1] - d), colour, 1)
+
+    def text(self, x: int, y: int, text: str, colour: tuple[int, int, int]) -> None:
+        """Text in a 5x7 pixel font, 6 pixels per character (lower-case letters, digits, a little punctuation)."""
+        h, w = self.image.shape[:2]
+        for k, char in enumerate(text.lower()):
+            rows = FONT.get(char)
+            if rows is None:
+                continue
+            for r, bits in enumerate(rows):
+                for c in range(5):
+                    if bits >> (4 - c) & 1:
+                        yy, xx = y + r, x + k * 6 + c
+                        if 0 <= yy < h and 0 <= xx < w:
+                            self.image[yy, xx] = colour
+
+
+#: a 5x7 pixel font: each character is 7 rows of 5 bits
+FONT: dict[str, tuple[int, ...]] = {
+    " ": (0, 0, 0, 0, 0, 0, 0),
+    "a": (0, 0, 14, 1, 15, 17, 15), "b": (16, 16, 30, 17, 17, 17, 30), "c": (0, 0, 14, 16, 16, 17, 14),
+    "d": (1, 1, 15, 17, 17, 17, 15), "e": (0, 0, 14, 17, 31, 16, 14), "f": (6, 9, 8, 28, 8, 8, 8),
+    "g": (0, 0, 15, 17, 15, 1, 14), "h": (16, 16, 22, 25, 17, 17, 17), "i": (4, 0, 12, 4, 4, 4, 14),
+    "j": (2, 0, 6, 2, 2, 18, 12), "k": (16, 16, 18, 20, 24, 20, 18), "l": (12, 4, 4, 4, 4, 4, 14),
+    "m": (0, 0, 26, 21, 21, 17, 17), "n": (0, 0, 22, 25, 17, 17, 17), "o": (0, 0, 14, 17, 17, 17, 14),
+    "p": (0, 0, 30, 17, 30, 16, 16), "q": (0, 0, 13, 19, 15, 1, 1), "r": (0, 0, 22, 25, 16, 16, 16),
+    "s": (0, 0, 14, 16, 14, 1, 30), "t": (8, 8, 28, 8, 8, 9, 6), "u": (0, 0, 17, 17, 17, 19, 13),
+    "v": (0, 0, 17, 17, 17, 10, 4), "w": (0, 0, 17, 17, 21, 21, 10), "x": (0, 0, 17, 10, 4, 10, 17),
+    "y": (0, 0, 17, 17, 15, 1, 14), "z": (0, 0, 31, 2, 4, 8, 31),
+    "0": (14, 17, 19, 21, 25, 17, 14), "1": (4, 12, 4, 4, 4, 4, 14), "2": (14, 17, 1, 2, 4, 8, 31),
+    "3": (31, 2, 4, 2, 1, 17, 14), "4": (2, 6, 10, 18, 31, 2, 2), "5": (31, 16, 30, 1, 1, 17, 14),
+    "6": (6, 8, 16, 30, 17, 17, 14), "7": (31, 1, 2, 4, 8, 8, 8), "8": (14, 17, 17, 14, 17, 17, 14),
+    "9": (14, 17, 17, 15, 1, 2, 12),
+    ".": (0, 0, 0, 0, 0, 12, 12), ",": (0, 0, 0, 0, 12, 4, 8), ":": (0, 12, 12, 0, 12, 12, 0),
+    "-": (0, 0, 0, 31, 0, 0, 0), "(": (2, 4, 8, 8, 8, 4, 2), ")": (8, 4, 2, 2, 2, 4, 8), "/": (0, 1, 2, 4, 8, 16, 0),
+}

@@ -1,0 +1,840 @@
+"""Resolving a location: a ranked, deterministic sequence of poses, the cheapest tests first.
+
+A base-pose location (reachable-for, visible-for, both, accessing) starts from candidate base
+poses on a fixed 5 cm lattice of the floor around its target, each turned to face it (and
+20° either way). Every candidate gets a score from cheap geometry (how far its arm's shoulder
+is from the target compared with a comfortable reach, how far its camera is from what it
+should see, how much it turns away, how far the robot would drive), and the candidates are
+tried best first. Each one goes through the tests, cheapest first, and the first to pass them
+all is the answer; the resolution is lazy, so asking again continues where it stopped:
+
+1. geometry: the target within the arm's length of the shoulder, the camera's distance
+   in range (vectorised over every candidate) — `out of reach`, `out of view`;
+2. the floor map (`floor.py`): the robot's footprint on occupied cells — `collide`;
+3. the robot's collision shapes at the pose, as navigation tests them — `collide`;
+4. reachable-for: inverse kinematics for each arm and grasp (the object's grasp points,
+   `cannot hold` when the gripper cannot) and the arm's final configuration touching nothing
+   but the target and what it stands on — `out of reach`, `blocked`;
+   accessing: the handle reached closed and opened, the robot clear of the opened drawer;
+5. visible-for: the head turned to the object and the `visible` query — `not visible`.
+
+Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. When no
+candidate passes, `LocationFailure` says what ruled them out: "412 candidates: 380 collide,
+32 out of reach". Everything is computed from the world and the robot's description: no
+randomness, no clock; the same world gives the same answer.
+"""
+from __future__ import annotations
+
+import math
+import threading
+import weakref
+from collections import Counter
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Iterator, Sequence
+
+import numpy as np
+
+from ..failures import LocationFailure
+from ..kinds import arm_phrase
+from ..process_modules import Robot
+from ..process_modules.arms import reach
+from ..process_modules.head import look_at
+from ..process_modules.manipulation import grasp_orientation, grasp_target, level
+from ..reasoning import stable, visible
+from ..reasoning.supporting import support_points
+from ..world import Object
+from ..world.pose import compose, invert, quat_multiply, yaw_quaternion
+from . import floor
+from .spec import LocationSpec
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld
+
+#: candidate base positions: a lattice of the floor with this spacing (m)
+STEP = 0.05
+#: turns tried at every position, besides facing the target (rad)
+TURNS = (0.0, math.radians(20), -math.radians(20))
+#: the comfortable distance from the shoulder to the target, as a fraction of the arm's length
+REACH_FRACTION = 0.6
+#: visible-for: horizontal distances from the camera to the object (m): comfortable, least, most
+VIEW_DISTANCE = (1.0, 0.45, 2.5)
+#: score weights: per radian turned away, per metre driven, per metre off the comfortable view distance
+TURN_WEIGHT = 0.15
+TRAVEL_WEIGHT = 0.02
+VIEW_WEIGHT = 0.3
+#: candidates that get the expensive tests (inverse kinematics, rendering) before the resolution gives up
+EXPENSIVE_LIMIT = 40
+#: the map test runs on this many candidates at a time
+CHUNK = 48
+#: the robot touches an object when their shapes are closer than this (m)
+TOUCH = 0.001
+#: spots on a surface: lattice spacing (m) and the free margin kept around the object (m)
+SPOT_STEP = 0.025
+SPOT_MARGIN = 0.02
+
+#: why a candidate was ruled out, in the order the tests run, and how the reasons read
+REASONS = {
+    "out of reach": "out of reach",
+    "out of view": "out of view",
+    "collides": "collide",
+    "occupied": "occupied",
+    "cannot hold": "cannot hold it",
+    "blocked": "blocked",
+    "not visible": "not visible",
+    "unstable": "unstable",
+    "not tried": "not tried",
+}
+
+
+#: outcome codes of candidates (`Candidates.outcome`): 0 not tested yet, 1 passed, then the reasons in order
+OUTCOMES = ("", "ok", *REASONS)
+CODE = {name: code for code, name in enumerate(OUTCOMES)}
+
+
+class Candidates:
+    """Every candidate of a resolution as arrays (positions, turns, scores, outcomes), and the order they are tried in."""
+
+    def __init__(self, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray, scores: np.ndarray,
+                 outcome: np.ndarray) -> None:
+        self.xs, self.ys, self.yaws, self.scores = xs, ys, yaws, scores
+        self.outcome = outcome.astype(np.int8)
+        self.detail: dict[int, str] = {}
+        # best first; ties by position and turn, so that the order never depends on arithmetic noise
+        index = np.arange(len(xs))
+        self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), outcome != 0))
+
+    def __len__(self) -> int:
+        return len(self.xs)
+
+    def mark(self, i: int, reason: str, detail: str = "") -> None:
+        self.outcome[i] = CODE[reason]
+        if detail:
+            self.detail[i] = detail
+
+    def counts(self) -> Counter[str]:
+        values, numbers = np.unique(self.outcome, return_counts=True)
+        return Counter({OUTCOMES[v]: int(n) for v, n in zip(values, numbers) if v >= 2})
+
+    def untested(self) -> int:
+        return int((self.outcome == 0).sum())
+
+    def details(self, reason: str) -> list[str]:
+        code = CODE[reason]
+        return [text for i, text in sorted(self.detail.items()) if self.outcome[i] == code]
+
+
+@dataclass(frozen=True)
+class BasePose:
+    """Where the robot's base stands (and, for visible-for, where it looks; for reachable-for, which arm and grasp)."""
+
+    position: tuple[float, float, float]
+    orientation: tuple[float, float, float, float]
+    yaw: float
+    score: float
+    arm: str | None = None
+    grasp: Any = None
+    look_at: tuple[float, float, float] | None = None
+    index: int = 0  # the how-manieth pose of its location (0: the first)
+
+    def to_json(self) -> dict[str, Any]:
+        data: dict[str, Any] = {"position": list(self.position), "orientation": list(self.orientation),
+                                "yaw": self.yaw, "score": self.score}
+        if self.arm is not None:
+            data["arm"] = self.arm
+        if self.grasp is not None:
+            data["grasp"] = self.grasp if isinstance(self.grasp, str) else list(self.grasp)
+        if self.look_at is not None:
+            data["look-at"] = list(self.look_at)
+        return data
+
+
+@dataclass(frozen=True)
+class Spot:
+    """Where an object's origin (its bottom centre) goes on a surface, and how it is turned."""
+
+    position: tuple[float, float, float]
+    orientation: tuple[float, float, float, float]
+    score: float
+    surface: str = ""
+    index: int = 0
+
+    def to_json(self) -> dict[str, Any]:
+        return {"position": list(self.position), "orientation": list(self.orientation), "score": self.score,
+                "surface": self.surface}
+
+
+def summary(counts: Counter[str], total: int) -> str:
+    """`412 candidates: 380 collide, 32 out of reach`."""
+    parts = [f"{counts[key]} {REASONS[key]}" for key in REASONS if counts.get(key)]
+    return f"{total} candidate{'s' if total != 1 else ''}" + (": " + ", ".join(parts) if parts else "")
+
+
+# -- the robot, as geometry -----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ArmGeometry:
+    name: str
+    shoulder: np.ndarray  # (x, y, z) in the base frame, z above the floor
+    length: float  # shoulder to tool frame, stretched out
+
+
+def arm_geometry(robot: Robot) -> dict[str, ArmGeometry]:
+    """Each arm's shoulder (its first joint) in the base frame and its length (the sum of its links)."""
+    body = robot.body
+    base_pos, base_orn = body.get_pose()
+    to_base = invert((base_pos, base_orn))
+    found = {}
+    for arm in robot.description.arms.values():
+        links = [body.joint(j).child_link for j in arm.joints] + [arm.tool_frame]
+        points = [np.asarray(compose(to_base, (body.get_link_position(link), (0, 0, 0, 1)))[0]) for link in links]
+        length = float(sum(np.linalg.norm(b - a) for a, b in zip(points, points[1:])))
+        found[arm.name] = ArmGeometry(arm.name, points[0], length)
+    return found
+
+
+def camera_offset(robot: Robot) -> np.ndarray | None:
+    """The camera frame in the base frame (None without a camera)."""
+    camera = robot.description.camera
+    if camera is None:
+        return None
+    body = robot.body
+    to_base = invert(body.get_pose())
+    return np.asarray(compose(to_base, (body.get_link_position(camera.frame), (0, 0, 0, 1)))[0])
+
+
+def _centre(obj: Object) -> np.ndarray:
+    lo, hi = obj.get_aabb()
+    return (np.asarray(lo) + np.asarray(hi)) / 2.0
+
+
+# -- the floor map, kept while the world stands still ----------------------------------------------------------
+
+_MAPS: "weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, floor.FloorMap]]" = weakref.WeakKeyDictionary()
+_MAPS_LOCK = threading.Lock()  # worlds may resolve locations in threads of their own
+
+
+def _signature(robot: Robot, held: Sequence[Object]) -> tuple:
+    """What the floor map depends on, exactly (a map is reused only for the very same state): every object's
+    pose and joints but the robot's base pose (the map is in world coordinates, the robot's footprint in its
+    own frame), and what the robot holds, with how it holds it."""
+    parts: list[Any] = [tuple((o.id, tuple(robot.body.attachments[o].transform)) for o in held
+                              if o in robot.body.attachments)]
+    for obj in robot.world.objects:
+        joints = tuple(obj.get_joint_positions().values())
+        if obj is robot.body or obj in held:
+            parts.append((obj.id, joints))
+            continue
+        pose = obj.get_com_pose()
+        parts.append((obj.id, tuple(pose[0]), tuple(pose[1]), joints))
+    return tuple(parts)
+
+
+def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> floor.FloorMap:
+    """The floor map for the world as it is (built again whenever anything has moved). `saved`: the caller
+    restores the world afterwards (building turns the robot in place)."""
+    world = robot.world
+    key = _signature(robot, held)
+    with _MAPS_LOCK:
+        cached = _MAPS.get(world)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    if saved:
+        built = floor.build(robot.body, held)
+    else:
+        with world.snapshot():
+            built = floor.build(robot.body, held)
+    with _MAPS_LOCK:
+        _MAPS[world] = (key, built)
+    return built
+
+
+# -- touching -----------------------------------------------------------------------------------------------
+
+
+#: links of what an object rests on that touch the supporting link's box (grown by this much, m) hold it up too
+SUPPORT_NEIGHBOURS = 0.005
+
+
+def supports_of(world: "BulletWorld", obj: Object) -> set[tuple[int, str]]:
+    """(object id, link) of everything `obj` rests on: the supporting links, and the links of the same object
+    right against them (a counter top's carcass, under it), which fingers closing around a flat object graze."""
+    found = set()
+    for other in world.objects:
+        if other is obj or other.type == "robot":
+            continue
+        if world.distance(other, obj, 0.005) == math.inf:
+            continue
+        for link, _ in support_points(other, obj):
+            found.add((other.id, link))
+            lo, hi = (np.asarray(v) for v in other.get_aabb(link))
+            for index in [-1, *range(len(other.joints))]:
+                blo, bhi = (np.asarray(v) for v in other.get_aabb(index))
+                if np.all(blo <= hi + SUPPORT_NEIGHBOURS) and np.all(bhi >= lo - SUPPORT_NEIGHBOURS):
+                    found.add((other.id, other.get_link_name(index)))
+    return found
+
+
+def touching(robot: Robot, held: Sequence[Object], allowed_objects: set[int], allowed_links: set[tuple[int, str]]) -> list[str]:
+    """What the robot (and what it holds) touches now, but the allowed objects and links (names, sorted)."""
+    world = robot.world
+    movers = [robot.body, *held]
+    skip = {robot.body.id, *(o.id for o in held)}
+    found = set()
+    for other in world.objects:
+        if other.id in skip or other.id in allowed_objects:
+            continue
+        for mover in movers:
+            points = world.closest_points(mover, other, TOUCH)
+            if any((other.id, other.get_link_name(p.link_b)) not in allowed_links for p in points):
+                found.add(other.name)
+                break
+    return sorted(found)
+
+
+def _yaw_of(orientation: Sequence[float]) -> float:
+    x, y, z, w = orientation
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def _below(obj: Object, index: int, ancestor: int) -> bool:
+    while index != -1:
+        if index == ancestor:
+            return True
+        index = obj.joints[index].parent_index
+    return False
+
+
+#: place: the held object's turns about the vertical tried, in the place process module's order
+PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
+
+
+class _Resolution:
+    """What both kinds of resolution share: candidates tried in order, lazily, and the report when none is left."""
+
+    candidates: Candidates
+    spec: LocationSpec
+
+    def __init__(self, robot: Robot, spec: LocationSpec, limit: int) -> None:
+        self.robot = robot
+        self.spec = spec
+        self.limit = limit
+        self.cursor = 0
+        self.expensive = 0
+        self._prepared = False
+        self.found: list[Any] = []
+
+    def _prepare(self) -> None:
+        raise NotImplementedError
+
+    @property
+    def prepared(self) -> bool:
+        return self._prepared
+
+    def prepare(self) -> None:
+        """The candidates, ranked (resolving does this first; the world is left as it was)."""
+        if not self._prepared:
+            world = self.robot.world
+            with world.lock, world.snapshot():
+                self._prepared_inside()
+
+    def _prepared_inside(self) -> None:
+        """Inside the caller's snapshot: the candidates, once."""
+        if not self._prepared:
+            self._prepare()
+            self._prepared = True
+
+    def __iter__(self) -> Iterator[Any]:
+        while True:
+            try:
+                yield self.next()
+            except LocationFailure:
+                return
+
+    def next(self) -> Any:
+        raise NotImplementedError
+
+    def counts(self) -> Counter[str]:
+        """Why candidates were ruled out so far (those never tested count as `not tried`)."""
+        counts = self.candidates.counts()
+        untested = self.candidates.untested()
+        if untested:
+            counts["not tried"] += untested
+        return counts
+
+    def summary(self) -> str:
+        return summary(self.counts(), len(self.candidates))
+
+    def _fail(self, text: str) -> LocationFailure:
+        return LocationFailure(text, location=self.spec.describe(), counts=dict(self.counts()))
+
+
+# -- base poses -------------------------------------------------------------------------------------------------
+
+
+class BasePoseResolution(_Resolution):
+    """The base poses of one location, best first, found lazily (`next()`; iterate for all)."""
+
+    def __init__(self, robot: Robot, spec: LocationSpec, limit: int = EXPENSIVE_LIMIT) -> None:
+        super().__init__(robot, spec, limit)
+        self.map: floor.FloorMap | None = None
+        self.open_map: floor.FloorMap | None = None
+        self.target: np.ndarray | None = None  # the point the candidates face
+        self.view_target: np.ndarray | None = None
+        self.arm_names: list[str] = []
+        self.arm_order = np.zeros((0, 0), dtype=np.int8)
+        self._allowed: tuple[set[int], set[tuple[int, str]]] = (set(), set())
+        self._handle_path: list[np.ndarray] = []
+        #: whether the robot's current pose is the first candidate (an action asks: no need to drive when it will do)
+        self.here = False
+        self.here_index: int | None = None
+
+    # -- the candidates ---------------------------------------------------------------------------------------
+    def _prepare(self) -> None:
+        robot, spec = self.robot, self.spec
+        self.held = robot.held_objects()
+        self.map = floor_map(robot, self.held, saved=True)
+        self.floor_z = self.map.floor_z
+        arms = arm_geometry(robot)
+        if spec.arm is not None:
+            arms = {spec.arm: arms[spec.arm]}
+        if spec.placing is not None:
+            holding = robot.arm_holding(spec.placing)
+            arms = {name: geo for name, geo in arms.items() if name == holding}
+        elif spec.reachable_for is not None or spec.accessing is not None:  # a full hand takes nothing, opens nothing
+            arms = {name: geo for name, geo in arms.items() if not robot.held_objects(name)}
+        if not arms and (spec.reachable_for is not None or spec.accessing is not None):
+            if spec.placing is not None:
+                why = f"the robot does not hold {spec.placing.name}" + (f" in {arm_phrase(spec.arm)}" if spec.arm else "")
+            elif spec.arm is not None:
+                why = f"{arm_phrase(spec.arm)} holds {', '.join(o.name for o in robot.held_objects(spec.arm))}"
+            else:
+                why = "every gripper holds something"
+            raise LocationFailure(f"no pose for {spec.describe()}: {why}", location=spec.describe())
+        self.arm_names = list(arms)
+        camera = camera_offset(robot)
+        reach_target = None
+        if spec.reachable_for is not None:
+            reach_target = (_centre(spec.reachable_for) if isinstance(spec.reachable_for, Object)
+                            else np.asarray(spec.reachable_for, dtype=float))
+        if spec.accessing is not None:
+            handle = spec.accessing
+            reach_target = np.asarray(handle.obj.get_link_position(handle.link))
+            self._handle_path = self._handle_positions()
+            self.open_map = self._opened_map()
+        view_target = _centre(spec.visible_for) if spec.visible_for is not None else None
+        self.view_target = view_target
+        primary = reach_target if reach_target is not None else view_target
+        assert primary is not None
+        self.target = primary
+        if reach_target is not None:
+            radius = max(float(np.hypot(*a.shoulder[:2])) + a.length for a in arms.values()) + STEP
+        else:
+            radius = VIEW_DISTANCE[2] + (float(np.hypot(*camera[:2])) if camera is not None else 0.0)
+        # the lattice of the floor around the target, each position facing it (and turned a little either way)
+        lo = np.floor((primary[:2] - radius) / STEP).astype(int)
+        hi = np.ceil((primary[:2] + radius) / STEP).astype(int)
+        gx, gy = np.meshgrid(np.arange(lo[0], hi[0] + 1) * STEP, np.arange(lo[1], hi[1] + 1) * STEP, indexing="ij")
+        px, py = gx.ravel(), gy.ravel()
+        keep = np.hypot(px - primary[0], py - primary[1]) <= radius
+        px, py = px[keep], py[keep]
+        facing = np.arctan2(primary[1] - py, primary[0] - px)
+        tried = TURNS if reach_target is not None else TURNS[:1]  # the head turns to look: facing is enough
+        xs = np.concatenate([px] * len(tried))
+        ys = np.concatenate([py] * len(tried))
+        turns = np.concatenate([np.full(len(px), t) for t in tried])
+        yaws = np.concatenate([facing] * len(tried)) + turns
+        here = np.asarray(robot.body.get_position()[:2])
+        scores = TURN_WEIGHT * np.abs(turns) + TRAVEL_WEIGHT * np.hypot(xs - here[0], ys - here[1])
+        outcome = np.zeros(len(xs), dtype=np.int8)
+        c, s = np.cos(yaws), np.sin(yaws)
+        self.arm_order = np.zeros((len(xs), len(arms)), dtype=np.int8)
+        if reach_target is not None:
+            costs = []
+            for geo in arms.values():
+                sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
+                sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
+                sz = self.floor_z + geo.shoulder[2]
+                distance = np.sqrt((reach_target[0] - sx) ** 2 + (reach_target[1] - sy) ** 2 + (reach_target[2] - sz) ** 2)
+                cost = np.abs(distance - REACH_FRACTION * geo.length)
+                costs.append(np.where(distance > geo.length + 0.02, np.inf, cost))
+            stacked = np.stack(costs, axis=1)  # candidates x arms
+            best = stacked.min(axis=1)
+            order = np.argsort(stacked, axis=1, kind="stable")
+            self.arm_order = np.where(np.isfinite(np.take_along_axis(stacked, order, axis=1)), order, -1).astype(np.int8)
+            outcome[~np.isfinite(best)] = CODE["out of reach"]
+            scores = scores + np.where(np.isfinite(best), best, 0.0)
+        if view_target is not None:
+            cx = xs + c * camera[0] - s * camera[1] if camera is not None else xs
+            cy = ys + s * camera[0] + c * camera[1] if camera is not None else ys
+            distance = np.hypot(view_target[0] - cx, view_target[1] - cy)
+            out = (distance < VIEW_DISTANCE[1]) | (distance > VIEW_DISTANCE[2])
+            outcome[(outcome == 0) & out] = CODE["out of view"]
+            scores = scores + VIEW_WEIGHT * np.abs(distance - VIEW_DISTANCE[0])
+        todo = outcome == 0
+        core = self.map.core_collides(xs[todo], ys[todo], yaws[todo])
+        outcome[np.flatnonzero(todo)[core]] = CODE["collides"]
+        if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
+            rx, ry = robot.body.get_position()[:2]
+            ryaw = _yaw_of(robot.body.get_orientation())
+            xs, ys, yaws = np.append(xs, rx), np.append(ys, ry), np.append(yaws, ryaw)
+            scores, outcome = np.append(scores, -1.0), np.append(outcome, 0)
+            self.arm_order = np.concatenate([self.arm_order, self._here_arms(arms, reach_target, rx, ry, ryaw)])
+            self.here_index = len(xs) - 1
+        self.candidates = Candidates(xs, ys, yaws, scores, outcome)
+        self._allowed = self._allowed_contacts()
+
+    def _here_arms(self, arms: dict[str, ArmGeometry], target: np.ndarray | None, x: float, y: float,
+                   yaw: float) -> np.ndarray:
+        """The arms to try from the robot's own pose: nearest shoulder first."""
+        if target is None or not arms:
+            return np.zeros((1, len(arms)), dtype=np.int8)
+        c, s = math.cos(yaw), math.sin(yaw)
+        distance = [math.dist(target, (x + c * g.shoulder[0] - s * g.shoulder[1], y + s * g.shoulder[0] + c * g.shoulder[1],
+                                       self.floor_z + g.shoulder[2])) for g in arms.values()]
+        return np.array([sorted(range(len(arms)), key=lambda k: (distance[k], k))], dtype=np.int8)
+
+    def _handle_positions(self) -> list[np.ndarray]:
+        """Where the handle is now, half opened and opened by the location's distance (the drawer put back)."""
+        handle = self.spec.accessing
+        assert handle is not None
+        obj = handle.obj
+        start = obj.get_joint_position(handle.joint)
+        goal = self._goal(start)
+        positions = []
+        with obj.joints_kept([handle.joint]):
+            for value in (start, (start + goal) / 2.0, goal):
+                obj.reset_joints({handle.joint: value})
+                positions.append(np.asarray(obj.get_link_position(handle.link)))
+        return positions
+
+    def _goal(self, start: float) -> float:
+        """Where the accessing process module takes the joint: `distance` above its lower limit."""
+        handle = self.spec.accessing
+        assert handle is not None
+        joint = handle.obj.joint(handle.joint)
+        distance = self.spec.distance
+        if distance is None:
+            distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
+        return min(joint.upper, joint.lower + distance) if joint.limited else start + distance
+
+    def _opened_map(self) -> floor.FloorMap:
+        handle = self.spec.accessing
+        assert handle is not None
+        obj = handle.obj
+        with obj.joints_kept([handle.joint]):
+            obj.reset_joints({handle.joint: self._goal(obj.get_joint_position(handle.joint))})
+            return floor.build(self.robot.body, self.held)
+
+    def _allowed_contacts(self) -> tuple[set[int], set[tuple[int, str]]]:
+        """What the arm may touch at its final configuration: the target and what the target rests on."""
+        world = self.robot.world
+        target = self.spec.reachable_for
+        if self.spec.accessing is not None:  # the hand holds the handle: the drawer (or door) may be touched
+            handle = self.spec.accessing
+            obj = handle.obj
+            moving = obj.joint(handle.joint).index
+            parts = {obj.get_link_name(moving)} | {j.child_link for j in obj.joints if _below(obj, j.index, moving)}
+            return set(), {(obj.id, link) for link in parts}
+        if self.spec.placing is not None and self.spec.onto is not None:
+            surface = self.spec.onto
+            if surface.link is None:
+                return {surface.obj.id}, set()
+            return set(), {(surface.obj.id, surface.link)}
+        if isinstance(target, Object):
+            return {target.id}, supports_of(world, target)
+        return set(), set()
+
+    # -- the tests ----------------------------------------------------------------------------------------------
+    def next(self) -> BasePose:
+        """The next base pose (best first); LocationFailure when none is left."""
+        world = self.robot.world
+        with world.lock, world.snapshot():
+            self._prepared_inside()
+            order = self.candidates.order
+            while self.cursor < len(order) and self.expensive < self.limit:
+                chunk = order[self.cursor:self.cursor + CHUNK]
+                self._map_test(chunk)
+                for i in chunk:
+                    self.cursor += 1
+                    if self.candidates.outcome[i] != 0:
+                        continue
+                    pose = self._test(int(i))
+                    if pose is not None:
+                        self.candidates.outcome[i] = CODE["ok"]
+                        self.found.append(pose)
+                        return pose
+                    if self.expensive >= self.limit:
+                        break
+        raise self._fail(self.failure_message())
+
+    def _map_test(self, chunk: np.ndarray) -> None:
+        todo = chunk[(self.candidates.outcome[chunk] == 0) & (chunk != (self.here_index if self.here_index is not None else -1))]
+        if not len(todo):
+            return
+        cand = self.candidates
+        assert self.map is not None
+        hit = self.map.collides(cand.xs[todo], cand.ys[todo], cand.yaws[todo])
+        if self.open_map is not None:
+            hit |= self.open_map.collides(cand.xs[todo], cand.ys[todo], cand.yaws[todo])
+        cand.outcome[todo[hit]] = CODE["collides"]
+
+    def _test(self, i: int) -> BasePose | None:
+        robot, spec, cand = self.robot, self.spec, self.candidates
+        x, y, yaw = float(cand.xs[i]), float(cand.ys[i]), float(cand.yaws[i])
+        hits = floor.exact_collisions(robot.body, self.held, x, y, yaw)
+        if hits:
+            cand.mark(i, "collides", ", ".join(hits))
+            return None
+        if spec.accessing is not None and self._opened_collides(i):
+            return None
+        self.expensive += 1
+        arm, grasp = None, None
+        if spec.reachable_for is not None or spec.accessing is not None:
+            found = self._reach(i)
+            if found is None:
+                return None
+            arm, grasp = found
+        look = None
+        if spec.visible_for is not None:
+            look = self._view(i)
+            if look is None:
+                return None
+        return BasePose((x, y, self.floor_z), yaw_quaternion(yaw), yaw, float(cand.scores[i]), arm, grasp, look,
+                        len(self.found))
+
+    def _opened_collides(self, i: int) -> bool:
+        handle = self.spec.accessing
+        assert handle is not None
+        obj, cand = handle.obj, self.candidates
+        with obj.joints_kept([handle.joint]):
+            obj.reset_joints({handle.joint: self._goal(obj.get_joint_position(handle.joint))})
+            hits = floor.exact_collisions(self.robot.body, self.held, float(cand.xs[i]), float(cand.ys[i]),
+                                          float(cand.yaws[i]))
+        if hits:
+            cand.mark(i, "collides", f"{', '.join(hits)} (opened)")
+        return bool(hits)
+
+    def _reach(self, i: int) -> tuple[str, Any] | None:
+        """The first arm and grasp (arms nearest first, grasps in the description's order) that reach untouched."""
+        robot, spec, cand = self.robot, self.spec, self.candidates
+        body = robot.body
+        blocked: list[str] = []
+        holdable = False
+        arms = [self.arm_names[k] for k in self.arm_order[i] if k >= 0] if len(self.arm_order) else self.arm_names
+        for arm in arms:
+            for grasp, position, orientation in self._reach_targets(arm):
+                if position is None:
+                    continue
+                holdable = True
+                solution = reach(robot, arm, position, orientation)
+                if not solution.success:
+                    continue
+                if spec.accessing is not None and not self._follows_handle(arm, orientation):
+                    continue
+                saved = body.get_joint_positions(list(solution.joint_positions))
+                body.set_joint_positions(solution.joint_positions)
+                try:
+                    touched = touching(robot, self.held, *self._allowed)
+                finally:
+                    body.set_joint_positions(saved)
+                if touched:
+                    blocked.extend(t for t in touched if t not in blocked)
+                    continue
+                return arm, grasp
+        if blocked:
+            cand.mark(i, "blocked", ", ".join(blocked))
+        elif not holdable and isinstance(spec.reachable_for, Object):
+            cand.mark(i, "cannot hold", spec.reachable_for.name)
+        else:
+            cand.mark(i, "out of reach")
+        return None
+
+    def _reach_targets(self, arm: str) -> Iterator[tuple[Any, Any, Any]]:
+        """(grasp, tool position or None when the gripper cannot hold it so, tool orientation) to try, in order."""
+        robot, spec = self.robot, self.spec
+        target = spec.reachable_for
+        if spec.accessing is not None:
+            pull = next(iter(robot.description.grasps), None)
+            yield pull, tuple(self._handle_path[0]), grasp_orientation(robot, pull) if pull is not None else None
+            return
+        if spec.placing is not None:
+            att = robot.body.attachments[spec.placing]
+            in_hand = invert(att.transform)
+            upright = level(spec.placing.get_orientation())
+            for turn in PLACE_TURNS:
+                orientation = quat_multiply(yaw_quaternion(turn), upright)
+                tool = compose((tuple(target), orientation), in_hand)  # type: ignore[arg-type]
+                yield None, tool[0], tool[1]
+            return
+        grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
+        for grasp in grasps:
+            orientation = grasp_orientation(robot, grasp) if grasp is not None else None
+            if isinstance(target, Object):
+                found = grasp_target(robot, arm, target, grasp)
+                yield grasp, (found[0] if found is not None else None), orientation
+            else:
+                yield grasp, tuple(target), orientation  # type: ignore[arg-type]
+                if spec.grasp is None:
+                    return  # a position in any orientation: one IK call answers for every grasp
+
+    def _follows_handle(self, arm: str, orientation: Any) -> bool:
+        """The arm also reaches the handle half and fully opened."""
+        return all(reach(self.robot, arm, tuple(point), orientation).success for point in self._handle_path[1:])
+
+    def _view(self, i: int) -> tuple[float, float, float] | None:
+        obj = self.spec.visible_for
+        assert obj is not None
+        target = tuple(float(v) for v in _centre(obj))
+        try:
+            look_at(self.robot, target)
+        except Exception:  # noqa: BLE001 - the head cannot turn there: not from this pose
+            self.candidates.mark(i, "out of view", "the head cannot turn to it")
+            return None
+        answer = visible(obj, world=self.robot.world)
+        if not answer.visible:
+            self.candidates.mark(i, "not visible", f"{answer.fraction:.0%} seen")
+            return None
+        return target  # type: ignore[return-value]
+
+    # -- reporting --------------------------------------------------------------------------------------------
+    def failure_message(self) -> str:
+        text = self.summary()
+        blockers = Counter(name for detail in self.candidates.details("blocked") for name in detail.split(", "))
+        if blockers:
+            text += " (blocked by " + ", ".join(name for name, _ in blockers.most_common()) + ")"
+        return f"no pose for {self.spec.describe()}: {text}"
+
+
+# -- spots on a surface ------------------------------------------------------------------------------------
+
+
+class SpotResolution(_Resolution):
+    """Free spots on a surface where an object fits, touches nothing and stands stably, best first."""
+
+    def __init__(self, robot: Robot, spec: LocationSpec, limit: int = 8) -> None:
+        assert spec.on is not None and spec.for_object is not None
+        super().__init__(robot, spec, limit)
+        self.radius = 0.0
+
+    def _prepare(self) -> None:
+        spec = self.spec
+        surface, obj = spec.on, spec.for_object
+        assert surface is not None and obj is not None
+        world = self.robot.world
+        lo, hi = surface.box()
+        self.top = float(hi[2])
+        self.upright = level(obj.get_orientation())
+        position = obj.get_position()  # inside the caller's snapshot: the object stood upright where it is
+        _quiet_let_go(obj)
+        obj.set_position_and_orientation(position, self.upright)
+        olo, ohi = obj.get_aabb()
+        corners = np.array([[olo[0], olo[1]], [olo[0], ohi[1]], [ohi[0], olo[1]], [ohi[0], ohi[1]]]) - np.asarray(position[:2])
+        self.radius = float(np.max(np.hypot(corners[:, 0], corners[:, 1])))
+        self.height = float(ohi[2] - olo[2])
+        inset = self.radius + SPOT_MARGIN
+        ix = np.arange(math.ceil((lo[0] + inset) / SPOT_STEP - 1e-9), math.floor((hi[0] - inset) / SPOT_STEP + 1e-9) + 1)
+        iy = np.arange(math.ceil((lo[1] + inset) / SPOT_STEP - 1e-9), math.floor((hi[1] - inset) / SPOT_STEP + 1e-9) + 1)
+        gx, gy = np.meshgrid(ix * SPOT_STEP, iy * SPOT_STEP, indexing="ij")
+        xs, ys = gx.ravel(), gy.ravel()
+        reference = np.asarray(spec.near[:2]) if spec.near is not None else np.asarray(self.robot.body.get_position()[:2])
+        scores = np.hypot(xs - reference[0], ys - reference[1])
+        outcome = np.zeros(len(xs), dtype=np.int8)
+        detail: dict[int, str] = {}
+        for name, (blo, bhi) in self._obstacles():
+            near = ((xs > blo[0] - inset) & (xs < bhi[0] + inset) & (ys > blo[1] - inset) & (ys < bhi[1] + inset)
+                    & (outcome == 0))
+            for k in np.flatnonzero(near):
+                detail[int(k)] = name
+            outcome[near] = CODE["occupied"]
+        self.candidates = Candidates(xs, ys, np.zeros(len(xs)), scores, outcome)
+        self.candidates.detail = detail
+
+    def _obstacles(self) -> list[tuple[str, tuple[np.ndarray, np.ndarray]]]:
+        """Boxes of whatever stands (or hangs) where the object would be: other objects, other links of the surface's object."""
+        spec = self.spec
+        surface, obj = spec.on, spec.for_object
+        assert surface is not None and obj is not None
+        robot = self.robot
+        skip = {robot.body.id, obj.id, *(o.id for o in robot.held_objects())}
+        low, high = self.top + 0.002, self.top + self.height
+        found = []
+        for other in robot.world.objects:
+            if other.id in skip or (other is surface.obj and surface.link is None):
+                continue
+            if other is surface.obj:
+                links: list[int | None] = [i for i in [-1, *range(len(other.joints))] if other.get_link_name(i) != surface.link]
+            else:
+                links = [None]
+            for link in links:
+                blo, bhi = other.get_aabb(link) if link is not None else other.get_aabb()
+                if bhi[2] > low and blo[2] < high and bhi[0] - blo[0] > floor.THIN and bhi[1] - blo[1] > floor.THIN:
+                    name = other.name if link is None else f"{other.name}/{other.get_link_name(link)}"
+                    found.append((name, (np.asarray(blo), np.asarray(bhi))))
+        return found
+
+    def next(self) -> Spot:
+        world = self.robot.world
+        obj, surface = self.spec.for_object, self.spec.on
+        assert obj is not None and surface is not None
+        with world.lock, world.snapshot() as saved:
+            self._prepared_inside()
+            cand = self.candidates
+            while self.cursor < len(cand) and self.expensive < self.limit:
+                i = int(cand.order[self.cursor])
+                self.cursor += 1
+                if cand.outcome[i] != 0:
+                    continue
+                self.expensive += 1
+                position = (float(cand.xs[i]), float(cand.ys[i]), self.top)
+                world.restore_state(saved)
+                _quiet_let_go(obj)
+                obj.set_position_and_orientation(position, self.upright)
+                hits = self._touching(obj, surface)
+                if hits:
+                    cand.mark(i, "collides", ", ".join(hits))
+                    continue
+                answer = stable(obj)
+                if not answer.stable:
+                    cand.mark(i, "unstable", f"moved {answer.displacement * 1000:.1f} mm")
+                    continue
+                cand.outcome[i] = CODE["ok"]
+                spot = Spot(position, self.upright, float(cand.scores[i]), surface.name, len(self.found))
+                self.found.append(spot)
+                return spot
+        raise self._fail(self.failure_message())
+
+    def _touching(self, obj: Object, surface: Any) -> list[str]:
+        world = obj.world
+        held = self.robot.held_objects()
+        found = []
+        for other in world.objects:
+            if other is obj or other is self.robot.body or other in held:
+                continue
+            points = world.closest_points(obj, other, 0.0)
+            if any(p.distance < -floor.PENETRATION
+                   and not (other is surface.obj and (surface.link is None or other.get_link_name(p.link_b) == surface.link))
+                   for p in points):
+                found.append(other.name)
+        return sorted(found)
+
+    def failure_message(self) -> str:
+        assert self.spec.on is not None and self.spec.for_object is not None
+        what = f"no spot on {self.spec.on.name} for {self.spec.for_object.name}"
+        if not len(self.candidates):
+            return f"{what}: the surface is smaller than the object with its margins ({self.radius * 200:.0f} cm across)"
+        return f"{what}: {self.summary()}"
+
+
+def _quiet_let_go(obj: Object) -> None:
+    """Inside a snapshot only: the object stops following what holds it, without a detachment event
+    (the snapshot's restore brings the attachment back), so that physics can tell whether it stands."""
+    for other in list(obj.attachments):
+        if obj.attachments[other].child is obj:
+            del obj.attachments[other]
+            other.attachments.pop(obj, None)
+
+
+def resolution(robot: Robot, spec: LocationSpec) -> BasePoseResolution | SpotResolution:
+    """The lazy resolution of a location: `.next()` gives the next pose or spot, best first."""
+    return SpotResolution(robot, spec) if spec.on is not None else BasePoseResolution(robot, spec)

@@ -1,0 +1,199 @@
+"""Action steps: an action designator in a plan, and what it expands into as child steps of the trace.
+
+    - action: transport                          the action's name, then its slots beside it
+      object-type: milk                          (`pycram designators --actions` lists them)
+      target: {on: kitchen_island_surface}       a location designator: a mapping
+      as: milk                                   binds what the action gives (the object)
+
+`action:` is a head of its own because two actions share a name with motion designators
+(`pick-up`, `place`): `- pick-up: {object: milk, arm: left}` is the motion designator, as in
+the design; `- action: pick-up` / `object: milk` is the action, which finds where to stand,
+which arm and which grasp, and drives there first.
+
+An action step runs its declaration's `run` with a `PlanActor`: every motion designator, query
+and location resolution it performs is a leaf step of the trace below the action's node
+(`0:action transport/1:action pick-up/0:locate`, `.../1:attempt 1/0:moving`), taking turns with
+concurrent branches like any leaf; every action it performs in turn is a node of its own.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Callable
+
+from ..designators import robot_resources
+from ..designators.actions import ACTIONS, Actor, check_action
+from ..errors import Location, did_you_mean
+from ..failures import Failure
+from ..kinds import KINDS, Robots
+from ..robots import description_for
+from ..yamlsource import LMap
+from .context import is_reference, jsonable, references
+from .resources import ResourceAnalysis
+from .runtime import Record, Runtime
+from .syntax import Node, Parser, node_type, plain
+
+if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
+    from .validate import Validator
+
+
+def _every_slot() -> tuple[str, ...]:
+    names: list[str] = []
+    for spec in ACTIONS.values():
+        names.extend(n for n in spec.slot_names if n not in names)
+    return tuple(names)
+
+
+@node_type("action")
+class ActionStep(Node):
+    BINDS = True
+    DOC = "perform an action designator (navigate, pick-up, transport, ...): its slots beside `action:`"
+
+    def __init__(self, head: str, where: Location, name: str, slots: LMap) -> None:
+        super().__init__(head, where)
+        self.name = name
+        self.slots = slots
+
+    @classmethod
+    def allowed_keys(cls, head: str) -> tuple[str, ...]:
+        return _every_slot() + ("as",)
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        name = parser.string(step[head], step.loc(head, True), head)
+        if name is None:
+            return None
+        spec = ACTIONS.get(name)
+        if spec is None:
+            parser.error(f"unknown action '{name}'", step.loc(head, True), key=head,
+                         suggestion=did_you_mean(name, ACTIONS) or f"actions: {', '.join(ACTIONS)}")
+            return None
+        slots = LMap()
+        slots.where, slots.key_where, slots.value_where = step.where, {}, {}
+        for key, value in step.items():
+            if key in (head, "as"):
+                continue
+            if key not in spec.slot_names:
+                if key in _every_slot():  # other keys the parser has reported already
+                    parser.error(f"action '{name}' has no slot '{key}'", step.loc(key), key=str(key),
+                                 suggestion=did_you_mean(str(key), spec.slot_names) or f"slots: {', '.join(spec.slot_names)}")
+                continue
+            slot = spec.slot(str(key))
+            if slot is not None and slot.kind == "location" and isinstance(value, LMap) and True in value:
+                value = _on_key(value)  # YAML 1.1 reads an unquoted `on` as true
+            slots[key] = value
+            slots.key_where[key], slots.value_where[key] = step.loc(key), step.loc(key, True)
+        return cls(head, step.loc(head), name, slots)
+
+    def label(self) -> str:
+        return f"action {self.name}"
+
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
+        known = {k: (None if is_reference(v) else v) for k, v in plain(self.slots).items()}
+        return robot_resources(ACTIONS[self.name].uses(known), analysis.description)
+
+    def check(self, v: "Validator") -> None:
+        for problem in check_action(self.name, plain(self.slots), is_reference, v.robots):
+            where = self.slots.loc(problem.slot, True) if problem.slot in self.slots else self.where
+            v.error(problem.message, where, key=problem.slot or self.head, suggestion=problem.suggestion)
+        v.refs(self.slots, self.where)
+        facts = v.facts
+        if facts is None:
+            return
+        spec = ACTIONS[self.name]
+        objects = list(facts.objects)
+        for slot in spec.slots:
+            value = self.slots.get(slot.name)
+            if value is None:
+                continue
+            names: list[tuple[str, str, str]] = []
+            kind = KINDS[slot.kind]
+            if kind.names_object and isinstance(value, str) and not references(value):
+                names.append((slot.name, value, "object"))
+            elif kind.names_in is not None:
+                names.extend(kind.names_in(value))
+            where = self.slots.loc(slot.name, True)
+            for key, name, what in names:
+                self._known(v, key or slot.name, name, what, where, objects)
+
+    def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str]) -> None:
+        facts = v.facts
+        assert facts is not None
+        links = facts.links
+        if what == "object" and name not in objects:
+            v.error(f"'{key}': the world has no object '{name}'", where, key=key, suggestion=did_you_mean(name, objects))
+        elif what == "link" and links is not None and name not in links:
+            v.error(f"'{key}': the world has no link '{name}'", where, key=key, suggestion=did_you_mean(name, sorted(links)))
+        elif what == "object or link" and name not in objects and links is not None and name not in links:
+            v.error(f"'{key}': the world has no object or link '{name}'", where, key=key,
+                    suggestion=did_you_mean(name, [*objects, *sorted(links)]))
+
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        values = ex.evaluate(dict(self.slots))
+        tn.info["action"] = {"type": self.name, "slots": jsonable(values)}
+        robot = ex.world.robot
+        description = description_for(robot) if robot is not None else None
+        robots = Robots((description,), True) if description is not None else Robots()
+        problems = check_action(self.name, values, None, robots)
+        if problems:
+            raise Failure(f"action {self.name}: " + "; ".join(
+                p.message + (f" ({p.suggestion})" if p.suggestion else "") for p in problems))
+        return ACTIONS[self.name].run(PlanActor(ex, tn, self.where), values)
+
+
+def _on_key(mapping: LMap) -> LMap:
+    fixed = LMap()
+    fixed.where, fixed.key_where, fixed.value_where = mapping.where, {}, {}
+    for key, value in mapping.items():
+        name = "on" if key is True else key
+        fixed[name] = value
+        fixed.key_where[name], fixed.value_where[name] = mapping.loc(key), mapping.loc(key, True)
+    return fixed
+
+
+class PlanActor(Actor):
+    """Performs an action's parts as steps of the running plan, each a child of the action's trace node."""
+
+    def __init__(self, ex: Runtime, tn: Record, where: Location) -> None:
+        super().__init__(ex.world)
+        self.ex, self.tn, self.where = ex, tn, where
+        self.count = 0
+
+    def _child(self, label: str, type: str) -> Record:
+        child = self.tn.child(f"{self.count}:{label}", type, self.where)
+        self.count += 1
+        return child
+
+    def leaf(self, label: str, type: str, run: Callable[[dict[str, Any]], Any]) -> Any:
+        return self.ex.step(_Leaf(type, self.where, run), self._child(label, type))
+
+    def group(self, label: str, type: str, run: Callable[[Actor], Any], info: dict[str, Any] | None = None) -> Any:
+        return self.ex.step(_Group(type, self.where, run, info or {}), self._child(label, type))
+
+
+class _Leaf(Node):
+    """One part of an action that touches the world: a leaf step (it takes its turn among concurrent branches)."""
+
+    LEAF = True
+
+    def __init__(self, head: str, where: Location, run: Callable[[dict[str, Any]], Any]) -> None:
+        super().__init__(head, where)
+        self.run = run
+
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        info: dict[str, Any] = {}
+        try:
+            with ex.world_action():
+                return self.run(info)
+        finally:
+            tn.info.update(info)
+
+
+class _Group(Node):
+    """Parts of an action under a node of their own: an action it performs, or one attempt of a choice."""
+
+    def __init__(self, head: str, where: Location, run: Callable[[Actor], Any], info: dict[str, Any]) -> None:
+        super().__init__(head, where)
+        self.run, self.info = run, info
+
+    def execute(self, ex: Runtime, tn: Record) -> Any:
+        tn.info.update(self.info)
+        return self.run(PlanActor(ex, tn, self.where))
