@@ -10,6 +10,7 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
+from ..files import check_writable
 from ..plan.trace import TraceNode, normalised, save
 from ..scenario import prepare
 from ..world.camera import default_camera, render, write_png
@@ -134,6 +135,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
     the plan succeeded, 1 when it failed, 2 for invalid input.
     """
+    for output, key in ((trace_file, "trace"), (render_file, "render")):
+        if output is not None:
+            check_writable(output, key)  # before anything runs
     scenario = prepare(plan_file, world_file, assignments=params)
     plan, world_path, values = scenario.plan, scenario.world_path, scenario.params
     world = scenario.load_world(mode="gui" if gui else "direct")
@@ -161,7 +165,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if trace_file is not None:
             save(result.trace, trace_file)
         if render_file is not None:
-            write_png(render_file, render(world, default_camera(world), 960, 720))
+            write_png(render_file, render(world, default_camera(world), 960, 720), key="render")
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace}))

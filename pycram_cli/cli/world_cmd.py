@@ -6,6 +6,7 @@ from pathlib import Path
 import click
 
 from ..errors import InputError, Location
+from ..files import check_writable
 from ..world.camera import default_camera, parse_camera, render, write_png
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
@@ -81,13 +82,14 @@ def render_cmd(world_file: str | None, output: Path, camera: str | None, size: s
         cam = parse_camera(camera) if camera else None
     except ValueError as exc:
         raise InputError(str(exc), Location("--camera")) from None
+    check_writable(output, "--output")  # before anything is rendered
     path = resolve_world_path(world_file)
     sim = load_spec(parse_world(path))
     try:
         image = render(sim, cam or default_camera(sim), width, height)
     finally:
         sim.exit()
-    write_png(output, image)
+    write_png(output, image, key="--output")
     console.success(f"wrote {output} ({width}x{height})")
 
 

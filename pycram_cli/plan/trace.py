@@ -21,6 +21,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ..errors import InputError, Location
+from ..files import read_text, write_atomic
+from ..limits import MAX_TRACE_BYTES
 from .context import jsonable
 
 if TYPE_CHECKING:
@@ -166,20 +168,13 @@ def comparable(data: Any) -> Any:
 
 
 def save(data: dict[str, Any], path: str | Path, timing: bool = True) -> None:
-    path = Path(path)
-    if path.parent and not path.parent.exists():
-        path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(dumps(data if timing else comparable(data)))
+    """Write a trace atomically: a reader sees the previous file or this one whole, never a part."""
+    write_atomic(path, dumps(data if timing else comparable(data)), key="trace")
 
 
 def load(path: str | Path) -> dict[str, Any]:
     path = Path(path)
-    try:
-        text = path.read_text()
-    except FileNotFoundError:
-        raise InputError("trace file not found", Location(str(path))) from None
-    except (IsADirectoryError, PermissionError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read trace file: {exc.__class__.__name__}", Location(str(path))) from None
+    text = read_text(path, MAX_TRACE_BYTES, "trace file")
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:

@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 import pybullet as p
 
+from ..files import write_atomic
+
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
 
@@ -68,7 +70,7 @@ def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int =
     return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]
 
 
-def write_png(path: Path, rgb: np.ndarray) -> None:
+def write_png(path: Path, rgb: np.ndarray, key: str = "output") -> None:
     """A minimal PNG writer (8-bit RGB), so rendering needs no imaging library."""
     height, width, _ = rgb.shape
     raw = b"".join(b"\x00" + rgb[row].astype(np.uint8).tobytes() for row in range(height))
@@ -78,7 +80,7 @@ def write_png(path: Path, rgb: np.ndarray) -> None:
 
     png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
     png += chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b"")
-    Path(path).write_bytes(png)
+    write_atomic(path, png, key=key)
 
 
 def parse_vector(text: str, what: str) -> tuple[float, float, float]:

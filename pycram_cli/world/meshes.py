@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import write_atomic
+
 
 @dataclass
 class Mesh:
@@ -41,7 +43,7 @@ def write_binary_stl(mesh: Mesh, path: Path) -> None:
     tris = mesh.vertices[mesh.triangles].astype("<f4")
     records = np.zeros(len(tris), dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]))
     records["v"] = tris.reshape(-1, 9)
-    path.write_bytes(b"pycram binary stl".ljust(80, b" ") + struct.pack("<I", len(tris)) + records.tobytes())
+    write_atomic(path, b"pycram binary stl".ljust(80, b" ") + struct.pack("<I", len(tris)) + records.tobytes())
 
 
 def _read_stl(path: Path) -> Mesh:

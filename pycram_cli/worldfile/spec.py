@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, InputErrors, Location, as_list, did_you_mean, raise_if_any
+from ..files import probe
 from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
@@ -83,15 +84,32 @@ def search_dirs(base: Path) -> list[Path]:
     return dirs
 
 
+class Unreadable(Exception):
+    """Something is at a file's place, but it cannot be read as a file (a pipe, a device, a name too long)."""
+
+
 def resolve_file(name: str, base: Path) -> Path | None:
-    expanded = Path(os.path.expanduser(name))
-    if expanded.is_absolute():
-        return expanded if expanded.is_file() else None
-    for folder in search_dirs(base):
-        candidate = folder / expanded
-        if candidate.is_file():
-            return candidate.resolve()
+    """The regular file `name` names (absolute, or in the search folders); None when there is none.
+
+    Raises Unreadable (with the reason) when something is there that is not a readable regular file.
+    """
+    try:
+        expanded = Path(os.path.expanduser(name))
+    except (RuntimeError, ValueError):
+        expanded = Path(name)
+    candidates = [expanded] if expanded.is_absolute() else [folder / expanded for folder in search_dirs(base)]
+    for candidate in candidates:
+        problem = probe(candidate)
+        if problem is None:
+            return candidate if expanded.is_absolute() else candidate.resolve()
+        if problem != "not found" and not problem.startswith("it is a folder"):
+            raise Unreadable(problem)
     return None
+
+
+def _short(text: str, limit: int = 80) -> str:
+    """A name as shown in a message: long ones cut in the middle."""
+    return text if len(text) <= limit else f"{text[:40]}...{text[-30:]}"
 
 
 def _known_files(base: Path) -> list[str]:
@@ -172,9 +190,14 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
         return None
     name, file_text = item["name"], item["file"]
     spec = ObjectSpec(name=name, type=item["type"], file=Path(file_text), file_text=file_text, where=item.where)
-    resolved = resolve_file(file_text, base)
+    try:
+        resolved = resolve_file(file_text, base)
+    except Unreadable as exc:
+        errors.append(InputError(f"cannot read '{_short(file_text)}': {exc}", item.loc("file", True), key="file"))
+        return spec
     if resolved is None:
-        errors.append(InputError(f"file not found: '{file_text}' (looked in {base}, the bundled resources and pybullet_data)",
+        errors.append(InputError(f"file not found: '{_short(file_text)}' (looked in {base}, the bundled resources and "
+                                 "pybullet_data)",
                                  item.loc("file", True), key="file",
                                  suggestion=did_you_mean(file_text, _known_files(base))))
     elif resolved.suffix.lower() not in MODEL_SUFFIXES:
@@ -207,12 +230,17 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
         except Exception as exc:  # noqa: BLE001 - any parse failure is the user's file
             errors.append(InputError(f"cannot read model file {resolved.name}: {exc}", item.loc("file", True), key="file"))
     if "description" in item and expect(item["description"], str, item.loc("description", True), "description", errors):
-        found = resolve_file(item["description"], base)
-        if found is None:
-            errors.append(InputError(f"robot description not found: '{item['description']}' (looked in {base} and the "
-                                     "bundled resources)", item.loc("description", True), key="description"))
-        else:
-            spec.description = found
+        try:
+            found = resolve_file(item["description"], base)
+            if found is None:
+                errors.append(InputError(f"robot description not found: '{_short(item['description'])}' (looked in "
+                                         f"{base} and the bundled resources)", item.loc("description", True),
+                                         key="description"))
+            else:
+                spec.description = found
+        except Unreadable as exc:
+            errors.append(InputError(f"cannot read robot description '{_short(item['description'])}': {exc}",
+                                     item.loc("description", True), key="description"))
     if "joints" in item:
         spec.joints = _parse_joints(item["joints"], item.loc("joints", True), info, errors)
     if "attach" in item:

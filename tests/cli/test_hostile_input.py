@@ -1,0 +1,186 @@
+"""Hostile and malformed input (issue 18): exit 2 with file:line:column, the key and a message — never a
+traceback, a hang, a wrong exit code or a memory blow-up. One representative case per row of the issue's table."""
+from __future__ import annotations
+
+import os
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+from pycram_cli.worldfile.spec import parse_world
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def run(*args: str, timeout: float = 20.0):
+    started = time.monotonic()
+    result = CliRunner().invoke(cli, list(args))
+    assert time.monotonic() - started < timeout, f"pycram {' '.join(args)} took too long"
+    assert "Traceback" not in result.output, result.output
+    return result
+
+
+def write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+def small_world(tmp_path: Path, extra: str = "") -> Path:
+    return write(tmp_path, "w.yaml", """
+        objects:
+          - {name: floor, type: environment, file: plane.urdf}
+          - {name: box, type: box, file: cube_small.urdf, position: [0.5, 0, 0.025]}
+    """ + extra)
+
+
+def a_plan(tmp_path: Path, body: str, name: str = "p.yaml") -> Path:
+    small_world(tmp_path)
+    return write(tmp_path, name, "world: w.yaml\nbody:\n" + textwrap.indent(textwrap.dedent(body), "  "))
+
+
+# -- file-system errors: exit 2 naming the key, not an internal error --------------------------------------
+
+
+def test_a_file_name_too_long_in_a_world_is_exit_2_at_its_key(tmp_path):
+    world = write(tmp_path, "w.yaml", f"""
+        objects:
+          - {{name: box, type: box, file: {"x" * 300}.urdf}}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:3:34: file: cannot read" in result.stderr and "file name too long" in result.stderr
+
+
+def test_a_named_pipe_as_the_plan_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "plan.yaml"
+    os.mkfifo(fifo)
+    result = run("validate", str(fifo), timeout=5)
+    assert result.exit_code == 2
+    assert "named pipe, not a regular file" in result.stderr
+    assert run("run", str(fifo), timeout=5).exit_code == 2
+
+
+def test_a_symlink_to_dev_zero_as_the_plan_is_refused_without_reading_it(tmp_path):
+    link = tmp_path / "plan.yaml"
+    link.symlink_to("/dev/zero")
+    result = run("run", str(link), timeout=5)
+    assert result.exit_code == 2
+    assert "character device, not a regular file" in result.stderr
+
+
+def test_a_folder_and_a_huge_file_are_input_errors(tmp_path):
+    (tmp_path / "dir.yaml").mkdir()
+    assert "a folder" in run("validate", str(tmp_path / "dir.yaml")).stderr
+    huge = tmp_path / "huge.yaml"
+    huge.write_text("body:\n" + "  - log: x\n" * 200_000)
+    result = run("validate", str(huge))
+    assert result.exit_code == 2 and "too large" in result.stderr and "the limit is 1 MiB" in result.stderr
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads files whatever their permissions")
+def test_a_file_without_read_permission_is_an_input_error(tmp_path):
+    path = a_plan(tmp_path, "- log: x\n")
+    path.chmod(0)
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and "permission denied" in result.stderr
+
+
+def test_bytes_that_are_not_utf8_are_reported_at_their_line(tmp_path):
+    path = tmp_path / "p.yaml"
+    path.write_bytes(b"body:\n  - log: caf\xe9\n")
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and f"{path}:2:13: not UTF-8 text" in result.stderr
+
+
+# -- output paths --------------------------------------------------------------------------------------------
+
+
+def test_an_output_path_that_cannot_be_written_is_exit_2_before_the_run(tmp_path):
+    path = a_plan(tmp_path, "- log: ran\n")
+    result = run("run", str(path), "--render", "/proc/pycram/x.png")
+    assert result.exit_code == 2 and "/proc/pycram/x.png: render: cannot write" in result.stderr
+    assert "ran" not in result.stderr  # nothing ran
+    os.mkfifo(tmp_path / "out.json")
+    result = run("run", str(path), "--trace", str(tmp_path / "out.json"), timeout=5)
+    assert result.exit_code == 2 and "out.json: trace: cannot write: it is a named pipe" in result.stderr
+
+
+# -- YAML: merge keys work; aliases, nesting and sizes are bounded ------------------------------------------
+
+
+def test_yaml_merge_keys_share_object_fields(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: floor, type: environment, file: plane.urdf}
+          - &box {name: a, type: box, file: cube_small.urdf, position: [0, 0, 0.025]}
+          - {<<: *box, name: b, position: [1, 0, 0.025]}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 0, result.output
+    b = parse_world(world).objects[2]
+    assert (b.name, b.type, b.position) == ("b", "box", [1, 0, 0.025])
+    world.write_text(world.read_text().replace("name: b,", "name: b, name: c,"))
+    result = run("validate", str(world))  # a key given twice by the mapping itself is still an error
+    assert result.exit_code == 2 and "duplicate key 'name'" in result.stderr
+
+
+def test_an_alias_bomb_as_a_log_message_is_refused_quickly(tmp_path):
+    levels = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    levels += [f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 9)}]" for i in range(1, 9)]
+    path = tmp_path / "bomb.yaml"
+    path.write_text("params:\n" + "".join(f"  {line}\n" for line in levels) + "body:\n  - log: $a8\n")
+    result = run("validate", str(path), timeout=5)
+    assert result.exit_code == 2
+    assert f"{path}:" in result.stderr and "more than 100000 values once its aliases are expanded" in result.stderr
+
+
+def test_an_alias_bomb_in_a_parameter_is_refused(tmp_path):
+    plan = write(tmp_path, "p.yaml", "params: {x: 1}\nbody: [{log: $x}]\n")
+    value = "&a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"
+    for i in range(1, 6):
+        value = f"&a{i} [{value}, " + ", ".join([f"*a{i - 1}"] * 9) + "]"
+    result = run("run", str(plan), "-p", f"x={value}", timeout=5)
+    assert result.exit_code == 2 and "-p x" in result.stderr and "aliases" in result.stderr
+
+
+def test_nesting_deeper_than_the_limit_is_an_input_error(tmp_path):
+    path = tmp_path / "deep.yaml"
+    path.write_text("body:\n  - log: " + "[" * 10_000 + "]" * 10_000 + "\n")
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and "nested deeper than 100 levels" in result.stderr
+
+
+def test_a_null_key_in_an_object_is_reported_at_the_key(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - name: box
+            type: box
+            file: cube_small.urdf
+            ~: 3
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2 and f"{world}:6:5: None: unknown key" in result.stderr and "unknown key" in result.stderr
+
+
+def test_a_non_finite_mass_is_refused(tmp_path):
+    world = small_world(tmp_path).read_text().replace("position: [0.5, 0, 0.025]", "mass: .nan")
+    (tmp_path / "w.yaml").write_text(world)
+    result = run("validate", str(tmp_path / "w.yaml"))
+    assert result.exit_code == 2 and "w.yaml:4:57: mass: not a finite number: '.nan'" in result.stderr
+
+
+# -- `-p` values are parsed strictly ----------------------------------------------------------------------------
+
+
+def test_a_malformed_parameter_value_is_exit_2_before_anything_runs(tmp_path):
+    plan = write(tmp_path, "p.yaml", "params: {types: [milk]}\nbody: [{log: ran $types}]\n")
+    result = run("run", str(plan), "-p", "types=[milk")
+    assert result.exit_code == 2
+    assert "-p types:1:6: malformed YAML" in result.stderr
+    assert "quote a value meant as text" in result.stderr
+    assert "ran" not in result.stderr  # nothing ran
