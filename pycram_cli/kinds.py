@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 from .errors import did_you_mean
-from .schema import is_number, is_vector
+from .schema import is_number, is_vector, number_problem
 
 if TYPE_CHECKING:
     from .robots import RobotDescription
@@ -106,8 +106,15 @@ def _hint(value: Any, allowed: Sequence[str], what: str) -> str:
 # -- the checks --------------------------------------------------------------------------------
 
 
+def _range_hint(value: Any) -> str:
+    """' (numbers must be ...)' when `value` holds a number that is not usable, else ''."""
+    items = value if isinstance(value, (list, tuple)) else [value]
+    problem = next((number_problem(v) for v in items if number_problem(v)), None)
+    return f" ({problem})" if problem else ""
+
+
 def _position(value: Any, robots: Robots) -> str | None:
-    return None if is_vector(value, 3) else "expected a position [x, y, z]"
+    return None if is_vector(value, 3) else "expected a position [x, y, z]" + _range_hint(value)
 
 
 def _quaternion(value: Any, robots: Robots) -> str | None:
@@ -123,7 +130,7 @@ def _target(value: Any, robots: Robots) -> str | None:
         return None
     if isinstance(value, (list, tuple)) and len(value) == 2 and is_vector(value[0], 3) and is_vector(value[1], 4):
         return None  # a pose (position, orientation), from Python
-    return "expected an object name or a position [x, y, z]"
+    return "expected an object name or a position [x, y, z]" + _range_hint(value)
 
 
 def _arm(value: Any, robots: Robots) -> str | None:
@@ -142,11 +149,11 @@ def _grasp(value: Any, robots: Robots) -> str | None:
 
 
 def _number(value: Any, robots: Robots) -> str | None:
-    return None if is_number(value) else "expected a number"
+    return None if is_number(value) else "expected a number" + _range_hint(value)
 
 
 def _distance(value: Any, robots: Robots) -> str | None:
-    return None if is_number(value) and value > 0 else "expected a positive distance in metres"
+    return None if is_number(value) and value > 0 else "expected a positive distance in metres" + _range_hint(value)
 
 
 def _fraction(value: Any, robots: Robots) -> str | None:
@@ -163,7 +170,8 @@ def _types(value: Any, robots: Robots) -> str | None:
 
 
 def _camera(value: Any, robots: Robots) -> str | None:
-    return None if _name(value) or is_vector(value, 3) else "expected a link name or a position [x, y, z]"
+    return None if _name(value) or is_vector(value, 3) else ("expected a link name or a position [x, y, z]"
+                                                             + _range_hint(value))
 
 
 def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | None:

@@ -34,6 +34,8 @@ MAX_THREADS = 256
 #: attempts of a `retry` kept in the trace in full, at the start and at the end; those between are summarised
 RETRY_KEPT = 3
 
+#: every number a user gives (coordinates in metres, masses in kg, angles, distances): at most this large
+MAX_MAGNITUDE = 1_000_000.0
 #: `wait:` at most this many seconds (one day)
 MAX_WAIT = 86_400.0
 #: `retry: N` at most this many more attempts

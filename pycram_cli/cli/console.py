@@ -13,6 +13,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ..errors import InputError
+from ..jsonable import jsonable
 
 # Piped output is not cut to 80 columns: tables stay one row per line for grep and friends.
 out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 240)
@@ -62,7 +63,9 @@ def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any
 
 
 def emit_json(data: Any) -> None:
-    sys.stdout.write(json.dumps(data, indent=2, sort_keys=False) + "\n")
+    """Machine output: strict JSON (a non-finite number becomes null, never a bare NaN)."""
+    sys.stdout.write(json.dumps(jsonable(data, digits=None, nonfinite=None), indent=2, sort_keys=False,
+                                allow_nan=False) + "\n")
     sys.stdout.flush()
 
 

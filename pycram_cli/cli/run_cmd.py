@@ -15,7 +15,7 @@ from ..plan.trace import TraceNode, normalised, save
 from ..scenario import prepare
 from ..world.camera import default_camera, render, write_png
 from . import console
-from .options import gui_option, json_option, wait_for_window
+from .options import Number, gui_option, json_option, wait_for_window
 from .trace_cmd import PLAIN, build_tree, describe_node, find_node
 
 EXIT_FAILED = 1
@@ -123,7 +123,7 @@ class QuietView:
               help="Write the run's trace (JSON) to this file.")
 @click.option("--render", "render_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a PNG of the final scene (headless).")
-@click.option("--pace", type=click.FloatRange(min=0.0), default=None, metavar="SECONDS",
+@click.option("--pace", type=Number(0.0, 60.0), default=None, metavar="SECONDS",
               help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
 @json_option
 @gui_option

@@ -11,6 +11,7 @@ from rich.tree import Tree
 
 from ..plan import trace as traces
 from . import console
+from .options import Number
 
 STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "cancelled": ("⊘", "yellow"),
          "skipped": ("·", "dim"), "running": ("▶", "cyan"), "pending": ("○", "dim")}
@@ -172,8 +173,8 @@ def show(file: Path, no_timing: bool) -> None:
 @trace.command("diff")
 @click.argument("a", type=click.Path(path_type=Path))
 @click.argument("b", type=click.Path(path_type=Path))
-@click.option("--atol", type=click.FloatRange(min=0), default=1e-3, show_default=True,
-              help="Numbers closer than this are equal.")
+@click.option("--atol", type=Number(0.0, 1e6), default=1e-3, show_default=True,
+              help="Numbers closer than this are equal (a finite number, 0 or more).")
 @click.option("--json", "as_json", is_flag=True, help="The differences as JSON on stdout.")
 @click.pass_context
 def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -> None:

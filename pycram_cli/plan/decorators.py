@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import Location
 from ..failures import Failure, failure_class
+from ..limits import MAX_RETRIES
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, jsonable
@@ -56,6 +57,9 @@ class Retry(Node):
         if isinstance(count, bool) or not isinstance(count, int) or count < 0:
             parser.error(f"expected how many times to retry (a whole number, 0 or more), got {describe(count)}",
                          step.loc(head, True), key=head)
+            count = 0
+        elif count > MAX_RETRIES:
+            parser.error(f"at most {MAX_RETRIES} retries, got {count}", step.loc(head, True), key=head)
             count = 0
         on = parser.names(step["on"], step.loc("on", True), "on") if "on" in step else []
         recover = parser.steps(step["recover"], step.loc("recover", True), "recover") if "recover" in step else []

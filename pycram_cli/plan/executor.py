@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator, Mapping, Protocol, cast
 
 from ..failures import Failure
+from ..limits import MAX_WAIT
 from ..robots import description_for
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable
@@ -152,7 +153,7 @@ class Exec:
 
     def sleep(self, seconds: float) -> None:
         self.token.check()
-        self.run.scheduler.sleep(self.key, self.token, seconds)
+        self.run.scheduler.sleep(self.key, self.token, min(max(0.0, seconds), MAX_WAIT))
 
     def log(self, tn: Record, message: str) -> None:
         self.run.notify("log", _own(tn), message)

@@ -21,12 +21,14 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 """
 from __future__ import annotations
 
+import math
 import re
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
+from ..limits import MAX_WAIT
 from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
@@ -452,6 +454,16 @@ class SetStep(Node):
         return None
 
 
+def _seconds_problem(seconds: Any) -> str | None:
+    """Why a value cannot be waited for, or None: a finite number of seconds from 0 to MAX_WAIT."""
+    if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or not math.isfinite(seconds) \
+            or seconds < 0:
+        return f"expected a number of seconds (0 or more), got {describe(jsonable(seconds))}"
+    if seconds > MAX_WAIT:
+        return f"at most {MAX_WAIT:g} seconds (one day) can be waited for, got {seconds:g}"
+    return None
+
+
 @node_type("wait")
 class WaitStep(Node):
     LEAF = True
@@ -464,10 +476,8 @@ class WaitStep(Node):
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         seconds = step[head]
-        if not is_reference(seconds) and (isinstance(seconds, bool) or not isinstance(seconds, (int, float))
-                                           or seconds < 0):
-            parser.error(f"expected a number of seconds (0 or more), got {describe(seconds)}", step.loc(head, True),
-                         key=head)
+        if not is_reference(seconds) and _seconds_problem(seconds):
+            parser.error(_seconds_problem(seconds) or "", step.loc(head, True), key=head)
             return None
         return cls(head, step.loc(head), seconds, step.loc(head, True))
 
@@ -476,8 +486,9 @@ class WaitStep(Node):
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)
-        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or seconds < 0:
-            raise Failure(f"wait: expected a number of seconds, got {display(seconds)}")
+        problem = _seconds_problem(seconds)
+        if problem:
+            raise Failure(f"wait: {problem}")
         tn.info["seconds"] = jsonable(seconds)
         ex.sleep(float(seconds))
         return None

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, Iterator
 from ..errors import InputError, Location
 from ..files import read_text, write_atomic
 from ..limits import MAX_TRACE_BYTES
+from . import trace_schema
 from .context import jsonable
 
 if TYPE_CHECKING:
@@ -173,18 +174,23 @@ def save(data: dict[str, Any], path: str | Path, timing: bool = True) -> None:
 
 
 def load(path: str | Path) -> dict[str, Any]:
+    """Read a saved trace, checked against the trace schema of its version (`trace_schema.py`).
+
+    Every problem is an input error at its place in the file: a missing file, malformed JSON,
+    another format or version, a field of the wrong kind or missing ("which entry, what is missing").
+    """
     path = Path(path)
     text = read_text(path, MAX_TRACE_BYTES, "trace file")
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not a JSON trace: {exc.msg}", Location(str(path), exc.lineno, exc.colno)) from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT or not isinstance(data.get("root"), dict):
+    data = trace_schema.parse(text, str(path))
+    if not isinstance(data, dict) or data.get("format") != FORMAT or "root" not in data:
         raise InputError(f"not a pycram trace (expected a JSON object with \"format\": \"{FORMAT}\" and a \"root\")",
                          Location(str(path), 1, 1), suggestion="write one with `pycram run PLAN --trace FILE`")
     if data.get("version") != VERSION:
-        raise InputError(f"unsupported trace version {data.get('version')!r} (this pycram reads version {VERSION})",
-                         Location(str(path), 1, 1))
+        version = data.get("version")
+        shown = version if isinstance(version, (int, float, str)) or version is None else "?"
+        raise InputError(f"unsupported trace version {shown!r} (this pycram reads version {VERSION})",
+                         trace_schema.location(text, str(path), ("version",)), key="version")
+    trace_schema.check(data, text, str(path))
     return data
 
 

@@ -184,3 +184,101 @@ def test_a_malformed_parameter_value_is_exit_2_before_anything_runs(tmp_path):
     assert "-p types:1:6: malformed YAML" in result.stderr
     assert "quote a value meant as text" in result.stderr
     assert "ran" not in result.stderr  # nothing ran
+
+
+# -- corrupt traces: checked against the trace's own schema (with its version) --------------------------------
+
+
+def saved_trace(tmp_path: Path) -> tuple[Path, dict]:
+    import json
+
+    plan = a_plan(tmp_path, """
+        - log: hello
+        - try_all: [{fail: PerceptionFailure}, {log: b}]
+    """)
+    out = tmp_path / "t.json"
+    assert run("run", str(plan), "--trace", str(out)).exit_code == 0
+    data = json.loads(out.read_text())
+    data["final_state"]["attachments"] = [{"parent": "floor", "child": "box", "parent_link": "planeLink",
+                                           "child_link": "baseLink"}]
+    return out, data
+
+
+def test_a_trace_whose_attachment_lacks_parent_says_which_entry_and_what_is_missing(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    del data["final_state"]["attachments"][0]["parent"]
+    out.write_text(json.dumps(data, indent=2))
+    line = next(i for i, text in enumerate(out.read_text().splitlines(), 1) if '"child": "box"' in text) - 1
+    for command in (["trace", "show", str(out)], ["trace", "diff", str(out), str(out)]):
+        result = run(*command)
+        assert result.exit_code == 2, result.output
+        assert f"{out}:{line}:7: final_state.attachments[0]: an attachment needs 'parent'" in result.stderr
+
+
+def test_corrupt_traces_are_input_errors_never_internal_ones(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    broken = {
+        "a node without status": lambda d: d["root"]["children"][0].pop("status"),
+        "a designator record that is a string": lambda d: d["root"]["children"][0].update(designator="x"),
+        "children that are not a list": lambda d: d["root"].update(children=3),
+        "a position of two numbers": lambda d: d["final_state"]["objects"]["box"].update(position=[1, 2]),
+        "an unknown status": lambda d: d["root"].update(status="exploded"),
+        "another version": lambda d: d.update(version=99),
+        "a failure without type": lambda d: d["root"]["children"][1].update(failure={"message": "m"}),
+    }
+    for what, change in broken.items():
+        copy = json.loads(json.dumps(data))
+        change(copy)
+        out.write_text(json.dumps(copy))
+        result = run("trace", "show", str(out))
+        assert result.exit_code == 2, (what, result.output)
+        assert f"{out}:1:" in result.stderr, (what, result.stderr)
+    out.write_text(json.dumps(data).replace('"status": "succeeded"', '"status": NaN', 1))
+    result = run("trace", "show", str(out))
+    assert result.exit_code == 2 and "not a finite number: NaN" in result.stderr
+    out.write_text("[" * 100_000 + "]" * 100_000)
+    assert run("trace", "show", str(out)).exit_code == 2
+    out.write_text(json.dumps(data)[:1000])
+    assert "not a JSON trace" in run("trace", "show", str(out)).stderr
+
+
+def test_trace_diff_json_never_prints_a_bare_nan_and_refuses_a_nan_tolerance(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    result = run("trace", "diff", str(out), str(out), "--atol", "nan")
+    assert result.exit_code == 2 and "--atol" in result.stderr
+    other = tmp_path / "other.json"
+    data["final_state"]["objects"]["box"]["position"][0] += 1
+    other.write_text(json.dumps(data))
+    result = run("trace", "diff", str(out), str(other), "--json")
+    assert result.exit_code == 1
+    assert "NaN" not in result.stdout and json.loads(result.stdout)["same"] is False
+
+
+# -- numbers outside what the runtime can do ------------------------------------------------------------------
+
+
+def test_numbers_beyond_what_the_runtime_can_do_are_input_errors(tmp_path):
+    plan = a_plan(tmp_path, """
+        - wait: 1.0e+10
+        - retry: 10000000000
+          body: [{log: x}]
+        - moving: {target: [1.0e+300, 0, 0]}
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    assert f"{plan}:4:11: wait: at most 86400 seconds (one day) can be waited for" in result.stderr
+    assert f"{plan}:5:12: retry: at most 1000000000 retries" in result.stderr
+    assert "numbers must be between -1e+06 and 1e+06" in result.stderr
+    assert run("run", str(plan), "--pace", "nan").exit_code == 2
+
+
+def test_a_nan_wait_is_refused(tmp_path):
+    plan = a_plan(tmp_path, "- wait: .nan\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2 and "wait: not a finite number: '.nan'" in result.stderr
