@@ -181,11 +181,26 @@ def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | Non
             whose = f"the {arm} arm of {robots.label}" if arm else robots.label
             return f"{whose} has no pose '{value}' ({_hint(value, poses, 'pose')})"
         return None
+    joints = _arm_joints(robots, arm)
     if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):
+        if joints is not None and len(value) != len(joints):
+            return f"the {arm} arm has {len(joints)} joints ({', '.join(joints)}), got {len(value)} values"
         return None
     if isinstance(value, Mapping) and value and all(isinstance(k, str) and is_number(v) for k, v in value.items()):
+        unknown = [k for k in value if joints is not None and k not in joints]
+        if unknown:
+            return f"'{unknown[0]}' is not a joint of the {arm} arm ({_hint(unknown[0], joints or [], 'joint')})"
         return None
-    return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value"
+    return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value" + _range_hint(
+        list(value.values()) if isinstance(value, Mapping) else value)
+
+
+def _arm_joints(robots: Robots, arm: str | None) -> list[str] | None:
+    """The joints of `arm` when one robot is known and has that arm, else None (not checked)."""
+    if arm is None or not robots.known or len(robots.descriptions) != 1:
+        return None
+    arms = robots.descriptions[0].arms
+    return list(arms[arm].joints) if arm in arms else None
 
 
 def _arm_configs(value: Any, robots: Robots) -> str | None:

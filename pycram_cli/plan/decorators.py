@@ -239,8 +239,8 @@ class ForEach(Node):
 
     def check(self, v: "Validator") -> None:
         v.refs(self.items, self.items_where)
-        if self.var:
-            v.define(self.var, self.var_where)
+        if self.var:  # over a literal list, the variable's values are known before the run
+            v.define(self.var, self.var_where, self.items if isinstance(self.items, list) else None)
         v.check_steps(self.body)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:

@@ -70,6 +70,7 @@ class WorldSpec:
     description: str = ""
     robot: ObjectSpec | None = None  # the world's robot: the first object of type robot
     robot_description: "RobotDescription | None" = None
+    models: dict[str, ModelInfo] = field(default_factory=dict)  # each object's links and joints, by object name
 
     @property
     def object_names(self) -> list[str]:
@@ -162,7 +163,7 @@ def parse_world(path: Path) -> WorldSpec:
     robot_description = _robot_description(robot, models.get(robot.name), errors) if robot is not None else None
     raise_if_any(errors)
     return WorldSpec(path, gravity, objects, description if isinstance(description, str) else "", robot,
-                     robot_description)
+                     robot_description, {o.name: models[o.name] for o in objects if o.name in models})
 
 
 def _robot_description(robot: ObjectSpec, model: ModelInfo | None, errors: list[InputError]) -> RobotDescription | None:
@@ -187,6 +188,11 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
     check_keys(item, OBJECT_KEYS, OBJECT_REQUIRED, f"object '{item.get('name', '?')}'", errors)
     usable = all(key in item and expect(item[key], str, item.loc(key, True), key, errors) for key in OBJECT_REQUIRED)
     if not usable:
+        return None
+    empty = [key for key in OBJECT_REQUIRED if not item[key].strip()]
+    for key in empty:
+        errors.append(InputError(f"the object's {key} must not be empty", item.loc(key, True), key=key))
+    if empty:
         return None
     name, file_text = item["name"], item["file"]
     spec = ObjectSpec(name=name, type=item["type"], file=Path(file_text), file_text=file_text, where=item.where)
@@ -302,6 +308,7 @@ def _parse_attach(value: Any, where: Location, errors: list[InputError]) -> list
 
 def _check_attachments(objects: list[ObjectSpec], models: dict[str, ModelInfo], errors: list[InputError]) -> None:
     names = [o.name for o in objects]
+    _check_attachment_cycles(objects, errors)
     for obj in objects:
         for att in obj.attach:
             where = att.where  # type: ignore[attr-defined]
@@ -315,3 +322,37 @@ def _check_attachments(objects: list[ObjectSpec], models: dict[str, ModelInfo], 
                 if link is not None and info is not None and link not in info.links:
                     errors.append(InputError(f"object '{owner}' has no link '{link}'", where, key="attach",
                                              suggestion=did_you_mean(link, info.links)))
+
+
+def _check_attachment_cycles(objects: list[ObjectSpec], errors: list[InputError]) -> None:
+    """An object cannot follow itself through others (milk attached to cereal and cereal to milk)."""
+    parents = {o.name: [a.to for a in o.attach if a.to != o.name] for o in objects}
+    by_name = {o.name: o for o in objects}
+    reported: set[frozenset[str]] = set()
+    for start in parents:
+        path = [start]
+        seen = {start}
+        stack = [(start, iter(parents.get(start, [])))]
+        while stack:
+            name, followers = stack[-1]
+            following = next(followers, None)
+            if following is None:
+                stack.pop()
+                seen.discard(path.pop())
+                continue
+            if following == start:
+                cycle = frozenset(path)
+                if cycle not in reported:
+                    reported.add(cycle)
+                    loop = " -> ".join([*path, start])
+                    obj = by_name[path[-1]]
+                    att = next(a for a in obj.attach if a.to == start)
+                    errors.append(InputError(f"attachments go round in a circle: {loop} (each object would follow "
+                                             "itself)", att.where, key="attach",  # type: ignore[attr-defined]
+                                             suggestion="attach each object to one that does not follow it"))
+                continue
+            if following in seen or following not in parents:
+                continue
+            seen.add(following)
+            path.append(following)
+            stack.append((following, iter(parents.get(following, []))))

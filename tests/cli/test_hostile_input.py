@@ -282,3 +282,55 @@ def test_a_nan_wait_is_refused(tmp_path):
     plan = a_plan(tmp_path, "- wait: .nan\n")
     result = run("validate", str(plan))
     assert result.exit_code == 2 and "wait: not a finite number: '.nan'" in result.stderr
+
+
+# -- validation finds what the run would find out later -----------------------------------------------------
+
+
+def test_object_link_and_joint_names_in_every_slot_are_checked_against_the_world(tmp_path):
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {thing: fridge}
+        body:
+          - looking: {object: $thing}
+          - accessing: {drawer-handle: sink_area_left_upper_drawer_handl, part-of: kitchen,
+                        drawer-joint: sink_area_left_upper_drawer_main_joit}
+          - accessing: {drawer-handle: sink_area_left_upper_drawer_handle, part-of: kitchn,
+                        drawer-joint: sink_area_left_upper_drawer_main_joint}
+          - for_each: [milk, fridge2]
+            as: o
+            do: [{looking: {object: $o}}]
+          - supporting: {a: kitchen, b: milk, link: kitchen_island_surfac}
+          - visible: {object: milk, from: wide_stereo_optical_fram}
+          - move-arm-joints: {arms: {left: {l_elbow_flex_jont: 0.1}}}
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    expected = [
+        "5:23: object: 'object': the world has no object 'fridge' ($thing)",
+        "6:32: drawer-handle: 'drawer-handle': object 'kitchen' has no link 'sink_area_left_upper_drawer_handl' "
+        "(did you mean 'sink_area_left_upper_drawer_handle'?)",
+        "7:31: drawer-joint: 'drawer-joint': object 'kitchen' has no movable joint",
+        "8:77: part-of: 'part-of': the world has no object 'kitchn' (did you mean 'kitchen'?)",
+        "12:29: object: 'object': the world has no object 'fridge2' ($o)",
+        "13:45: link: 'link': object 'kitchen' has no link 'kitchen_island_surfac'",
+        "14:35: from: 'from': robot 'pr2' has no link 'wide_stereo_optical_fram'",
+        "'l_elbow_flex_jont' is not a joint of the left arm (did you mean 'l_elbow_flex_joint'?)",
+    ]
+    for line in expected:
+        assert line in result.stderr, (line, result.stderr)
+    result = run("run", str(plan), "-p", "thing=milk")
+    assert "no object 'fridge' ($thing)" not in result.stderr and result.exit_code == 2
+
+
+def test_attachment_cycles_and_empty_names_in_worlds_are_refused(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: milk, type: milk, file: objects/milk.obj, attach: [cereal]}
+          - {name: cereal, type: cereal, file: objects/milk.obj, attach: [{to: milk}]}
+          - {name: "", type: bowl, file: objects/bowl.obj}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:4:67: attach: attachments go round in a circle: milk -> cereal -> milk" in result.stderr
+    assert f"{world}:5:12: name: the object's name must not be empty" in result.stderr
