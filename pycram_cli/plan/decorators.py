@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import Location
 from ..failures import Failure, failure_class
-from ..limits import MAX_RETRIES
+from ..limits import MAX_RETRIES, RETRY_KEPT
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, jsonable
@@ -79,8 +79,10 @@ class Retry(Node):
         types = [name for name, _ in self.on] or ["Failure"]
         tn.info["retries"] = 0
         attempt = 1
+        groups: dict[int, list[Record]] = {}  # the trace nodes of each attempt (and its recovery)
         while True:
             child = tn.child(f"attempt {attempt}", "attempt", self.where)
+            groups[attempt] = [child]
             try:
                 return _run_part(ex, self.body, child)
             except Failure as exc:
@@ -88,7 +90,13 @@ class Retry(Node):
                     raise
             ex.token.check()
             if self.recover:
-                _run_part(ex, self.recover, tn.child(f"recover {attempt}", "recover", self.where))
+                groups[attempt].append(tn.child(f"recover {attempt}", "recover", self.where))
+                _run_part(ex, self.recover, groups[attempt][-1])
+            # the trace keeps the first and the last RETRY_KEPT attempts; those between are counted in a summary
+            old = attempt - RETRY_KEPT
+            if old > RETRY_KEPT:
+                for record in groups.pop(old):
+                    tn.summarise(record, "folded attempts")
             attempt += 1
             tn.info["retries"] = attempt - 1
 

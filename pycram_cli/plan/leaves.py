@@ -28,13 +28,13 @@ from typing import TYPE_CHECKING, Any
 from ..designators import DESIGNATORS, check_designator, perform
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
-from ..limits import MAX_WAIT
+from ..limits import MAX_CALL_DEPTH, MAX_WAIT
 from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
 from .resources import ResourceAnalysis
-from .runtime import Record, Runtime
+from .runtime import LimitExceeded, Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
@@ -253,8 +253,6 @@ class Condition:
 
 
 # -- call -----------------------------------------------------------------------------------------------------------
-MAX_CALL_DEPTH = 64  # nested subplan calls before a run gives up (endless recursion)
-
 
 @node_type("call")
 class CallStep(Node):
@@ -308,7 +306,8 @@ class CallStep(Node):
         values = self.bound_args(ex)
         tn.info["call"] = {"plan": self.name, "args": jsonable(values)}
         if ex.depth >= MAX_CALL_DEPTH:
-            raise Failure(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (endless recursion?)")
+            raise LimitExceeded(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (the limit; endless "
+                                "recursion?)", tn.path)
         inner = ex.derive(frame=Frame(values, parent=ex.globals), depth=ex.depth + 1)
         value = inner.seq(sub.body, tn)
         return inner.evaluate(sub.returns) if sub.has_returns else None

@@ -208,8 +208,7 @@ class _Checker:
         self.typed(value, path, list, "a list")
 
     def folded(self, value: Any, path: Path) -> None:
-        self.fields(value, path, "a summary of folded attempts", {"attempts": self.count},
-                    {"first": self.count, "last": self.count, "failures": self.obj})
+        self.fields(value, path, "a summary of folded steps", {"steps": self.count}, {"failures": self.obj})
 
     def final_state(self, value: Any, path: Path) -> None:
         if not self.fields(value, path, "the final state", {}, {"objects": self.obj,
