@@ -184,7 +184,7 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
 #: bottom to top; a module may import its own layer and the layers below it
 LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "designators", "plan", "scenario", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
-SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "limits", "files"}
+SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "limits", "files", "interrupts"}
 
 
 def _layer_of(module: str) -> str | None:

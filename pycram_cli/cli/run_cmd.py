@@ -10,6 +10,7 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
+from .. import interrupts
 from ..files import check_writable
 from ..plan.trace import TraceNode, normalised, save
 from ..scenario import prepare
@@ -88,7 +89,7 @@ class Paced:
     def finished(self, node: TraceNode) -> None:
         self.view.finished(node)
         if "designator" in node.info:
-            time.sleep(self.seconds)
+            interrupts.pause(self.seconds)  # wakes at once on Ctrl-C
 
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
@@ -162,19 +163,22 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         else:
             result = scenario.run(world, view)
         duration = time.perf_counter() - started
+        interrupted = result.status == "interrupted"
         if trace_file is not None:
             save(result.trace, trace_file)
-        if render_file is not None:
+        if render_file is not None and not interrupted:
             write_png(render_file, render(world, default_camera(world), 960, 720), key="render")
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace}))
         else:
             _summary(plan, result, duration, trace_file)
-        if gui:
+        if gui and not interrupted:
             wait_for_window(world)
     finally:
         world.exit()
+    if result.status == "interrupted":
+        ctx.exit(interrupts.exit_code() or 130)
     if not result.succeeded:
         ctx.exit(EXIT_FAILED)
 
@@ -183,6 +187,9 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None) -
     name = plan.path.name
     if result.succeeded:
         console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
+    elif result.status == "interrupted":
+        console.error(f"plan {name} {(result.failure or {}).get('message', 'interrupted')} after {duration:.2f} s"
+                      + (" (the trace records where)" if trace_file is not None else ""))
     else:
         failure = result.failure or {}
         node = find_node(result.trace["root"], failure.get("path", ""))

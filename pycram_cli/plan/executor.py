@@ -15,6 +15,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Iterator, Mapping, Protocol, cast
 
+from .. import interrupts
 from ..failures import Failure
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
@@ -44,7 +45,7 @@ class InternalError(Exception):
 
 @dataclass
 class RunResult:
-    status: str                       # "succeeded" or "failed" (or "cancelled" when interrupted)
+    status: str                       # succeeded, failed, interrupted (by a signal) or cancelled
     failure: dict[str, Any] | None
     trace: dict[str, Any]
     duration: float
@@ -76,6 +77,7 @@ class Run:
         self._observer_lock = threading.Lock()
         self.threads = 0  # branch threads alive (at most MAX_THREADS)
         self.limit_error: LimitExceeded | None = None
+        self.interrupted: str | None = None  # the signal that stopped the run, if one did
         self._threads_lock = threading.Lock()
 
     def thread_started(self, path: str) -> None:
@@ -108,11 +110,17 @@ class Run:
     def cancel(self, reason: str = "interrupted") -> None:
         self.token.cancel(reason)
 
+    def interrupt(self, signal_name: str = "SIGINT") -> None:
+        """Stop the run because of a signal (Ctrl-C): every branch is cancelled; the run ends `interrupted`."""
+        self.interrupted = signal_name
+        self.token.cancel(f"interrupted by {signal_name}")
+
     def execute(self) -> RunResult:
         ex = Exec(self, Frame(parent=self.globals), self.token, ())
         status, failure, value, error = "succeeded", None, None, None
         try:
-            value = ex.run_body(self.plan.body, self.root, self.plan.where)
+            with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
+                value = ex.run_body(self.plan.body, self.root, self.plan.where)
         except Failure as exc:
             status, failure = "failed", failure_record(exc, self.root.path)
         except Cancelled as exc:
@@ -124,6 +132,10 @@ class Run:
             status, failure, error = "failed", failure_record(self.limit_error, self.limit_error.path), None
             self.root.status = "failed"
             _mark(self.root, "cancelled")
+        elif self.interrupted is not None and status != "succeeded":
+            status = "interrupted"
+            failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
+            _mark(self.root, "cancelled")
         duration = self.now()
         trace = {
             "format": FORMAT, "version": VERSION,
@@ -134,6 +146,8 @@ class Run:
             "final_state": final_state(self.world),
             "timing": {"duration": duration},
         }
+        if status == "interrupted":
+            trace["interrupted"] = {"signal": self.interrupted}
         steps = sum(1 for n in self.root.walk() if not n.children and n.status in ("succeeded", "failed"))
         return RunResult(status, failure, trace, duration, value, steps, error)
 
