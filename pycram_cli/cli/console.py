@@ -16,8 +16,9 @@ from ..errors import InputError
 from ..jsonable import jsonable
 
 # Piped output is not cut to 80 columns: tables stay one row per line for grep and friends.
-out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 240)
-err = Console(stderr=True, highlight=False, soft_wrap=True, width=None if sys.stderr.isatty() else 240)
+# No emoji codes: `file:100:3` must not print as `file💯3`.
+out = Console(highlight=False, soft_wrap=True, emoji=False, width=None if sys.stdout.isatty() else 240)
+err = Console(stderr=True, highlight=False, soft_wrap=True, emoji=False, width=None if sys.stderr.isatty() else 240)
 
 
 def info(message: str) -> None:

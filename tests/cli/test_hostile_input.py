@@ -334,3 +334,10 @@ def test_attachment_cycles_and_empty_names_in_worlds_are_refused(tmp_path):
     assert result.exit_code == 2
     assert f"{world}:4:67: attach: attachments go round in a circle: milk -> cereal -> milk" in result.stderr
     assert f"{world}:5:12: name: the object's name must not be empty" in result.stderr
+
+
+def test_a_location_on_line_100_is_printed_as_it_is(tmp_path):
+    # rich read ":100:" as an emoji code and printed the location as "file💯3"
+    plan = a_plan(tmp_path, "".join("- log: x\n" for _ in range(97)) + "- lgo: y\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2 and f"{plan}:100:5: lgo: unknown node type 'lgo'" in result.stderr
