@@ -14,7 +14,9 @@ import pytest
 from scenes import kitchen_world
 from test_restore import arrange
 
+from pycram_cli import Object
 from pycram_cli.reasoning import blocking, contact, occluding, reachable, stable, supporting, visible
+from pycram_cli.world.model_files import simulator_models_dir
 
 QUERIES = {
     "stable": lambda w, o: stable(o("cereal")),
@@ -73,3 +75,17 @@ def test_a_queried_world_simulates_exactly_like_a_twin_never_queried(scene):
         for body, x, y in zip(names, got, expected):
             drift = float(np.max(np.abs(x - y)))
             assert drift <= 1e-9, f"after {name} (scene {scene}), {body} drifted by {drift:.3g}"
+
+
+def test_the_prospection_copy_follows_objects_that_come_and_go(world, data_dir):
+    floor = Object("floor", "environment", simulator_models_dir() / "plane.urdf", world=world)
+    box = Object("box", "box", data_dir / "cube.obj", (0, 0, 0.5), world=world)
+    assert not stable(box)  # in the air: it falls (on the copy)
+    assert box.get_position() == (0.0, 0.0, 0.5)
+    other = Object("other", "box", data_dir / "cube.obj", (1, 0, 0.5), world=world)
+    twin = world.prospection()
+    assert [o.name for o in twin.copy.objects] == ["floor", "box", "other"]
+    box.remove()
+    assert not stable(other)
+    assert [o.name for o in world.prospection().copy.objects] == ["floor", "other"]
+    assert floor in world.objects and len(world.objects) == 2
