@@ -25,6 +25,7 @@ def parse_assignments(items: Iterable[str], option: str = "-p") -> dict[str, Any
         try:
             value = load_yaml_text(text, f"{option} {name}") if text.strip() else ""
         except InputError as exc:
+            exc.key = exc.key or name
             exc.suggestion = exc.suggestion or f"quote a value meant as text: {option} '{name}=\"{text}\"'"
             errors.append(exc)
             continue

@@ -181,7 +181,7 @@ def test_a_malformed_parameter_value_is_exit_2_before_anything_runs(tmp_path):
     plan = write(tmp_path, "p.yaml", "params: {types: [milk]}\nbody: [{log: ran $types}]\n")
     result = run("run", str(plan), "-p", "types=[milk")
     assert result.exit_code == 2
-    assert "-p types:1:6: malformed YAML" in result.stderr
+    assert "-p types:1:6: types: malformed YAML" in result.stderr
     assert "quote a value meant as text" in result.stderr
     assert "ran" not in result.stderr  # nothing ran
 
