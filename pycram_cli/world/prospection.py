@@ -30,27 +30,29 @@ class Prospection:
         self.world = world
         self.copy = BulletWorld(mode="direct", gravity=world.gravity, _hidden=True)
         p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=self.copy.client_id)
-        self._pairs: list[tuple[Object, Object]] = []
+        self._pairs: list[tuple[Object, Object]] = []  # (object, its copy), in the world's order
+        self._copies: dict[int, Object] = {}  # by id() of the object (the pairs keep both alive)
+        self._originals: dict[int, Object] = {}
 
     # -- the copies -----------------------------------------------------------------------------------
     def copy_of(self, obj: Object) -> Object:
         """The copy of `obj` (the world must be in sync: see `sync`)."""
-        for original, copy in self._pairs:
-            if original is obj:
-                return copy
-        raise KeyError(f"object '{obj.name}' has no copy in the prospection world")
+        try:
+            return self._copies[id(obj)]
+        except KeyError:
+            raise KeyError(f"object '{obj.name}' has no copy in the prospection world") from None
 
     def original_of(self, copy: Object) -> Object:
-        for original, twin in self._pairs:
-            if twin is copy:
-                return original
-        raise KeyError(f"'{copy.name}' is not a copy in this prospection world")
+        try:
+            return self._originals[id(copy)]
+        except KeyError:
+            raise KeyError(f"'{copy.name}' is not a copy in this prospection world") from None
 
     def _rebuild(self) -> None:
         """Copies of exactly the world's objects, in its order (made again when objects came or went)."""
         for _, copy in self._pairs:
             copy.remove()
-        self._pairs = []
+        self._pairs, self._copies, self._originals = [], {}, {}
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the world warned about its models already
             for obj in self.world.objects:
@@ -58,6 +60,8 @@ class Prospection:
                 copy = Object(obj.name, obj.type, obj.path, position, orientation, world=self.copy,
                               color=obj._color, fixed=obj.fixed, mass=obj._mass)
                 self._pairs.append((obj, copy))
+        self._copies = {id(obj): copy for obj, copy in self._pairs}
+        self._originals = {id(copy): obj for obj, copy in self._pairs}
 
     # -- keeping in sync -----------------------------------------------------------------------------
     def sync(self, objects: "list[Object] | None" = None, velocities: bool = True) -> None:
@@ -105,7 +109,7 @@ class Prospection:
         p.performCollisionDetection(physicsClientId=client)
 
     def _sync_attachments(self) -> None:
-        copies = {id(original): copy for original, copy in self._pairs}
+        copies = self._copies
         for _, copy in self._pairs:
             copy.attachments.clear()
         for original, _ in self._pairs:
@@ -121,4 +125,4 @@ class Prospection:
 
     def close(self) -> None:
         self.copy.exit()
-        self._pairs = []
+        self._pairs, self._copies, self._originals = [], {}, {}
