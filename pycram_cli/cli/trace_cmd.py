@@ -47,6 +47,10 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
         parts.append(f"“{node['message']}”")
     if "caught" in node:
         parts.append(f"caught {node['caught'].get('type')}")
+    if isinstance(node.get("folded"), dict):
+        folded = node["folded"]
+        counts = "; ".join(f"{text} ×{count}" for text, count in (folded.get("failures") or {}).items())
+        parts.append(f"{folded.get('steps')} entries folded" + (f" ({counts})" if counts else ""))
     if "retries" in node and node["retries"]:
         parts.append(f"{node['retries']} retr{'y' if node['retries'] == 1 else 'ies'}")
     if "bound" in node:
