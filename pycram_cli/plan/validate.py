@@ -141,8 +141,8 @@ class Validator:
         ref = Ref.parse(match.group(1))
         if ref.name in self.known:
             bases = self.known[ref.name]
-        elif ref.name not in self.defined and ref.name in self.values:
-            bases = [self.values[ref.name]]
+        elif ref.name in self.values and ref.name not in self.defined and not self.bound_count.get(ref.name):
+            bases = [self.values[ref.name]]  # a parameter no step of this body rebinds
         else:
             return None
         found = []
