@@ -12,6 +12,7 @@ import numpy as np
 import pybullet as p
 
 from ..files import write_atomic
+from ..limits import MAX_MAGNITUDE
 
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
@@ -91,6 +92,8 @@ def parse_vector(text: str, what: str) -> tuple[float, float, float]:
         x, y, z = (float(s) for s in parts)
     except ValueError:
         raise ValueError(f"{what}: expected three numbers, got {text!r}") from None
+    if not all(math.isfinite(v) and abs(v) <= MAX_MAGNITUDE for v in (x, y, z)):
+        raise ValueError(f"{what}: numbers must be finite and at most {MAX_MAGNITUDE:g} in size, got {text!r}")
     return (x, y, z)
 
 
@@ -99,4 +102,7 @@ def parse_camera(text: str) -> Camera:
     eye, sep, target = text.partition(":")
     if not sep:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, got {text!r}")
-    return Camera(parse_vector(eye, "camera eye"), parse_vector(target, "camera target"))
+    camera = Camera(parse_vector(eye, "camera eye"), parse_vector(target, "camera target"))
+    if math.dist(camera.eye, camera.target) < 1e-6:
+        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
+    return camera
