@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 import os
@@ -202,6 +203,19 @@ def describe_urdf(urdf: Path) -> ModelInfo:
 
 
 def describe_model(path: Path) -> ModelInfo:
-    if path.suffix.lower() in MESH_SUFFIXES:
-        return ModelInfo([path.stem], {})
-    return describe_urdf(path)
+    """The names in a model file (a mesh is read too, so that a broken one is found before anything runs).
+
+    Remembered per file as long as it is unchanged (same size and modification time)."""
+    info = os.stat(path)
+    if info.st_size > MAX_MODEL_BYTES:
+        raise ValueError(f"the file is larger than {MAX_MODEL_BYTES // (1 << 20)} MiB")
+    return _describe(str(path), info.st_mtime_ns, info.st_size)
+
+
+@functools.lru_cache(maxsize=64)
+def _describe(path: str, mtime_ns: int, size: int) -> ModelInfo:
+    model = Path(path)
+    if model.suffix.lower() in MESH_SUFFIXES:
+        read_mesh(model)
+        return ModelInfo([model.stem], {})
+    return describe_urdf(model)

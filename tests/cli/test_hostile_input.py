@@ -341,3 +341,17 @@ def test_a_location_on_line_100_is_printed_as_it_is(tmp_path):
     plan = a_plan(tmp_path, "".join("- log: x\n" for _ in range(97)) + "- lgo: y\n")
     result = run("validate", str(plan))
     assert result.exit_code == 2 and f"{plan}:100:5: lgo: unknown node type 'lgo'" in result.stderr
+
+
+def test_a_broken_mesh_is_found_by_validation_not_by_the_run(tmp_path):
+    (tmp_path / "empty.obj").write_text("")
+    (tmp_path / "short.obj").write_text("v 1 2\nf 1 2 3\n")
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: a, type: box, file: empty.obj}
+          - {name: b, type: box, file: short.obj}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:3:32: file: cannot read model file empty.obj: the mesh has no triangles" in result.stderr
+    assert "a vertex needs three coordinates" in result.stderr
