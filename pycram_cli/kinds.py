@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 from .errors import did_you_mean
-from .schema import is_number, is_vector
+from .schema import is_number, is_vector, number_problem
 
 
 def arm_phrase(name: str) -> str:
@@ -111,8 +111,15 @@ def _hint(value: Any, allowed: Sequence[str], what: str) -> str:
 # -- the checks --------------------------------------------------------------------------------
 
 
+def _range_hint(value: Any) -> str:
+    """' (numbers must be ...)' when `value` holds a number that is not usable, else ''."""
+    items = value if isinstance(value, (list, tuple)) else [value]
+    problem = next((number_problem(v) for v in items if number_problem(v)), None)
+    return f" ({problem})" if problem else ""
+
+
 def _position(value: Any, robots: Robots) -> str | None:
-    return None if is_vector(value, 3) else "expected a position [x, y, z]"
+    return None if is_vector(value, 3) else "expected a position [x, y, z]" + _range_hint(value)
 
 
 def _quaternion(value: Any, robots: Robots) -> str | None:
@@ -128,7 +135,7 @@ def _target(value: Any, robots: Robots) -> str | None:
         return None
     if isinstance(value, (list, tuple)) and len(value) == 2 and is_vector(value[0], 3) and is_vector(value[1], 4):
         return None  # a pose (position, orientation), from Python
-    return "expected an object name or a position [x, y, z]"
+    return "expected an object name or a position [x, y, z]" + _range_hint(value)
 
 
 def _arm(value: Any, robots: Robots) -> str | None:
@@ -147,11 +154,11 @@ def _grasp(value: Any, robots: Robots) -> str | None:
 
 
 def _number(value: Any, robots: Robots) -> str | None:
-    return None if is_number(value) else "expected a number"
+    return None if is_number(value) else "expected a number" + _range_hint(value)
 
 
 def _distance(value: Any, robots: Robots) -> str | None:
-    return None if is_number(value) and value > 0 else "expected a positive distance in metres"
+    return None if is_number(value) and value > 0 else "expected a positive distance in metres" + _range_hint(value)
 
 
 def _fraction(value: Any, robots: Robots) -> str | None:
@@ -168,7 +175,8 @@ def _types(value: Any, robots: Robots) -> str | None:
 
 
 def _camera(value: Any, robots: Robots) -> str | None:
-    return None if _name(value) or is_vector(value, 3) else "expected a link name or a position [x, y, z]"
+    return None if _name(value) or is_vector(value, 3) else ("expected a link name or a position [x, y, z]"
+                                                             + _range_hint(value))
 
 
 def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | None:
@@ -178,11 +186,26 @@ def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | Non
             whose = f"{arm_phrase(arm)} of {robots.label}" if arm else robots.label
             return f"{whose} has no pose '{value}' ({_hint(value, poses, 'pose')})"
         return None
+    joints = _arm_joints(robots, arm)
     if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):
+        if joints is not None and len(value) != len(joints):
+            return f"the {arm} arm has {len(joints)} joints ({', '.join(joints)}), got {len(value)} values"
         return None
     if isinstance(value, Mapping) and value and all(isinstance(k, str) and is_number(v) for k, v in value.items()):
+        unknown = [k for k in value if joints is not None and k not in joints]
+        if unknown:
+            return f"'{unknown[0]}' is not a joint of the {arm} arm ({_hint(unknown[0], joints or [], 'joint')})"
         return None
-    return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value"
+    return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value" + _range_hint(
+        list(value.values()) if isinstance(value, Mapping) else value)
+
+
+def _arm_joints(robots: Robots, arm: str | None) -> list[str] | None:
+    """The joints of `arm` when one robot is known and has that arm, else None (not checked)."""
+    if arm is None or not robots.known or len(robots.descriptions) != 1:
+        return None
+    arms = robots.descriptions[0].arms
+    return list(arms[arm].joints) if arm in arms else None
 
 
 def _arm_configs(value: Any, robots: Robots) -> str | None:

@@ -5,6 +5,7 @@ import os
 from pathlib import Path
 
 from .errors import InputError, Location, did_you_mean
+from .files import probe
 
 _PACKAGE = Path(__file__).resolve().parent
 
@@ -52,18 +53,27 @@ def _names(folder: Path) -> list[str]:
     return sorted(p.stem for p in folder.glob("*.yaml") if not p.name.endswith(".vary.yaml")) if folder.is_dir() else []
 
 
-def _find(value: str, base: Path, bundled_folder: Path) -> Path | None:
-    """`value` as a path relative to `base`, else a name in the working folder's `plans/` or `worlds/` (so that a
-    checkout's own files win over installed copies), else a bundled name."""
-    path = Path(value).expanduser()
-    if path.is_absolute():
-        return path if path.is_file() else None
-    names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]
-    local = Path.cwd() / bundled_folder.name
-    for folder in (base, local, bundled_folder):
-        for name in names:
-            if (folder / name).is_file():
-                return folder / name
+def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Location,
+          key: str | None = None) -> Path | None:
+    """The first regular file `value` names; None when nothing is there. Something there that cannot be
+    read (a pipe, a device, a name too long) is an input error, not a reason to look further."""
+    path = Path(value)
+    if "~" in value:
+        try:
+            path = path.expanduser()
+        except RuntimeError:  # no home folder to expand into
+            pass
+    candidates = [path]
+    if not path.is_absolute():
+        names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]
+        local = Path.cwd() / bundled_folder.name  # the working folder's plans/ or worlds/ win over installed copies
+        candidates = [base / n for n in names] + [local / n for n in names] + [bundled_folder / n for n in names]
+    for candidate in candidates:
+        problem = probe(candidate)
+        if problem is None:
+            return candidate
+        if problem != "not found" and not problem.startswith("it is a folder"):
+            raise InputError(f"cannot read {what}: {problem}", where, key=key)
     return None
 
 
@@ -74,7 +84,8 @@ def find_world(value: str | None, base: Path | None = None, where: Location | No
     """
     if value is None:
         return default_world()
-    found = _find(value, base if base is not None else Path.cwd(), worlds_dir())
+    found = _find(value, base if base is not None else Path.cwd(), worlds_dir(), "world file",
+                  where or Location(value), "world" if where else None)
     if found is not None:
         return found
     names = _names(worlds_dir())
@@ -84,7 +95,7 @@ def find_world(value: str | None, base: Path | None = None, where: Location | No
 
 def find_plan(value: str, base: Path | None = None) -> Path:
     """A plan file: a path (relative to `base`, default the current folder) or a bundled plan's name (`set_table`)."""
-    found = _find(value, base if base is not None else Path.cwd(), plans_dir())
+    found = _find(value, base if base is not None else Path.cwd(), plans_dir(), "plan file", Location(value))
     if found is not None:
         return found
     names = _names(plans_dir())

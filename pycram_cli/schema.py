@@ -8,6 +8,7 @@ import math
 from typing import Any, Iterable
 
 from .errors import InputError, Location, did_you_mean
+from .limits import MAX_MAGNITUDE
 from .yamlsource import LMap, where_of
 
 TYPE_NAMES = {str: "a string", bool: "true or false", int: "an integer", float: "a number",
@@ -41,9 +42,23 @@ def check_keys(mapping: LMap, allowed: Iterable[str], required: Iterable[str], c
             errors.append(InputError(f"missing required key '{key}' in {context}", mapping.loc(), key=key))
 
 
+def is_numeric(value: Any) -> bool:
+    """An int or float (not a bool), whatever its size."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
 def is_number(value: Any) -> bool:
-    """A finite int or float (not a bool)."""
-    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    """A number pycram can use: finite and at most MAX_MAGNITUDE (an int or float, not a bool)."""
+    return is_numeric(value) and math.isfinite(value) and abs(value) <= MAX_MAGNITUDE
+
+
+def number_problem(value: Any) -> str | None:
+    """Why a numeric value is not usable (not finite, too large), or None."""
+    if not is_numeric(value) or is_number(value):
+        return None
+    if isinstance(value, float) and not math.isfinite(value):
+        return f"numbers must be finite, got {value}"
+    return f"numbers must be between -{MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {value:g}"
 
 
 def is_vector(value: Any, size: int) -> bool:
@@ -63,7 +78,8 @@ def number_list(value: Any, size: int | tuple[int, ...], where: Location, key: s
         return None
     bad = [v for v in value if not is_number(v)]
     if bad:
-        errors.append(InputError(f"expected numbers, got {describe(bad[0])}", where_of(value, where), key=key))
+        message = number_problem(bad[0]) or f"expected numbers, got {describe(bad[0])}"
+        errors.append(InputError(message, where_of(value, where), key=key))
         return None
     return [float(v) for v in value]
 
@@ -75,7 +91,8 @@ def expect(value: Any, kind: type | tuple[type, ...], where: Location, key: str,
         ok = True
     if not ok:
         names = " or ".join(TYPE_NAMES.get(k, k.__name__) for k in kinds)
-        errors.append(InputError(f"expected {names}, got {describe(value)}", where, key=key))
+        problem = number_problem(value) if float in kinds else None
+        errors.append(InputError(problem or f"expected {names}, got {describe(value)}", where, key=key))
     return ok
 
 

@@ -20,7 +20,7 @@ PLAN_PACKAGE = "pycram_cli.plan"
 
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
                        "actions", "params", "validate", "language"}
-PLAN_RUNNING_FLOOR = {"scheduler", "trace", "executor", "replay"}
+PLAN_RUNNING_FLOOR = {"scheduler", "trace", "trace_schema", "executor", "replay"}
 PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
 PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions"}
 
@@ -185,7 +185,8 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
 LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "locations", "designators", "plan", "scenario",
           "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
-SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet"}
+SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet", "limits", "files",
+          "interrupts"}
 
 
 def _layer_of(module: str) -> str | None:

@@ -13,10 +13,12 @@ from rich.console import Console
 from rich.table import Table
 
 from ..errors import InputError
+from ..jsonable import jsonable
 
 # Piped output is not cut to 80 columns: tables stay one row per line for grep and friends.
-out = Console(highlight=False, soft_wrap=True, width=None if sys.stdout.isatty() else 240)
-err = Console(stderr=True, highlight=False, soft_wrap=True, width=None if sys.stderr.isatty() else 240)
+# No emoji codes: `file:100:3` must not print as `file💯3`.
+out = Console(highlight=False, soft_wrap=True, emoji=False, width=None if sys.stdout.isatty() else 240)
+err = Console(stderr=True, highlight=False, soft_wrap=True, emoji=False, width=None if sys.stderr.isatty() else 240)
 
 
 _quiet = False
@@ -80,7 +82,9 @@ def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any
 
 
 def emit_json(data: Any) -> None:
-    sys.stdout.write(json.dumps(data, indent=2, sort_keys=False) + "\n")
+    """Machine output: strict JSON (a non-finite number becomes null, never a bare NaN)."""
+    sys.stdout.write(json.dumps(jsonable(data, digits=None, nonfinite=None), indent=2, sort_keys=False,
+                                allow_nan=False) + "\n")
     sys.stdout.flush()
 
 

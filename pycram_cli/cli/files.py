@@ -11,6 +11,7 @@ from typing import Any, Iterable
 
 from ..errors import InputError, Location
 from ..report import REPORT_FORMATS, build_report
+from ..files import write_atomic
 from . import console
 
 __all__ = ["REPORT_FORMATS", "check_output", "check_outputs", "write_output", "write_report"]
@@ -45,13 +46,9 @@ def check_outputs(items: Iterable[tuple[Path | None, dict[str, str] | None, str]
 def write_output(path: Path, data: bytes | str, what: str, make_folders: bool = False) -> None:
     """Write `data` to `path` (making its folders with `make_folders`) and report it on stderr:
     `wrote PATH (WHAT)`."""
-    payload = data.encode() if isinstance(data, str) else data
-    try:
-        if make_folders:
-            path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_bytes(payload)
-    except OSError as exc:
-        raise InputError(f"cannot write the file: {exc.strerror or exc}", Location(str(path))) from None
+    if not make_folders and not Path(path).parent.is_dir():
+        raise InputError("cannot write the file: its folder does not exist", Location(str(path)))
+    write_atomic(path, data)  # a temporary file renamed over it: readers see the old or the new file, never a part
     console.info(f"wrote {path} ({what})")
 
 

@@ -13,6 +13,7 @@ from typing import Any
 
 import click
 
+from .. import interrupts
 from ..errors import InputError, InputErrors, PycramError, as_list
 from .. import quiet
 from . import console
@@ -86,10 +87,13 @@ class PycramGroup(click.Group):
             ctx.exit(EXIT_INPUT)
         except (click.exceptions.Exit, click.exceptions.Abort, click.ClickException):
             raise
-        except KeyboardInterrupt:
+        except KeyboardInterrupt as exc:
             console.error("interrupted")
-            ctx.exit(130)
+            ctx.exit(getattr(exc, "exit_code", None) or interrupts.exit_code() or 130)
         except Exception as exc:  # noqa: BLE001 - last line of defence
+            if interrupts.exit_code() is not None:  # a signal interrupted something that reported it otherwise
+                console.error("interrupted")
+                ctx.exit(interrupts.exit_code())
             if quiet.is_verbose():
                 raise
             console.error(f"internal error: {exc.__class__.__name__}: {exc} (run with --verbose for the traceback)")

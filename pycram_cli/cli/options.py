@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import contextlib
+import math
 from pathlib import Path
 from typing import Callable, Iterator, TypeVar
 
@@ -14,6 +15,26 @@ from ..world.camera import VIEWS, Camera, named_camera, parse_camera
 from ..worldfile.loader import load_world
 
 F = TypeVar("F", bound=Callable[..., object])
+
+
+class Number(click.ParamType):
+    """A finite number in [low, high]; anything else is an input error naming the option (exit 2)."""
+
+    name = "number"
+
+    def __init__(self, low: float, high: float) -> None:
+        self.low, self.high = low, high
+
+    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> float:
+        option = param.opts[0] if param is not None and param.opts else "value"
+        try:
+            number = float(value)  # type: ignore[arg-type]
+        except (TypeError, ValueError):
+            raise InputError(f"expected a number, got '{value}'", Location(option)) from None
+        if not math.isfinite(number) or not self.low <= number <= self.high:
+            raise InputError(f"expected a finite number from {self.low:g} to {self.high:g}, got '{value}'",
+                             Location(option))
+        return number
 
 
 def json_option(func: F) -> F:

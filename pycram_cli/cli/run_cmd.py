@@ -10,6 +10,8 @@ import click
 from rich.live import Live
 from rich.markup import escape
 
+from .. import interrupts
+from ..files import check_writable
 from ..errors import InputError, Location
 from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
@@ -18,7 +20,7 @@ from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_sinc
 from . import console
 from .files import REPORT_FORMATS, check_outputs, write_output, write_report
 from .gui_view import GuiView
-from .options import (camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
+from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
                       wait_for_window)
 from .trace_cmd import PLAIN, build_tree, describe_node, find_node
 
@@ -92,7 +94,7 @@ class Paced:
     def finished(self, node: TraceNode) -> None:
         self.view.finished(node)
         if "designator" in node.info:
-            time.sleep(self.seconds)
+            interrupts.pause(self.seconds)  # wakes at once on Ctrl-C
 
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
@@ -131,7 +133,7 @@ class QuietView:
 @size_option
 @click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a replay report: one HTML file with a 3D replay, the plan tree and a timeline.")
-@click.option("--pace", type=click.FloatRange(min=0.0), default=None, metavar="SECONDS",
+@click.option("--pace", type=Number(0.0, 60.0), default=None, metavar="SECONDS",
               help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
 @click.option("--scenario", "scenario_seed", type=int, default=None, metavar="SEED",
               help="Run one scenario of a sweep: the world and parameters drawn from SEED (see `pycram sweep`).")
@@ -156,6 +158,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
                          Location("--camera"))
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
                    (report_file, REPORT_FORMATS, "report")])
+    for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report")):
+        if output is not None:
+            check_writable(output, key)  # a pipe, a device, no permission: before anything runs
     scenario = prepare(plan_file, world_file, assignments=params)
     if vary_file is not None and scenario_seed is None:
         raise InputError("--vary draws a scenario only with --scenario SEED", Location("--vary"))
@@ -198,31 +203,37 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             if isinstance(observer, GuiView):
                 observer.close()
         duration = time.perf_counter() - started
+        interrupted = result.status == "interrupted"
         if trace_file is not None:
             write_output(trace_file, dumps(result.trace), "trace", make_folders=True)
-        if render_file is not None:
+        if render_file is not None and not interrupted:
             cam = image_camera(world, view_name, image_size, moved_since(world, before) or None)
             write_output(render_file, encode_image(render(world, cam, *image_size), render_file.suffix),
                          f"{image_size[0]}x{image_size[1]} {image_format(render_file.suffix)}")
-        if report_file is not None:
+        if report_file is not None and not interrupted:
             write_report(report_file, result.trace, scenario.world_path)
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace}))
         else:
-            _summary(plan, result, duration)
-        if gui:
+            _summary(plan, result, duration, trace_file)
+        if gui and not interrupted:
             wait_for_window(world)
     finally:
         world.exit()
+    if result.status == "interrupted":
+        ctx.exit(interrupts.exit_code() or 130)
     if not result.succeeded:
         ctx.exit(EXIT_FAILED)
 
 
-def _summary(plan: Any, result: Any, duration: float) -> None:
+def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = None) -> None:
     name = plan.path.name
     if result.succeeded:
         console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
+    elif result.status == "interrupted":
+        console.error(f"plan {name} {(result.failure or {}).get('message', 'interrupted')} after {duration:.2f} s"
+                      + (" (the trace records where)" if trace_file is not None else ""))
     else:
         failure = result.failure or {}
         node = find_node(result.trace["root"], failure.get("path", ""))

@@ -14,6 +14,7 @@ from ..plan import trace as traces
 from ..report import REPORT_FORMATS, report_world
 from . import console
 from .files import check_output, write_report
+from .options import Number
 
 STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "recovered": ("↺", "yellow"),
          "cancelled": ("⊘", "yellow"), "skipped": ("·", "dim"), "running": ("▶", "cyan"), "pending": ("○", "dim")}
@@ -53,6 +54,10 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
         parts.append(f"“{node['message']}”")
     if "caught" in node:
         parts.append(f"caught {node['caught'].get('type')}")
+    if isinstance(node.get("folded"), dict):
+        folded = node["folded"]
+        counts = "; ".join(f"{text} ×{count}" for text, count in (folded.get("failures") or {}).items())
+        parts.append(f"{folded.get('steps')} entries folded" + (f" ({counts})" if counts else ""))
     if "retries" in node and node["retries"]:
         parts.append(f"{node['retries']} retr{'y' if node['retries'] == 1 else 'ies'}")
     if "bound" in node:
@@ -197,8 +202,8 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
 @trace.command("diff")
 @click.argument("a", type=click.Path(path_type=Path))
 @click.argument("b", type=click.Path(path_type=Path))
-@click.option("--atol", type=click.FloatRange(min=0), default=1e-3, show_default=True,
-              help="Numbers closer than this are equal.")
+@click.option("--atol", type=Number(0.0, 1e6), default=1e-3, show_default=True,
+              help="Numbers closer than this are equal (a finite number, 0 or more).")
 @click.option("--json", "as_json", is_flag=True, help="The differences as JSON on stdout.")
 @click.pass_context
 def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -> None:

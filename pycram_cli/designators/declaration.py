@@ -36,6 +36,7 @@ class Slot:
     required: bool
     doc: str
     default: str | None = None  # how the default is found, for people
+    of: str | None = None  # for a link or joint: the slot naming the object it belongs to
 
 
 @dataclass(frozen=True)

@@ -72,8 +72,8 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 declare_designator(Designator(
     "accessing", "Open a drawer: grasp its handle and pull it open by a distance.", (
-        Slot("drawer-handle", "link", True, "the handle link, as named in the URDF"),
-        Slot("drawer-joint", "joint", True, "the drawer's prismatic joint"),
+        Slot("drawer-handle", "link", True, "the handle link, as named in the URDF", of="part-of"),
+        Slot("drawer-joint", "joint", True, "the drawer's prismatic joint", of="part-of"),
         Slot("part-of", "object", True, "the object the drawer belongs to (e.g. kitchen)"),
         Slot("distance", "number", False, "how far to open, in metres", "0.3, or the joint's upper limit if smaller"),
         Slot("arm", "arm", False, "the arm that pulls", "an arm that can reach the handle (in the description's order)"),

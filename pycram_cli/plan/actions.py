@@ -117,7 +117,7 @@ class ActionStep(Node):
     def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str]) -> None:
         facts = v.facts
         assert facts is not None
-        links = facts.links
+        links = {link for name, names in facts.links.items() if name != facts.robot for link in names}
         if what == "object" and name not in objects:
             v.error(f"'{key}': the world has no object '{name}'", where, key=key, suggestion=did_you_mean(name, objects))
         elif what == "link" and links is not None and name not in links:

@@ -20,6 +20,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from ..failures import Failure
+from ..limits import MAX_BRANCHES
 from ..yamlsource import LMap
 from .runtime import Cancelled, Record, Runtime, close_pending
 from .syntax import Node, Parser, node_type
@@ -50,6 +51,14 @@ class Seq(Composite):
 
 class Concurrent(Composite):
     """Steps run at once, each in a thread of its own; the first branch whose end `decides` decides."""
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node:
+        node = super().parse(head, step, parser)
+        if isinstance(node, Concurrent) and len(node.steps) > MAX_BRANCHES:
+            parser.error(f"'{head}' has {len(node.steps)} branches, more than {MAX_BRANCHES} (the limit)",
+                         step.loc(head, True), key=head, suggestion="use for_each for many similar steps")
+        return node
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         return ex.concurrent(self.steps, tn, self)

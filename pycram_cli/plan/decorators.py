@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import Location
 from ..failures import Failure, failure_class
+from ..limits import MAX_RETRIES, RETRY_KEPT
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, jsonable
@@ -57,6 +58,9 @@ class Retry(Node):
             parser.error(f"expected how many times to retry (a whole number, 0 or more), got {describe(count)}",
                          step.loc(head, True), key=head)
             count = 0
+        elif count > MAX_RETRIES:
+            parser.error(f"at most {MAX_RETRIES} retries, got {count}", step.loc(head, True), key=head)
+            count = 0
         on = parser.names(step["on"], step.loc("on", True), "on") if "on" in step else []
         recover = parser.steps(step["recover"], step.loc("recover", True), "recover") if "recover" in step else []
         body = parser.steps(step["body"], step.loc("body", True), "body") if "body" in step else []
@@ -75,8 +79,10 @@ class Retry(Node):
         types = [name for name, _ in self.on] or ["Failure"]
         tn.info["retries"] = 0
         attempt = 1
+        groups: dict[int, list[Record]] = {}  # the trace nodes of each attempt (and its recovery)
         while True:
             child = tn.child(f"attempt {attempt}", "attempt", self.where)
+            groups[attempt] = [child]
             try:
                 return _run_part(ex, self.body, child)
             except Failure as exc:
@@ -84,7 +90,13 @@ class Retry(Node):
                     raise
             ex.token.check()
             if self.recover:
-                _run_part(ex, self.recover, tn.child(f"recover {attempt}", "recover", self.where))
+                groups[attempt].append(tn.child(f"recover {attempt}", "recover", self.where))
+                _run_part(ex, self.recover, groups[attempt][-1])
+            # the trace keeps the first and the last RETRY_KEPT attempts; those between are counted in a summary
+            old = attempt - RETRY_KEPT
+            if old > RETRY_KEPT:
+                for record in groups.pop(old):
+                    tn.summarise(record, "folded attempts")
             attempt += 1
             tn.info["retries"] = attempt - 1
 
@@ -235,8 +247,8 @@ class ForEach(Node):
 
     def check(self, v: "Validator") -> None:
         v.refs(self.items, self.items_where)
-        if self.var:
-            v.define(self.var, self.var_where)
+        if self.var:  # over a literal list, the variable's values are known before the run
+            v.define(self.var, self.var_where, self.items if isinstance(self.items, list) else None)
         v.check_steps(self.body)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:

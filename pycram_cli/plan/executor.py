@@ -15,13 +15,15 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Iterator, Mapping, Protocol, cast
 
+from .. import interrupts
 from ..failures import Failure
+from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable
 from .params import bind_params
 from .resources import ResourceAnalysis
-from .runtime import Cancelled, Decider, Record, close_pending
+from .runtime import Cancelled, Decider, LimitExceeded, Record, close_pending
 from .scheduler import CancelToken, Key, Scheduler
 from .syntax import Node, Plan
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
@@ -43,7 +45,7 @@ class InternalError(Exception):
 
 @dataclass
 class RunResult:
-    status: str                       # "succeeded" or "failed" (or "cancelled" when interrupted)
+    status: str                       # succeeded, failed, interrupted (by a signal) or cancelled
     failure: dict[str, Any] | None
     trace: dict[str, Any]
     duration: float
@@ -73,6 +75,27 @@ class Run:
         self.root = TraceNode("body", "seq", plan.where)
         self.t0 = time.perf_counter()
         self._observer_lock = threading.Lock()
+        self.threads = 0  # branch threads alive (at most MAX_THREADS)
+        self.limit_error: LimitExceeded | None = None
+        self.interrupted: str | None = None  # the signal that stopped the run, if one did
+        self._threads_lock = threading.Lock()
+
+    def thread_started(self, path: str) -> None:
+        with self._threads_lock:
+            if self.threads >= MAX_THREADS:
+                raise LimitExceeded(f"more than {MAX_THREADS} branches running at once (the limit)", path)
+            self.threads += 1
+
+    def thread_ended(self) -> None:
+        with self._threads_lock:
+            self.threads -= 1
+
+    def stop_for(self, error: LimitExceeded) -> None:
+        """A limit was exceeded: the run stops at once (every thread is cancelled) and fails with the first such error."""
+        with self._threads_lock:
+            if self.limit_error is None:
+                self.limit_error = error
+        self.token.cancel(f"stopped: {error.message}")
 
     def now(self) -> float:
         return time.perf_counter() - self.t0
@@ -87,16 +110,32 @@ class Run:
     def cancel(self, reason: str = "interrupted") -> None:
         self.token.cancel(reason)
 
+    def interrupt(self, signal_name: str = "SIGINT") -> None:
+        """Stop the run because of a signal (Ctrl-C): every branch is cancelled; the run ends `interrupted`."""
+        self.interrupted = signal_name
+        self.token.cancel(f"interrupted by {signal_name}")
+
     def execute(self) -> RunResult:
         ex = Exec(self, Frame(parent=self.globals), self.token, ())
         status, failure, value, error = "succeeded", None, None, None
         try:
-            value = ex.run_body(self.plan.body, self.root, self.plan.where)
+            with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
+                value = ex.run_body(self.plan.body, self.root, self.plan.where)
         except Failure as exc:
             status, failure = "failed", failure_record(exc, self.root.path)
         except Cancelled as exc:
             status, failure = "cancelled", {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
             error = exc
+        except LimitExceeded as exc:
+            self.stop_for(exc)
+        if self.limit_error is not None:  # the run was stopped by a limit (whatever it then unwound with)
+            status, failure, error = "failed", failure_record(self.limit_error, self.limit_error.path), None
+            self.root.status = "failed"
+            _mark(self.root, "cancelled")
+        elif self.interrupted is not None and status != "succeeded":
+            status = "interrupted"
+            failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
+            _mark(self.root, "cancelled")
         duration = self.now()
         trace = {
             "format": FORMAT, "version": VERSION,
@@ -107,6 +146,8 @@ class Run:
             "final_state": final_state(self.world),
             "timing": {"duration": duration},
         }
+        if status == "interrupted":
+            trace["interrupted"] = {"signal": self.interrupted}
         steps = sum(1 for n in self.root.walk() if not n.children and n.status in ("succeeded", "failed"))
         return RunResult(status, failure, trace, duration, value, steps, error)
 
@@ -152,7 +193,7 @@ class Exec:
 
     def sleep(self, seconds: float) -> None:
         self.token.check()
-        self.run.scheduler.sleep(self.key, self.token, seconds)
+        self.run.scheduler.sleep(self.key, self.token, min(max(0.0, seconds), MAX_WAIT))
 
     def log(self, tn: Record, message: str) -> None:
         self.run.notify("log", _own(tn), message)
@@ -183,6 +224,12 @@ class Exec:
         except Cancelled:
             tn.status = "cancelled"
             _mark(tn, "cancelled")
+            raise
+        except LimitExceeded as exc:
+            tn.status = "failed"
+            if tn.failure is None:
+                tn.failure = failure_record(exc, exc.path)
+            self.run.stop_for(exc)
             raise
         except InternalError:
             tn.status = "failed"
@@ -243,31 +290,59 @@ class Exec:
 
     # -- concurrency ---------------------------------------------------------------------------
     def concurrent(self, nodes: list[Node], tn: Record, composite: Decider) -> Any:
-        """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome."""
+        """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome.
+
+        At most MAX_RUNNING_BRANCHES of them run at once: the others start, in order, as running
+        ones end (the scheduler lets them in at the same moment, so traces stay deterministic).
+        """
         children = self.prepare(nodes, tn)
         scheduler = self.run.scheduler
         tokens = [self.token.child() for _ in nodes]
         outcome = Outcome(composite, tokens)
-        keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes))
-        threads = []
-        for i, (node, child, key, token) in enumerate(zip(nodes, children, keys, tokens)):
-            branch = self.derive(token=token, key=key)
-            threads.append(threading.Thread(target=branch._branch, args=(i, node, child, outcome),
-                                            name=f"pycram {child.path}", daemon=True))
+        keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes), MAX_RUNNING_BRANCHES)
+        ended = threading.Semaphore(0)  # one release per branch thread that has ended
+        waiting = list(range(len(nodes)))  # branches not started yet, in order
         started: list[threading.Thread] = []
-        try:
-            for thread in threads:
+        running = 0
+
+        def launch() -> bool:
+            """Start the next branch (True), or close it at once when it was cancelled before it started."""
+            i = waiting[0]
+            if tokens[i].cancelled:
+                waiting.pop(0)
+                outcome.report(i, ("cancelled", None))
+                scheduler.finish(keys[i])
+                return False
+            self.run.thread_started(children[i].path)
+            waiting.pop(0)
+            branch = self.derive(token=tokens[i], key=keys[i])
+            thread = threading.Thread(target=branch._branch, args=(i, nodes[i], children[i], outcome, ended),
+                                      name=f"pycram {children[i].path}", daemon=True)
+            try:
                 thread.start()
-                started.append(thread)
-            for thread in threads:
+            except BaseException:
+                self.run.thread_ended()
+                waiting.insert(0, i)
+                raise
+            started.append(thread)
+            return True
+
+        try:
+            while True:
+                while waiting and running < MAX_RUNNING_BRANCHES:
+                    running += launch()
+                if not running:
+                    break
+                ended.acquire()
+                running -= 1
+            for thread in started:
                 thread.join()
-        except BaseException:  # interrupted (Ctrl-C) or a thread could not start: stop every branch
+        except BaseException:  # interrupted, a thread could not start, a limit: stop every branch
             for token in tokens:
                 token.cancel("interrupted")
-            for i, thread in enumerate(threads):
-                if thread not in started:
-                    outcome.report(i, ("cancelled", None))
-                    scheduler.finish(keys[i])
+            for i in waiting:
+                outcome.report(i, ("cancelled", None))
+                scheduler.finish(keys[i])
             for thread in started:
                 thread.join()
             raise
@@ -277,7 +352,8 @@ class Exec:
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
-    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome") -> None:
+    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome",
+                ended: threading.Semaphore | None = None) -> None:
         result: tuple[str, Any] = ("cancelled", None)
         try:
             self.run.scheduler.acquire(self.key, self.token)
@@ -293,6 +369,9 @@ class Exec:
         finally:
             outcome.report(index, result)
             self.run.scheduler.finish(self.key)
+            self.run.thread_ended()
+            if ended is not None:
+                ended.release()
 
 
 def _own(tn: Record) -> TraceNode:
@@ -336,7 +415,9 @@ class Outcome:
         errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
         if errors:
             error = errors[0]
-            raise error if isinstance(error, InternalError) else InternalError(f"{type(error).__name__}: {error}")
+            if isinstance(error, (InternalError, LimitExceeded)):
+                raise error
+            raise InternalError(f"{type(error).__name__}: {error}")
         ordered = [self.results.get(i, ("cancelled", None)) for i in range(len(self.tokens))]
         return self.composite.outcome(ordered, self.decided, children)
 

@@ -21,18 +21,20 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 """
 from __future__ import annotations
 
+import math
 import re
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
 from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
 from ..failures import FAILURES, Failure, failure_class
+from ..limits import MAX_CALL_DEPTH, MAX_WAIT
 from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
 from .resources import ResourceAnalysis
-from .runtime import Record, Runtime
+from .runtime import LimitExceeded, Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
@@ -251,8 +253,6 @@ class Condition:
 
 
 # -- call -----------------------------------------------------------------------------------------------------------
-MAX_CALL_DEPTH = 64  # nested subplan calls before a run gives up (endless recursion)
-
 
 @node_type("call")
 class CallStep(Node):
@@ -306,7 +306,8 @@ class CallStep(Node):
         values = self.bound_args(ex)
         tn.info["call"] = {"plan": self.name, "args": jsonable(values)}
         if ex.depth >= MAX_CALL_DEPTH:
-            raise Failure(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (endless recursion?)")
+            raise LimitExceeded(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (the limit; endless "
+                                "recursion?)", tn.path)
         inner = ex.derive(frame=Frame(values, parent=ex.globals), depth=ex.depth + 1)
         value = inner.seq(sub.body, tn)
         return inner.evaluate(sub.returns) if sub.has_returns else None
@@ -452,6 +453,16 @@ class SetStep(Node):
         return None
 
 
+def _seconds_problem(seconds: Any) -> str | None:
+    """Why a value cannot be waited for, or None: a finite number of seconds from 0 to MAX_WAIT."""
+    if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or not math.isfinite(seconds) \
+            or seconds < 0:
+        return f"expected a number of seconds (0 or more), got {describe(jsonable(seconds))}"
+    if seconds > MAX_WAIT:
+        return f"at most {MAX_WAIT:g} seconds (one day) can be waited for, got {seconds:g}"
+    return None
+
+
 @node_type("wait")
 class WaitStep(Node):
     LEAF = True
@@ -464,10 +475,8 @@ class WaitStep(Node):
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         seconds = step[head]
-        if not is_reference(seconds) and (isinstance(seconds, bool) or not isinstance(seconds, (int, float))
-                                           or seconds < 0):
-            parser.error(f"expected a number of seconds (0 or more), got {describe(seconds)}", step.loc(head, True),
-                         key=head)
+        if not is_reference(seconds) and _seconds_problem(seconds):
+            parser.error(_seconds_problem(seconds) or "", step.loc(head, True), key=head)
             return None
         return cls(head, step.loc(head), seconds, step.loc(head, True))
 
@@ -476,8 +485,9 @@ class WaitStep(Node):
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)
-        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or seconds < 0:
-            raise Failure(f"wait: expected a number of seconds, got {display(seconds)}")
+        problem = _seconds_problem(seconds)
+        if problem:
+            raise Failure(f"wait: {problem}")
         tn.info["seconds"] = jsonable(seconds)
         ex.sleep(float(seconds))
         return None

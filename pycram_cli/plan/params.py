@@ -4,15 +4,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-import yaml
-
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..paths import find_world
+from ..yamlsource import load_yaml_text
 from .syntax import Plan, plain
 
 
 def parse_assignments(items: Iterable[str], option: str = "-p") -> dict[str, Any]:
-    """`name=value` strings; values are read as YAML scalars or lists (`-p target=[1, 0.5, 0]`)."""
+    """`name=value` strings; values are read as YAML (`-p target=[1, 0.5, 0]`), strictly: a value that is not
+    well-formed YAML (`-p 'types=[milk'`) is an input error, not a string."""
     values: dict[str, Any] = {}
     errors: list[InputError] = []
     for item in items:
@@ -23,9 +23,12 @@ def parse_assignments(items: Iterable[str], option: str = "-p") -> dict[str, Any
                                      suggestion="e.g. -p object=milk"))
             continue
         try:
-            value = yaml.safe_load(text) if text.strip() else ""
-        except yaml.YAMLError:
-            value = text
+            value = load_yaml_text(text, f"{option} {name}") if text.strip() else ""
+        except InputError as exc:
+            exc.key = exc.key or name
+            exc.suggestion = exc.suggestion or f"quote a value meant as text: {option} '{name}=\"{text}\"'"
+            errors.append(exc)
+            continue
         if name in values:
             errors.append(InputError(f"parameter '{name}' is given twice", Location(option)))
             continue

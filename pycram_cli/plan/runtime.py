@@ -29,6 +29,23 @@ class Cancelled(BaseException):
     """A branch was cancelled. Not a Failure: no handler or retry catches it."""
 
 
+class LimitExceeded(Exception):
+    """A run went beyond one of pycram's limits (nested calls or steps, recorded steps, threads; see limits.py).
+
+    Not a Failure: no handler or retry catches it (it would only hit the limit again); the run
+    stops and fails with it, naming the step where it happened (`path`).
+    """
+
+    def __init__(self, message: str, path: str) -> None:
+        super().__init__(message)
+        self.message = message
+        self.path = path
+
+    @property
+    def type_name(self) -> str:
+        return "LimitExceeded"
+
+
 class Record(Protocol):
     """`tn`: a node's entry in the trace of the run."""
 
@@ -37,7 +54,13 @@ class Record(Protocol):
     info: dict[str, Any]  # what the node records (its designator, query answer, bound values...)
 
     def child(self, label: str, type: str, source: Location | None = None) -> Record:
-        """A new (pending) entry below this one."""
+        """A new (pending) entry below this one (raises LimitExceeded beyond the run's limits)."""
+        ...
+
+    def summarise(self, child: Record, label: str) -> None:
+        """Fold `child` (a failed attempt, with its subtree) into the summary entry `label`, made at its place.
+
+        Keeps the trace bounded when a step repeats without end (see `retry`)."""
         ...
 
 

@@ -78,7 +78,7 @@ class CancelToken:
             raise Cancelled(self.reason)
 
 
-READY, JOINING, WAITING, SLEEPING = "ready", "joining", "waiting", "sleeping"
+READY, JOINING, WAITING, SLEEPING, QUEUED = "ready", "joining", "waiting", "sleeping", "queued"
 
 
 @dataclass
@@ -97,6 +97,9 @@ class Scheduler:
         self._holder: Key | None = ()
         self._pointer: Key = ()
         self._due: set[Key] = set()
+        self._queued: dict[Key, list[Key]] = {}  # per parent: branches not started yet, in order
+        self._stale = True  # whether `_next` must search again (set whenever a state or the pointer changes)
+        self._cached: Key | None = None
 
     def wake(self) -> None:
         with self._cond:
@@ -104,18 +107,28 @@ class Scheduler:
 
     # -- choosing the next thread ---------------------------------------------------
     def _next(self) -> Key | None:
-        ready = sorted(k for k, e in self._entries.items() if e.state == READY)
-        if not ready:
-            return None
-        for key in ready:
-            if key > self._pointer:
-                return key
-        return ready[0]
+        """The next ready key after the pointer (round-robin); remembered until the entries or the pointer change,
+        so that many waiting threads woken at once do not each search again."""
+        if not self._stale:
+            return self._cached
+        first: Key | None = None
+        after: Key | None = None
+        for key, entry in self._entries.items():
+            if entry.state != READY:
+                continue
+            if first is None or key < first:
+                first = key
+            if key > self._pointer and (after is None or key < after):
+                after = key
+        self._cached = after if after is not None else first
+        self._stale = False
+        return self._cached
 
     def _hand_over(self, key: Key) -> None:
         if self._holder == key:
             self._holder = None
             self._pointer = key
+        self._stale = True
         self._cond.notify_all()
 
     # -- the turn -----------------------------------------------------------------------
@@ -153,6 +166,7 @@ class Scheduler:
             others = any(e.state == READY for k, e in self._entries.items() if k != key)
             if not others:
                 self._pointer = key
+                self._stale = True
                 return
             self._hand_over(key)
         self.acquire(key, token)
@@ -161,26 +175,36 @@ class Scheduler:
         """Give the turn up while sleeping; the only hand-over that depends on the clock."""
         with self._cond:
             self._entries[key].state = SLEEPING
+            self._stale = True
             self._hand_over(key)
         try:
             token.sleep(seconds)
         finally:
             with self._cond:
                 self._entries[key].state = READY
+                self._stale = True
                 self._cond.notify_all()
         self.acquire(key, token)
 
     # -- branches -------------------------------------------------------------------------
-    def spawn(self, parent: Key, count: int, waits_for: dict[int, Iterable[int]]) -> list[Key]:
+    def spawn(self, parent: Key, count: int, waits_for: dict[int, Iterable[int]],
+              running: int | None = None) -> list[Key]:
         """Register `count` branches of `parent` (which gives its turn up until they have all finished).
 
-        Branch j does not become ready before every branch in `waits_for[j]` has finished.
+        Branch j does not become ready before every branch in `waits_for[j]` has finished. With
+        `running`, only the first `running` branches start; the others are queued, and each time a
+        branch of `parent` finishes the next queued one is let in (the caller starts its thread).
         """
         keys = [parent + (i,) for i in range(count)]
+        active = count if running is None else min(count, running)
         with self._cond:
             for i, key in enumerate(keys):
                 waits = {parent + (j,) for j in waits_for.get(i, ())}
-                self._entries[key] = _Entry(state=WAITING if waits else READY, waits_for=waits)
+                state = QUEUED if i >= active else WAITING if waits else READY
+                self._entries[key] = _Entry(state=state, waits_for=waits)
+            if active < count:
+                self._queued[parent] = keys[active:]
+            self._stale = True
             entry = self._entries[parent]
             entry.live_children = count
             if count:
@@ -207,4 +231,12 @@ class Scheduler:
                 parent.live_children -= 1
                 if parent.live_children <= 0 and parent.state == JOINING:
                     parent.state = READY
+            queue = self._queued.get(key[:-1])
+            if queue:
+                released = self._entries.get(queue.pop(0))
+                if released is not None and released.state == QUEUED:
+                    released.state = WAITING if released.waits_for else READY
+            if queue is not None and not queue:
+                del self._queued[key[:-1]]
+            self._stale = True
             self._cond.notify_all()

@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..limits import MAX_PLAN_DEPTH
 from ..schema import check_keys, describe
 from ..yamlsource import LList, LMap, load_yaml, where_of
 from .context import IDENTIFIER, references
@@ -192,6 +193,7 @@ class Parser:
 
     def __init__(self) -> None:
         self.errors: list[InputError] = []
+        self.depth = 0  # steps nested around the one being read
         # names bound by steps (or subplans defined) that could not be parsed: later checks
         # treat them as known, so that one mistake is not reported again at every use
         self.lost_names: set[str] = set()
@@ -219,7 +221,15 @@ class Parser:
         return result
 
     def step(self, value: Any, where: Location) -> Node | None:
-        node = self._step(value, where)
+        if self.depth >= MAX_PLAN_DEPTH:
+            self.error(f"steps nested more than {MAX_PLAN_DEPTH} levels deep (the limit)", where,
+                       suggestion="move inner steps into a subplan and call it")
+            return None
+        self.depth += 1
+        try:
+            node = self._step(value, where)
+        finally:
+            self.depth -= 1
         if node is None and isinstance(value, LMap):
             for key in ("as",):
                 if isinstance(value.get(key), str):

@@ -21,7 +21,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ..errors import InputError, Location
+from ..files import read_text, write_atomic
+from ..limits import MAX_STEP_DEPTH, MAX_TRACE_BYTES, MAX_TRACE_NODES
+from . import trace_schema
 from .context import jsonable
+from .runtime import LimitExceeded
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
@@ -34,10 +38,38 @@ STATUSES = ("pending", "running", "succeeded", "failed", "cancelled", "skipped")
 DIGITS = 6
 
 
-class TraceNode:
-    """One node of a run; mutated while running, read by live views and `to_dict`."""
+class Budget:
+    """How many trace nodes a run may hold (shared by every node of one run's tree)."""
 
-    def __init__(self, path: str, type: str, source: Location | None = None) -> None:
+    def __init__(self, limit: int = MAX_TRACE_NODES) -> None:
+        self.limit = limit
+        self.used = 0
+        self._lock = threading.Lock()
+
+    def take(self, path: str) -> None:
+        with self._lock:
+            if self.used >= self.limit:
+                raise LimitExceeded(f"the run recorded more than {self.limit} steps (the limit)", path)
+            self.used += 1
+
+    def give_back(self, count: int) -> None:
+        with self._lock:
+            self.used -= count
+
+
+#: folded attempts remember at most this many different failure messages (the rest are counted as "other")
+FOLDED_MESSAGES = 10
+
+
+class TraceNode:
+    """One node of a run; mutated while running, read by live views and `to_dict`.
+
+    A tree made from one root shares its `Budget` (the number of nodes a run may hold) and
+    knows its depth: making a child beyond either limit raises LimitExceeded.
+    """
+
+    def __init__(self, path: str, type: str, source: Location | None = None, budget: Budget | None = None,
+                 depth: int = 0) -> None:
         self.path = path
         self.type = type
         self.status = "pending"
@@ -47,13 +79,45 @@ class TraceNode:
         self.started: float | None = None
         self.duration: float | None = None
         self.source = f"{source.line}:{source.column}" if source is not None and source.line else None
+        self.depth = depth
+        self._budget = budget if budget is not None else Budget()
         self._lock = threading.Lock()
 
     def child(self, label: str, type: str, source: Location | None = None) -> "TraceNode":
-        node = TraceNode(f"{self.path}/{label}", type, source)
+        path = f"{self.path}/{label}"
+        if self.depth + 1 > MAX_STEP_DEPTH:
+            raise LimitExceeded(f"steps nested more than {MAX_STEP_DEPTH} levels deep (the limit; endless "
+                                "recursion?)", self.path)
+        self._budget.take(path)
+        node = TraceNode(path, type, source, self._budget, self.depth + 1)
         with self._lock:
             self.children.append(node)
         return node
+
+    def summarise(self, child: "TraceNode", label: str) -> None:
+        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place."""
+        with self._lock:
+            if child not in self.children:
+                return
+            index = self.children.index(child)
+            summary = next((c for c in self.children if c.type == "folded" and c.label == label), None)
+            if summary is None:
+                summary = TraceNode(f"{self.path}/{label}", "folded", None, self._budget, self.depth + 1)
+                summary.status = "failed"
+                summary.info["folded"] = {"steps": 0, "failures": {}}
+                self._budget.used += 1  # cannot fail: the child it replaces is given back below
+                self.children.insert(index, summary)
+                index += 1
+            self.children.pop(index)
+        self._budget.give_back(sum(1 for _ in child.walk()))
+        folded = summary.info["folded"]
+        folded["steps"] += 1
+        if child.failure is not None:
+            text = f"{child.failure.get('type')}: {child.failure.get('message')}"
+            failures = folded["failures"]
+            if text not in failures and len(failures) >= FOLDED_MESSAGES:
+                text = "(other failures)"
+            failures[text] = failures.get(text, 0) + 1
 
     @property
     def label(self) -> str:
@@ -169,30 +233,28 @@ def comparable(data: Any) -> Any:
 
 
 def save(data: dict[str, Any], path: str | Path, timing: bool = True) -> None:
-    path = Path(path)
-    if path.parent and not path.parent.exists():
-        path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(dumps(data if timing else comparable(data)))
+    """Write a trace atomically: a reader sees the previous file or this one whole, never a part."""
+    write_atomic(path, dumps(data if timing else comparable(data)), key="trace")
 
 
 def load(path: str | Path) -> dict[str, Any]:
+    """Read a saved trace, checked against the trace schema of its version (`trace_schema.py`).
+
+    Every problem is an input error at its place in the file: a missing file, malformed JSON,
+    another format or version, a field of the wrong kind or missing ("which entry, what is missing").
+    """
     path = Path(path)
-    try:
-        text = path.read_text()
-    except FileNotFoundError:
-        raise InputError("trace file not found", Location(str(path))) from None
-    except (IsADirectoryError, PermissionError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read trace file: {exc.__class__.__name__}", Location(str(path))) from None
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"not a JSON trace: {exc.msg}", Location(str(path), exc.lineno, exc.colno)) from None
-    if not isinstance(data, dict) or data.get("format") != FORMAT or not isinstance(data.get("root"), dict):
+    text = read_text(path, MAX_TRACE_BYTES, "trace file")
+    data = trace_schema.parse(text, str(path))
+    if not isinstance(data, dict) or data.get("format") != FORMAT or "root" not in data:
         raise InputError(f"not a pycram trace (expected a JSON object with \"format\": \"{FORMAT}\" and a \"root\")",
                          Location(str(path), 1, 1), suggestion="write one with `pycram run PLAN --trace FILE`")
     if data.get("version") != VERSION:
-        raise InputError(f"unsupported trace version {data.get('version')!r} (this pycram reads version {VERSION})",
-                         Location(str(path), 1, 1))
+        version = data.get("version")
+        shown = version if isinstance(version, (int, float, str)) or version is None else "?"
+        raise InputError(f"unsupported trace version {shown!r} (this pycram reads version {VERSION})",
+                         trace_schema.location(text, str(path), ("version",)), key="version")
+    trace_schema.check(data, text, str(path))
     return data
 
 

@@ -12,8 +12,8 @@ parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure`
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Iterable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..designators import DESIGNATORS
@@ -22,7 +22,7 @@ from ..kinds import KINDS, Robots
 from ..reasoning import QUERIES
 from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
-from .context import references
+from .context import REFERENCE, Ref, UnboundVariable, attribute, references
 from ..paths import find_world
 from ..world.model_files import describe_model
 from .syntax import Node, Plan
@@ -34,39 +34,36 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class WorldFacts:
-    """What validation knows of the world a plan runs in: its objects and its robot (with its description).
+    """What validation knows of the world a plan runs in: its objects (with their links and movable joints)
+    and its robot (with its description).
 
-    Made from a world file (`of_spec`, nothing simulated) or from a loaded world (`of_world`).
+    Made from a world file (`of_spec`, nothing simulated: the models' names are read from the files)
+    or from a loaded world (`of_world`).
     """
 
     objects: tuple[str, ...]
     robot: str | None = None
     robot_file: str = ""
     description: RobotDescription | None = None
-    #: the link names of the objects (but the robot) whose models could be read; None: not known
-    links: frozenset[str] | None = None
+    links: Mapping[str, tuple[str, ...]] = field(default_factory=dict)  # by object name (unknown: absent)
+    joints: Mapping[str, tuple[str, ...]] = field(default_factory=dict)  # movable joints, by object name
 
     @classmethod
     def of_spec(cls, spec: "WorldSpec") -> "WorldFacts":
         robot = spec.robot
-        links: set[str] | None = set()
-        for obj in spec.objects:
-            if obj is robot or obj.file.suffix.lower() != ".urdf":
-                continue
-            try:
-                links |= set(describe_model(obj.file).links)  # type: ignore[operator]
-            except Exception:  # noqa: BLE001 - a model that cannot be read: its links are not checked
-                links = None
-                break
+        links = {name: tuple(info.links) for name, info in spec.models.items()}
+        joints = {name: tuple(j for j, info_joint in info.joints.items() if info_joint.movable)
+                  for name, info in spec.models.items()}
         return cls(tuple(spec.object_names), robot.name if robot else None, robot.file.name if robot else "",
-                   spec.robot_description, frozenset(links) if links is not None else None)
+                   spec.robot_description, links, joints)
 
     @classmethod
     def of_world(cls, world: "BulletWorld") -> "WorldFacts":
         robot = world.robot
-        links = frozenset(link for o in world.objects if o is not robot for link in o.link_names)
         return cls(tuple(o.name for o in world.objects), robot.name if robot else None,
-                   robot.path.name if robot else "", description_for(robot) if robot is not None else None, links)
+                   robot.path.name if robot else "", description_for(robot) if robot is not None else None,
+                   {o.name: tuple(o.link_names) for o in world.objects},
+                   {o.name: tuple(j.name for j in o.movable_joints) for o in world.objects})
 
     @property
     def robots(self) -> Robots:
@@ -81,15 +78,20 @@ def _robots(facts: WorldFacts | None) -> Robots:
 
 
 class Validator:
-    def __init__(self, plan: Plan, facts: WorldFacts | None = None) -> None:
+    def __init__(self, plan: Plan, facts: WorldFacts | None = None, values: Mapping[str, Any] | None = None) -> None:
         self.plan = plan
         self.facts = facts
         self.robots = _robots(facts)
         self._robot_checked = False
         self.errors: list[InputError] = []
         self.globals = {p.name: p.where for p in plan.params}
+        # the parameters' values, when known before the run (bound -p values, else the defaults)
+        self.values = dict(values) if values is not None else {p.name: p.default for p in plan.params
+                                                                if not p.required}
         self.defined: dict[str, Location] = {}
         self.later: dict[str, Location] = {}
+        self.bound_count: dict[str, int] = {}
+        self.known: dict[str, list[Any]] = {}  # locals whose possible values are known (for_each over a literal list)
 
     def error(self, message: str, where: Location, key: str | None = None, suggestion: str | None = None) -> None:
         self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
@@ -105,10 +107,13 @@ class Validator:
     def _body(self, steps: list[Node], params: dict[str, Location]) -> None:
         self.defined = dict(params)
         self.later = {}
+        self.bound_count = {name: 1 for name in params}
+        self.known = {}
         for node in steps:
             for step in node.walk():
                 for name, where in step.bindings():
                     self.later.setdefault(name, where)
+                    self.bound_count[name] = self.bound_count.get(name, 0) + 1
         self.check_steps(steps)
 
     def check_steps(self, steps: Iterable[Node]) -> None:
@@ -117,8 +122,39 @@ class Validator:
             if node.bind:
                 self.define(node.bind, node.bind_where)
 
-    def define(self, name: str, where: Location) -> None:
+    def define(self, name: str, where: Location, values: list[Any] | None = None) -> None:
+        """`name` is bound from here on; `values`: every value it can take, when known before the run."""
         self.defined.setdefault(name, where)
+        if values is not None and self.bound_count.get(name, 0) <= 1:
+            self.known[name] = list(values)
+
+    def possible(self, value: Any) -> list[Any] | None:
+        """Every value `value` can have at run time when that is known now, else None.
+
+        Literals are themselves; `$param.attr` of a plan parameter (not shadowed by a local) has the
+        parameter's value; a `for_each` variable over a literal list has each item.
+        """
+        if not isinstance(value, str) or "$" not in value:
+            return [value]
+        match = REFERENCE.match(value)
+        if not match:
+            return None  # text with references inside: only known at run time
+        ref = Ref.parse(match.group(1))
+        if ref.name in self.known:
+            bases = self.known[ref.name]
+        elif ref.name in self.values and ref.name not in self.defined and not self.bound_count.get(ref.name):
+            bases = [self.values[ref.name]]  # a parameter no step of this body rebinds
+        else:
+            return None
+        found = []
+        for base in bases:
+            try:
+                for attr in ref.attrs:
+                    base = attribute(base, attr, ref)
+            except UnboundVariable:
+                continue
+            found.append(base)
+        return found
 
     # -- references ---------------------------------------------------------------------------
     def refs(self, value: Any, where: Location, key: str | None = None) -> None:
@@ -181,14 +217,13 @@ class Validator:
                        f"{signature} needs {len(required)}, got {len(given)}", args_where, key="args")
 
     def objects(self, head: str, slots: LMap) -> None:
-        """With a world: literal object names in designator slots must name objects in it."""
+        """With a world: the names in designator slots (objects, their links and joints) must be in it."""
         spec = DESIGNATORS.get(head)
         if spec is not None and self.facts is not None and not self._robot_checked:
             self._robot_checked = True  # said once, at the first designator
             self._robot_for(head, slots)
         if spec is not None:
-            kinds = {s.name: s.kind for s in spec.slots}
-            self._objects(slots, [k for k, kind in kinds.items() if KINDS[kind].names_object])
+            self._names(slots, [(s.name, s.kind, s.of) for s in spec.slots])
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""
@@ -205,21 +240,52 @@ class Validator:
                                                          "with 'description:' in the world file (see docs/robots.md)")
 
     def query_objects(self, name: str, args: LMap) -> None:
-        """With a world: literal object names in query arguments must name objects in it."""
+        """With a world: the names in query arguments (objects, their links, camera links) must be in it."""
         spec = QUERIES.get(name)
         if spec is not None:
-            self._objects(args, [p.name for p in spec.params if KINDS[p.kind].names_object])
+            self._names(args, [(p.name, p.kind, p.of) for p in spec.params])
 
-    def _objects(self, slots: LMap, object_slots: list[str]) -> None:
-        if self.facts is None:
+    def _names(self, slots: LMap, kinds: list[tuple[str, str, str | None]]) -> None:
+        """Object, link and joint names in slots, also those given by parameters and for_each lists."""
+        facts = self.facts
+        if facts is None:
             return
-        names = list(self.facts.objects)
-        for slot_name, value in slots.items():
-            if slot_name not in object_slots or not isinstance(value, str) or references(value):
+        names = list(facts.objects)
+        for slot_name, kind, of in kinds:
+            if slot_name not in slots:
                 continue
-            if value not in names:
-                self.error(f"'{slot_name}': the world has no object '{value}'", slots.loc(slot_name, True),
-                           key=str(slot_name), suggestion=did_you_mean(value, names))
+            value = slots[slot_name]
+            where = slots.loc(slot_name, True)
+            values = self.possible(value) or []
+            origin = "" if values == [value] else f" ({value})"
+            for item in values:
+                if not isinstance(item, str):
+                    continue
+                if KINDS[kind].names_object and item not in names:
+                    self.error(f"'{slot_name}': the world has no object '{item}'{origin}", where, key=str(slot_name),
+                               suggestion=did_you_mean(item, names))
+                elif kind == "camera" and facts.robot is not None and facts.robot in facts.links:
+                    links = facts.links[facts.robot]
+                    if item not in links:
+                        self.error(f"'{slot_name}': robot '{facts.robot}' has no link '{item}'{origin}", where,
+                                   key=str(slot_name), suggestion=did_you_mean(item, links))
+                elif kind in ("link", "joint") and of is not None and of in slots:
+                    self._part_names(slots, slot_name, item, kind, of, where, origin)
+
+    def _part_names(self, slots: LMap, slot_name: str, item: str, kind: str, of: str, where: Location,
+                    origin: str) -> None:
+        """A link or joint named in `slot_name` must belong to the object the slot `of` names."""
+        facts = self.facts
+        assert facts is not None
+        table = facts.links if kind == "link" else facts.joints
+        for owner in self.possible(slots[of]) or []:
+            if not isinstance(owner, str) or owner not in table:
+                continue  # not an object name (reported above), or an object whose model is not known
+            known = table[owner]
+            if item not in known:
+                what = "link" if kind == "link" else "movable joint"
+                self.error(f"'{slot_name}': object '{owner}' has no {what} '{item}'{origin}", where,
+                           key=str(slot_name), suggestion=did_you_mean(item, known))
 
 
 def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
@@ -230,15 +296,17 @@ def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
 
 
 def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file: bool = True,
-               errors: list[InputError] | None = None, facts: WorldFacts | None = None) -> Plan:
+               errors: list[InputError] | None = None, facts: WorldFacts | None = None,
+               values: Mapping[str, Any] | None = None) -> Plan:
     """Raise every static problem of `plan` (and the `errors` found before) together; return it when there is none.
 
     The world it runs in is known from `facts` (a world file) or `world` (a loaded world); without
-    either, robot names (arms, grasps, poses) are checked against every bundled robot.
+    either, robot names (arms, grasps, poses) are checked against every bundled robot. `values`:
+    the parameters' values for this run (default: their defaults), for names given by parameters.
     """
     if facts is None and world is not None:
         facts = WorldFacts.of_world(world)
-    validator = Validator(plan, facts)
+    validator = Validator(plan, facts, values)
     validator.errors.extend(errors or [])
     if check_world_file and plan.world is not None:
         try:

@@ -351,10 +351,12 @@ def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
 
 
 def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[Vec3, Quat]:
-    """PyBullet's pose of `tool_link` with `joint_positions` applied; the joints are put back exactly."""
-    with robot.joints_kept(joint_positions):
-        robot.reset_joints(joint_positions)
-        return robot.get_link_position_and_orientation(tool_link)
+    """PyBullet's pose of `tool_link` with `joint_positions` applied, computed on the world's prospection copy of
+    the robot: the robot itself is only read (see world/prospection.py)."""
+    twin = robot.world.prospection([robot], velocities=False)
+    copy = twin.copy_of(robot)
+    copy.reset_joints(joint_positions)
+    return copy.get_link_position_and_orientation(tool_link)
 
 
 def solve(

@@ -250,5 +250,5 @@ declare_query(QuerySpec(
     "supporting", "Does object a carry object b (b on top of a, touching)?",
     (QueryParam("a", "object", True, "the supporting object's name", positional=True),
      QueryParam("b", "object", True, "the supported object's name", positional=True),
-     QueryParam("link", "link", doc="only count support by this link of a (e.g. kitchen_island_surface)")),
+     QueryParam("link", "link", doc="only count support by this link of a (e.g. kitchen_island_surface)", of="a")),
     _supporting, _say_supporting))

@@ -38,6 +38,7 @@ class QueryParam:
     default_doc: str = ""  # how the default is found, for people
     positional: bool = False
     multiple: bool = False  # a repeatable option collecting a list
+    of: str | None = None  # for a link or joint: the parameter naming the object it belongs to
 
     @property
     def option(self) -> str:

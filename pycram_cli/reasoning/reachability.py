@@ -8,10 +8,9 @@ base, turned with the base's current orientation — or a world quaternion; with
 tool must also come within `angle_threshold` of that orientation (the design's future work).
 
 `blocking` puts the arm at the solution (the best one found when the target is out of
-reach), lists every object the robot then touches — never the target, the robot itself or
-what it holds — and puts the joints back with their saved positions and velocities. Objects
-the robot holds move with the hand while checking (and collide too); in that case the
-world is saved and restored whole.
+reach) on the world's prospection copy and lists every object the robot then touches —
+never the target, the robot itself or what it holds. Objects the robot holds move with the
+copy's hand while checking (and collide too). The world itself is only read.
 """
 from __future__ import annotations
 
@@ -111,18 +110,15 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
         if hasattr(target, "world") and hasattr(target, "id"):
             skip.add(target.id)
         candidates = [o for o in world.objects if o.id not in skip and o.type not in excluded_types]
-        movers = [robot, *held]
-        if held:  # held objects follow the hand: moving them is undone by restoring the whole world
-            state = world.save_state()
-            try:
-                robot.set_joint_positions(joint_positions)
-                return _touching(movers, candidates, tolerance)
-            finally:
-                world.restore_state(state)
-                world.release_state(state)
-        with robot.joints_kept(joint_positions):
-            robot.reset_joints(joint_positions)
-            return _touching(movers, candidates, tolerance)
+        # tried on the world's prospection copy (held objects follow the copy's hand): the world is only read
+        twin = world.prospection(velocities=False)
+        copy = twin.copy_of(robot)
+        if held:
+            copy.set_joint_positions(joint_positions)
+        else:
+            copy.reset_joints(joint_positions)
+        found = _touching([copy, *(twin.copy_of(o) for o in held)], [twin.copy_of(o) for o in candidates], tolerance)
+        return sorted((twin.original_of(o) for o in found), key=lambda o: (o.name, o.id))
 
 
 def _touching(movers: Sequence["Object"], candidates: Sequence["Object"], tolerance: float) -> list["Object"]:

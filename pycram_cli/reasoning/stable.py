@@ -14,10 +14,12 @@ Two things differ here:
   growing (a slowly tipping object speeds up from window to window). Everything up to the
   early stop is the very same physics as a plain 2 s simulation of the world.
 
-The world is saved before and restored after (PyBullet's saveState/restoreState: poses,
-joints and velocities bitwise); free objects are woken up afterwards, because PyBullet does
-not restore sleep, and an object put to sleep during the query would otherwise hang where
-it was restored to.
+The simulation runs on the world's prospection copy (`world.prospection()`), brought in sync
+with the world first: the world itself is only read, so everything it holds — poses,
+velocities, joints, and the contact caches and broadphase order that PyBullet's restoreState
+does not put back — is exactly as before, and simulating it afterwards gives what it would
+have given without the query. Free objects of the copy are woken before simulating (a copy
+put to sleep by an earlier query would otherwise hang).
 """
 from __future__ import annotations
 
@@ -74,14 +76,10 @@ def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = S
     if obj.fixed:
         return StableAnswer(True, 0.0, 0.0, 0.0)  # fixed objects are kinematic: simulation never moves them
     total = int(round(seconds * STEP_HZ))
-    with world.lock:
-        state = world.save_state()
-        try:
-            return _watch(world, obj, total, distance, angle)
-        finally:
-            world.restore_state(state)
-            world.release_state(state)
-            world.wake_free_objects()
+    with world.lock:  # simulated on the world's prospection copy: the world itself is only read
+        twin = world.prospection()
+        twin.copy.wake_free_objects()
+        return _watch(twin.copy, twin.copy_of(obj), total, distance, angle)
 
 
 def _watch(world: "BulletWorld", obj: "Object", total: int, distance: float, angle: float) -> StableAnswer:

@@ -134,7 +134,7 @@ def prepare(plan: str | Path, world: str | Path | None = None, params: Mapping[s
         errors.extend(as_list(exc))
     try:
         check_plan(parsed, facts=WorldFacts.of_spec(spec) if spec is not None else None, check_world_file=False,
-                   errors=errors)
+                   errors=errors, values=values or None)
     except PycramError as exc:
         raise_if_any(as_list(exc))
     raise_if_any(errors)

@@ -26,6 +26,7 @@ from .state import WorldState, capture, release, restore
 
 if TYPE_CHECKING:
     from .object import Object
+    from .prospection import Prospection
 
 STEP_HZ = 240
 
@@ -58,8 +59,9 @@ class BulletWorld:
     _gui_world: "BulletWorld | None" = None
     _registry_lock = threading.Lock()
 
-    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81)) -> None:
-        if mode not in ("direct", "gui"):
+    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81), _hidden: bool = False) -> None:
+        """`_hidden`: a world's private copy (see prospection.py), never the current world."""
+        if mode not in ("direct", "gui") or (_hidden and mode != "direct"):
             raise ValueError(f"mode must be 'direct' or 'gui', got {mode!r}")
         with BulletWorld._registry_lock:
             if mode == "gui" and BulletWorld._gui_world is not None:
@@ -75,6 +77,7 @@ class BulletWorld:
                 raise WorldError(f"could not start a PyBullet {mode} client (for the GUI, is a display available?)")
             self.client_id: int = client
             self.mode = mode
+            self._hidden = _hidden
             if mode == "gui":
                 BulletWorld._gui_world = self
                 with silenced():  # the window's OpenGL set-up prints its driver names from its own thread
@@ -84,8 +87,9 @@ class BulletWorld:
                     while p.getDebugVisualizerCamera(physicsClientId=client)[0] <= 0 and time.monotonic() < deadline:
                         time.sleep(0.02)
                     time.sleep(0.2)
-            BulletWorld._live.append(self)
-            BulletWorld.current_world = self
+            if not _hidden:
+                BulletWorld._live.append(self)
+                BulletWorld.current_world = self
         self.objects: list[Object] = []
         self._by_id: dict[int, Object] = {}
         self.robot: Object | None = None
@@ -100,6 +104,7 @@ class BulletWorld:
         self._exit_hooks: list[Callable[[], None]] = []
         self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
         self._caption: int = -1  # the GUI's caption text item, once shown
+        self._prospection: Prospection | None = None  # made on the first query that tries things out
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -132,6 +137,10 @@ class BulletWorld:
             with contextlib.suppress(Exception):
                 self._solo.close()
             self._solo = None
+        if self._prospection is not None:
+            with contextlib.suppress(Exception):
+                self._prospection.close()
+            self._prospection = None
         with BulletWorld._registry_lock:
             with contextlib.suppress(Exception), silenced():
                 p.disconnect(physicsClientId=self.client_id)
@@ -139,7 +148,8 @@ class BulletWorld:
                 BulletWorld._live.remove(self)
             if BulletWorld._gui_world is self:
                 BulletWorld._gui_world = None
-            BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
+            if not self._hidden:
+                BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
 
     def __enter__(self) -> "BulletWorld":
         return self
@@ -373,6 +383,17 @@ class BulletWorld:
             self._caption = p.addUserDebugText(text, where.tolist(), textColorRGB=[0.05, 0.05, 0.3],
                                                textSize=0.06 * half_v, textOrientation=list(facing),
                                                physicsClientId=self.client_id, **options)
+    def prospection(self, objects: "Sequence[Object] | None" = None, velocities: bool = True) -> "Prospection":
+        """This world's private copy, brought in sync (all objects, or only `objects`): where queries simulate and
+        try joint values, so that this world is only read and keeps every hidden state (see prospection.py)."""
+        self._check_alive()
+        with self.lock:
+            if self._prospection is None:
+                from .prospection import Prospection  # why: prospection.py imports this module
+
+                self._prospection = Prospection(self)
+            self._prospection.sync(list(objects) if objects is not None else None, velocities)
+            return self._prospection
 
     # -- objects ----------------------------------------------------------------
     def register(self, obj: "Object") -> None:

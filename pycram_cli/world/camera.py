@@ -17,6 +17,9 @@ from PIL import Image
 
 from ..kinds import parse_vector
 
+from ..files import write_atomic
+from ..limits import MAX_MAGNITUDE
+
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
     from .object import Object
@@ -251,9 +254,9 @@ def encode_image(rgb: np.ndarray, suffix: str = ".png") -> bytes:
     return buffer.getvalue()
 
 
-def write_png(path: Path | str, rgb: np.ndarray) -> None:
-    """Write an RGB image as a PNG file (for pictures the program draws itself: sweep and location maps)."""
-    Path(path).write_bytes(encode_image(rgb, ".png"))
+def write_png(path: Path | str, rgb: np.ndarray, key: str | None = None) -> None:
+    """Write an RGB image as a PNG file, atomically (for pictures the program draws itself: sweep and location maps)."""
+    write_atomic(path, encode_image(rgb, ".png"), key=key)
 
 
 def _point(text: str, what: str) -> tuple[float, float, float]:

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import write_atomic
+
 
 @dataclass
 class Mesh:
@@ -41,7 +43,7 @@ def write_binary_stl(mesh: Mesh, path: Path) -> None:
     tris = mesh.vertices[mesh.triangles].astype("<f4")
     records = np.zeros(len(tris), dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]))
     records["v"] = tris.reshape(-1, 9)
-    path.write_bytes(b"pycram binary stl".ljust(80, b" ") + struct.pack("<I", len(tris)) + records.tobytes())
+    write_atomic(path, b"pycram binary stl".ljust(80, b" ") + struct.pack("<I", len(tris)) + records.tobytes())
 
 
 def _read_stl(path: Path) -> Mesh:
@@ -66,7 +68,10 @@ def _read_obj(path: Path) -> Mesh:
     tris: list[list[int]] = []
     for line in path.read_text(errors="replace").splitlines():
         if line.startswith("v "):
-            verts.append([float(x) for x in line.split()[1:4]])
+            coordinates = line.split()[1:4]
+            if len(coordinates) != 3:
+                raise ValueError(f"a vertex needs three coordinates: {line.strip()!r}")
+            verts.append([float(x) for x in coordinates])
         elif line.startswith("f "):
             idx = []
             for token in line.split()[1:]:
@@ -80,10 +85,21 @@ def _read_obj(path: Path) -> Mesh:
 def read_mesh(path: Path) -> Mesh:
     suffix = path.suffix.lower()
     if suffix == ".stl":
-        return _read_stl(path)
+        return _checked(_read_stl(path))
     if suffix == ".obj":
-        return _read_obj(path)
+        return _checked(_read_obj(path))
     raise ValueError(f"{path}: unsupported mesh format {suffix!r} (expected .stl or .obj)")
+
+
+def _checked(mesh: Mesh) -> Mesh:
+    """A mesh a body can be made of: some triangles, finite vertices, faces that name existing vertices."""
+    if not len(mesh.triangles):
+        raise ValueError("the mesh has no triangles")
+    if not np.isfinite(mesh.vertices).all():
+        raise ValueError("the mesh has vertices that are not finite numbers")
+    if mesh.triangles.min() < 0 or mesh.triangles.max() >= len(mesh.vertices):
+        raise ValueError("a face of the mesh names a vertex it does not have")
+    return mesh
 
 
 @dataclass

@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 import os
@@ -19,6 +20,8 @@ from pathlib import Path
 
 import pybullet_data
 
+from ..files import read_bytes, write_atomic
+from ..limits import MAX_MODEL_BYTES
 from ..paths import cache_dir
 from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
 
@@ -79,10 +82,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
   </link>
 </robot>
 """
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = target.with_suffix(f".{os.getpid()}.tmp")
-    tmp.write_text(text)
-    tmp.replace(target)
+    write_atomic(target, text)
     return target
 
 
@@ -131,7 +131,7 @@ class PreparedUrdf:
 def prepare_urdf(urdf: Path) -> PreparedUrdf:
     """The URDF to hand to PyBullet, patched into the cache when it needs to be."""
     urdf = urdf.resolve()
-    text = urdf.read_text(errors="replace")
+    text = read_bytes(urdf, MAX_MODEL_BYTES, "model file").decode("utf-8", errors="replace")
     tree = ET.fromstring(text)
     meshes = [(parent, el) for parent in tree.iter() for el in parent if el.tag in ("visual", "collision")]
     needs_patch = "package://" in text or "file://" in text
@@ -158,11 +158,8 @@ def prepare_urdf(urdf: Path) -> PreparedUrdf:
         if drop:
             parent.remove(element)
     target = cache_dir() / "urdf" / f"{urdf.stem}-{key}.urdf"
-    target.parent.mkdir(parents=True, exist_ok=True)
     ET.indent(tree)
-    tmp = target.with_suffix(f".{os.getpid()}.tmp")
-    tmp.write_text(ET.tostring(tree, encoding="unicode"))
-    tmp.replace(target)
+    write_atomic(target, ET.tostring(tree, encoding="unicode"))
     return PreparedUrdf(target, sorted(set(missing)))
 
 
@@ -191,7 +188,7 @@ class ModelInfo:
 
 
 def describe_urdf(urdf: Path) -> ModelInfo:
-    tree = ET.parse(urdf).getroot()
+    tree = ET.fromstring(read_bytes(urdf, MAX_MODEL_BYTES, "model file"))
     links = [link.get("name", "") for link in tree.findall("link")]
     joints: dict[str, JointInfo] = {}
     for joint in tree.findall("joint"):
@@ -206,6 +203,19 @@ def describe_urdf(urdf: Path) -> ModelInfo:
 
 
 def describe_model(path: Path) -> ModelInfo:
-    if path.suffix.lower() in MESH_SUFFIXES:
-        return ModelInfo([path.stem], {})
-    return describe_urdf(path)
+    """The names in a model file (a mesh is read too, so that a broken one is found before anything runs).
+
+    Remembered per file as long as it is unchanged (same size and modification time)."""
+    info = os.stat(path)
+    if info.st_size > MAX_MODEL_BYTES:
+        raise ValueError(f"the file is larger than {MAX_MODEL_BYTES // (1 << 20)} MiB")
+    return _describe(str(path), info.st_mtime_ns, info.st_size)
+
+
+@functools.lru_cache(maxsize=64)
+def _describe(path: str, mtime_ns: int, size: int) -> ModelInfo:
+    model = Path(path)
+    if model.suffix.lower() in MESH_SUFFIXES:
+        read_mesh(model)
+        return ModelInfo([model.stem], {})
+    return describe_urdf(model)

@@ -127,6 +127,7 @@ class Object:
         self.world = world
         self.path = Path(path)
         self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
+        self._color, self._mass = rgba, mass  # as given: a copy of the object is loaded alike
         if not self.path.exists():
             raise FileNotFoundError(f"object '{name}': file not found: {self.path}")
         if self.path.suffix.lower() in MESH_SUFFIXES:

@@ -1,8 +1,11 @@
 """Saving and restoring a world exactly.
 
 PyBullet's own saveState/restoreState puts poses, joint positions and velocities back
-bitwise (including contact caches) in about 0.1 ms; it knows nothing of our attachments,
-which live in Python and are copied alongside.
+bitwise in about 0.1 ms; it knows nothing of our attachments, which live in Python and are
+copied alongside. It does not put back everything the next simulation step depends on — the
+broadphase's pairs and their order, contact manifolds and warm starts — so a world that was
+saved, simulated and restored then simulates slightly differently from one that never was.
+Queries therefore try things on a prospection copy instead (see prospection.py).
 """
 from __future__ import annotations
 

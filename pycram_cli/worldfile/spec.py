@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, InputErrors, Location, as_list, did_you_mean, raise_if_any
+from ..files import probe
 from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
@@ -69,6 +70,7 @@ class WorldSpec:
     description: str = ""
     robot: ObjectSpec | None = None  # the world's robot: the first object of type robot
     robot_description: "RobotDescription | None" = None
+    models: dict[str, ModelInfo] = field(default_factory=dict)  # each object's links and joints, by object name
 
     @property
     def object_names(self) -> list[str]:
@@ -83,15 +85,32 @@ def search_dirs(base: Path) -> list[Path]:
     return dirs
 
 
+class Unreadable(Exception):
+    """Something is at a file's place, but it cannot be read as a file (a pipe, a device, a name too long)."""
+
+
 def resolve_file(name: str, base: Path) -> Path | None:
-    expanded = Path(os.path.expanduser(name))
-    if expanded.is_absolute():
-        return expanded if expanded.is_file() else None
-    for folder in search_dirs(base):
-        candidate = folder / expanded
-        if candidate.is_file():
-            return candidate.resolve()
+    """The regular file `name` names (absolute, or in the search folders); None when there is none.
+
+    Raises Unreadable (with the reason) when something is there that is not a readable regular file.
+    """
+    try:
+        expanded = Path(os.path.expanduser(name))
+    except (RuntimeError, ValueError):
+        expanded = Path(name)
+    candidates = [expanded] if expanded.is_absolute() else [folder / expanded for folder in search_dirs(base)]
+    for candidate in candidates:
+        problem = probe(candidate)
+        if problem is None:
+            return candidate if expanded.is_absolute() else candidate.resolve()
+        if problem != "not found" and not problem.startswith("it is a folder"):
+            raise Unreadable(problem)
     return None
+
+
+def _short(text: str, limit: int = 80) -> str:
+    """A name as shown in a message: long ones cut in the middle."""
+    return text if len(text) <= limit else f"{text[:40]}...{text[-30:]}"
 
 
 def _known_files(base: Path) -> list[str]:
@@ -144,7 +163,7 @@ def parse_world(path: Path) -> WorldSpec:
     robot_description = _robot_description(robot, models.get(robot.name), errors) if robot is not None else None
     raise_if_any(errors)
     return WorldSpec(path, gravity, objects, description if isinstance(description, str) else "", robot,
-                     robot_description)
+                     robot_description, {o.name: models[o.name] for o in objects if o.name in models})
 
 
 def _robot_description(robot: ObjectSpec, model: ModelInfo | None, errors: list[InputError]) -> RobotDescription | None:
@@ -170,11 +189,21 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
     usable = all(key in item and expect(item[key], str, item.loc(key, True), key, errors) for key in OBJECT_REQUIRED)
     if not usable:
         return None
+    empty = [key for key in OBJECT_REQUIRED if not item[key].strip()]
+    for key in empty:
+        errors.append(InputError(f"the object's {key} must not be empty", item.loc(key, True), key=key))
+    if empty:
+        return None
     name, file_text = item["name"], item["file"]
     spec = ObjectSpec(name=name, type=item["type"], file=Path(file_text), file_text=file_text, where=item.where)
-    resolved = resolve_file(file_text, base)
+    try:
+        resolved = resolve_file(file_text, base)
+    except Unreadable as exc:
+        errors.append(InputError(f"cannot read '{_short(file_text)}': {exc}", item.loc("file", True), key="file"))
+        return spec
     if resolved is None:
-        errors.append(InputError(f"file not found: '{file_text}' (looked in {base}, the bundled resources and pybullet_data)",
+        errors.append(InputError(f"file not found: '{_short(file_text)}' (looked in {base}, the bundled resources and "
+                                 "pybullet_data)",
                                  item.loc("file", True), key="file",
                                  suggestion=did_you_mean(file_text, _known_files(base))))
     elif resolved.suffix.lower() not in MODEL_SUFFIXES:
@@ -207,12 +236,17 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
         except Exception as exc:  # noqa: BLE001 - any parse failure is the user's file
             errors.append(InputError(f"cannot read model file {resolved.name}: {exc}", item.loc("file", True), key="file"))
     if "description" in item and expect(item["description"], str, item.loc("description", True), "description", errors):
-        found = resolve_file(item["description"], base)
-        if found is None:
-            errors.append(InputError(f"robot description not found: '{item['description']}' (looked in {base} and the "
-                                     "bundled resources)", item.loc("description", True), key="description"))
-        else:
-            spec.description = found
+        try:
+            found = resolve_file(item["description"], base)
+            if found is None:
+                errors.append(InputError(f"robot description not found: '{_short(item['description'])}' (looked in "
+                                         f"{base} and the bundled resources)", item.loc("description", True),
+                                         key="description"))
+            else:
+                spec.description = found
+        except Unreadable as exc:
+            errors.append(InputError(f"cannot read robot description '{_short(item['description'])}': {exc}",
+                                     item.loc("description", True), key="description"))
     if "joints" in item:
         spec.joints = _parse_joints(item["joints"], item.loc("joints", True), info, errors)
     if "attach" in item:
@@ -274,6 +308,7 @@ def _parse_attach(value: Any, where: Location, errors: list[InputError]) -> list
 
 def _check_attachments(objects: list[ObjectSpec], models: dict[str, ModelInfo], errors: list[InputError]) -> None:
     names = [o.name for o in objects]
+    _check_attachment_cycles(objects, errors)
     for obj in objects:
         for att in obj.attach:
             where = att.where  # type: ignore[attr-defined]
@@ -287,3 +322,37 @@ def _check_attachments(objects: list[ObjectSpec], models: dict[str, ModelInfo], 
                 if link is not None and info is not None and link not in info.links:
                     errors.append(InputError(f"object '{owner}' has no link '{link}'", where, key="attach",
                                              suggestion=did_you_mean(link, info.links)))
+
+
+def _check_attachment_cycles(objects: list[ObjectSpec], errors: list[InputError]) -> None:
+    """An object cannot follow itself through others (milk attached to cereal and cereal to milk)."""
+    parents = {o.name: [a.to for a in o.attach if a.to != o.name] for o in objects}
+    by_name = {o.name: o for o in objects}
+    reported: set[frozenset[str]] = set()
+    for start in parents:
+        path = [start]
+        seen = {start}
+        stack = [(start, iter(parents.get(start, [])))]
+        while stack:
+            name, followers = stack[-1]
+            following = next(followers, None)
+            if following is None:
+                stack.pop()
+                seen.discard(path.pop())
+                continue
+            if following == start:
+                cycle = frozenset(path)
+                if cycle not in reported:
+                    reported.add(cycle)
+                    loop = " -> ".join([*path, start])
+                    obj = by_name[path[-1]]
+                    att = next(a for a in obj.attach if a.to == start)
+                    errors.append(InputError(f"attachments go round in a circle: {loop} (each object would follow "
+                                             "itself)", att.where, key="attach",  # type: ignore[attr-defined]
+                                             suggestion="attach each object to one that does not follow it"))
+                continue
+            if following in seen or following not in parents:
+                continue
+            seen.add(following)
+            path.append(following)
+            stack.append((following, iter(parents.get(following, []))))

@@ -199,7 +199,8 @@ def test_internal_errors_crashes_and_hung_workers_are_recorded(small, faulty, mo
     assert "RuntimeError: boom" in messages["explode"]
     assert "the worker process died (exit code 3)" in messages["crash"]
     assert "the worker was stopped" in messages["hang"]  # killed: it could not interrupt the step itself
-    assert messages["spin"] == "ran past the 1 s timeout"  # interrupted by the worker, which then retired
+    # interrupted by the worker, which then retired (on a loaded machine the worker may have to be stopped instead)
+    assert messages["spin"].startswith("ran past the 1 s timeout")
     assert summary["runs"] == 10
 
 

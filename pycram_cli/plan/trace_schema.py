@@ -1,0 +1,337 @@
+"""The schema of a saved trace (format `pycram-trace`, version 1), checked before a trace is shown or compared.
+
+A trace file comes from anywhere: a truncated copy, a hand edit, another program. `check`
+walks the parsed JSON once (without recursion) and reports every problem as an input error
+at its place in the file (line and column of the value), naming the entry and what is wrong
+with it: `final_state.attachments[0]: an attachment needs 'parent'`. After the check, the
+commands that read traces (`trace show`, `trace diff`) can rely on every field they use.
+
+Numbers must be finite (JSON's NaN and Infinity are refused, and so are numbers too large
+for a float); nesting is bounded (see `limits.py`).
+"""
+from __future__ import annotations
+
+import json
+import math
+from typing import Any, Callable
+
+from ..errors import InputError, InputErrors, Location
+from ..limits import MAX_NESTING, MAX_STEP_DEPTH
+
+Path = tuple[Any, ...]  # keys and indices from the top of the trace
+RUN_STATUSES = ("succeeded", "failed", "cancelled", "interrupted")
+NODE_STATUSES = ("pending", "running", "succeeded", "failed", "cancelled", "skipped")
+#: JSON nesting a trace may have: the deepest run's step tree (two levels per step) and values inside its steps
+MAX_JSON_DEPTH = 2 * MAX_STEP_DEPTH + MAX_NESTING + 10
+MAX_PROBLEMS = 20
+
+
+class NonFinite:
+    """A number JSON cannot hold (NaN, Infinity, 1e999), kept in place so that it can be reported where it is."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+
+    def __repr__(self) -> str:
+        return self.text
+
+
+def _float(text: str) -> Any:
+    value = float(text)
+    return value if math.isfinite(value) else NonFinite(text)
+
+
+def parse(text: str, filename: str) -> Any:
+    """JSON text to data; non-finite numbers stay NonFinite, malformed or too deeply nested JSON is an InputError."""
+    try:
+        return json.loads(text, parse_constant=NonFinite, parse_float=_float)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"not a JSON trace: {exc.msg}", Location(filename, exc.lineno, exc.colno)) from None
+    except RecursionError:
+        raise InputError(f"not a pycram trace: nested deeper than {MAX_JSON_DEPTH} levels", Location(filename)) \
+            from None
+
+
+# -- the schema -------------------------------------------------------------------------------------------
+
+Problem = tuple[Path, str]
+
+
+def _name(path: Path) -> str:
+    """('final_state', 'attachments', 0, 'parent') -> 'final_state.attachments[0].parent'."""
+    text = ""
+    for part in path:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text or "the trace"
+
+
+def _kind(value: Any) -> str:
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true or false"
+    if isinstance(value, (int, float)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, dict):
+        return "an object"
+    return "a non-finite number"
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+class _Checker:
+    def __init__(self) -> None:
+        self.problems: list[Problem] = []
+
+    def add(self, path: Path, message: str) -> None:
+        self.problems.append((path, message))
+
+    def typed(self, value: Any, path: Path, kind: type | tuple[type, ...], what: str) -> bool:
+        ok = isinstance(value, kind) and not (isinstance(value, bool) and bool not in (kind if isinstance(kind, tuple)
+                                                                                      else (kind,)))
+        if not ok:
+            self.add(path, f"expected {what}, got {_kind(value)}")
+        return ok
+
+    def fields(self, record: Any, path: Path, what: str, required: dict[str, Callable[[Any, Path], None]],
+               optional: dict[str, Callable[[Any, Path], None]] | None = None) -> bool:
+        if not isinstance(record, dict):
+            self.add(path, f"{what} must be an object, got {_kind(record)}")
+            return False
+        missing = [key for key in required if key not in record]
+        for key in missing:
+            self.add(path, f"{what} needs '{key}'")
+        for key, check in {**required, **(optional or {})}.items():
+            if key in record:
+                check(record[key], path + (key,))
+        return True
+
+    # -- value checks ---------------------------------------------------------------------------------
+    def string(self, value: Any, path: Path) -> None:
+        self.typed(value, path, str, "a string")
+
+    def string_or_null(self, value: Any, path: Path) -> None:
+        if value is not None:
+            self.typed(value, path, str, "a string or null")
+
+    def obj(self, value: Any, path: Path) -> None:
+        self.typed(value, path, dict, "an object")
+
+    def number_or_null(self, value: Any, path: Path) -> None:
+        if value is not None and not _is_number(value):
+            self.add(path, f"expected a number or null, got {_kind(value)}")
+
+    def count(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, int) and not isinstance(value, bool) and value >= 0):
+            self.add(path, f"expected a whole number (0 or more), got {_kind(value)}")
+
+    def vector(self, size: int) -> Callable[[Any, Path], None]:
+        def check(value: Any, path: Path) -> None:
+            if not (isinstance(value, list) and len(value) == size and all(_is_number(v) for v in value)):
+                self.add(path, f"expected a list of {size} numbers")
+        return check
+
+    def failure(self, value: Any, path: Path) -> None:
+        if value is None:
+            return
+        if self.fields(value, path, "a failure", {"type": self.string, "message": self.string},
+                       {"path": self.string, "failures": self.failures}):
+            pass
+
+    def failures(self, value: Any, path: Path) -> None:
+        if self.typed(value, path, list, "a list of failures"):
+            for index, item in enumerate(value):
+                if item is None:
+                    self.add(path + (index,), "expected a failure, got null")
+                else:
+                    self.failure(item, path + (index,))
+
+    def status(self, allowed: tuple[str, ...]) -> Callable[[Any, Path], None]:
+        def check(value: Any, path: Path) -> None:
+            if value not in allowed:
+                self.add(path, f"unknown status {json.dumps(value) if isinstance(value, str) else _kind(value)} "
+                               f"(one of {', '.join(allowed)})")
+        return check
+
+    def timing(self, value: Any, path: Path) -> None:
+        if self.typed(value, path, dict, "an object"):
+            for key in ("started", "duration"):
+                if key in value:
+                    self.number_or_null(value[key], path + (key,))
+
+    def designator(self, value: Any, path: Path) -> None:
+        self.fields(value, path, "a designator record", {}, {"slots": self.obj, "resolved": self.obj})
+
+    def query(self, value: Any, path: Path) -> None:
+        self.fields(value, path, "a query record", {}, {"args": self.obj, "details": self.obj, "name": self.string})
+
+    def condition(self, value: Any, path: Path) -> None:
+        if not self.fields(value, path, "a condition", {}, {"query": self.query, "variable": self.string,
+                                                             "not": self.condition}):
+            return
+        if "equal" in value and not (isinstance(value["equal"], list) and len(value["equal"]) == 2):
+            self.add(path + ("equal",), "expected a list of two values")
+
+    def call(self, value: Any, path: Path) -> None:
+        self.fields(value, path, "a call record", {}, {"plan": self.string_or_null, "args": self.obj})
+
+    def caught(self, value: Any, path: Path) -> None:
+        self.fields(value, path, "a caught failure", {}, {"type": self.string, "message": self.string,
+                                                          "path": self.string})
+
+    def node(self, value: Any, path: Path, depth: int) -> list[tuple[Any, Path, int]]:
+        """Check one step node; its children, to be checked next."""
+        if not self.fields(value, path, "a step", {"path": self.string, "type": self.string,
+                                                   "status": self.status(NODE_STATUSES)},
+                           {"failure": self.failure, "timing": self.timing, "source": self.string,
+                            "designator": self.designator, "query": self.query, "condition": self.condition,
+                            "call": self.call, "caught": self.caught, "bound": self.obj, "message": self.string,
+                            "retries": self.count, "items": self.list_of_anything, "folded": self.folded}):
+            return []
+        if depth > MAX_STEP_DEPTH + 2:
+            self.add(path, f"steps nested deeper than {MAX_STEP_DEPTH} levels")
+            return []
+        children = value.get("children")
+        if children is None:
+            return []
+        if not self.typed(children, path + ("children",), list, "a list of steps"):
+            return []
+        return [(child, path + ("children", index), depth + 1) for index, child in enumerate(children)]
+
+    def list_of_anything(self, value: Any, path: Path) -> None:
+        self.typed(value, path, list, "a list")
+
+    def folded(self, value: Any, path: Path) -> None:
+        self.fields(value, path, "a summary of folded steps", {"steps": self.count}, {"failures": self.obj})
+
+    def final_state(self, value: Any, path: Path) -> None:
+        if not self.fields(value, path, "the final state", {}, {"objects": self.obj,
+                                                                "attachments": self.attachments}):
+            return
+        objects = value.get("objects")
+        if isinstance(objects, dict):
+            for name, entry in objects.items():
+                where = path + ("objects", name)
+                if self.fields(entry, where, f"object '{name}'", {"position": self.vector(3)},
+                               {"type": self.string, "orientation": self.vector(4), "joints": self.obj}):
+                    joints = entry.get("joints")
+                    if isinstance(joints, dict):
+                        for joint, position in joints.items():
+                            if not _is_number(position):
+                                self.add(where + ("joints", joint), f"expected a number, got {_kind(position)}")
+
+    def attachments(self, value: Any, path: Path) -> None:
+        if not self.typed(value, path, list, "a list of attachments"):
+            return
+        for index, entry in enumerate(value):
+            self.fields(entry, path + (index,), "an attachment",
+                        {"parent": self.string, "child": self.string},
+                        {"parent_link": self.string_or_null, "child_link": self.string_or_null})
+
+
+def _non_finite_and_depth(data: Any, checker: _Checker) -> None:
+    """Every NonFinite number, and nesting beyond the limit, anywhere in the data (no recursion)."""
+    stack: list[tuple[Any, Path, int]] = [(data, (), 1)]
+    while stack and len(checker.problems) < MAX_PROBLEMS:
+        value, path, depth = stack.pop()
+        if isinstance(value, NonFinite):
+            checker.add(path, f"not a finite number: {value.text}")
+        elif isinstance(value, (dict, list)):
+            if depth > MAX_JSON_DEPTH:
+                checker.add(path, f"nested deeper than {MAX_JSON_DEPTH} levels")
+                continue
+            items = value.items() if isinstance(value, dict) else enumerate(value)
+            stack.extend((item, path + (key,), depth + 1) for key, item in items)
+
+
+def problems(data: Any) -> list[Problem]:
+    """Every problem of a parsed trace against the schema (empty when it is a well-formed trace)."""
+    checker = _Checker()
+    _non_finite_and_depth(data, checker)
+    if checker.problems:
+        return checker.problems
+    if not isinstance(data, dict) or data.get("format") != "pycram-trace" or "root" not in data:
+        return [((), "not a pycram trace (expected a JSON object with \"format\": \"pycram-trace\" and a \"root\")")]
+    checker.fields(data, (), "a trace", {"version": checker.count, "root": lambda v, p: None},
+                   {"plan": checker.string_or_null, "world": checker.string_or_null, "params": checker.obj,
+                    "status": checker.status(RUN_STATUSES), "failure": checker.failure,
+                    "final_state": checker.final_state, "timing": checker.timing, "interrupted": checker.obj})
+    pending: list[tuple[Any, Path, int]] = [(data["root"], ("root",), 1)]
+    while pending and len(checker.problems) < MAX_PROBLEMS:
+        value, path, depth = pending.pop()
+        pending.extend(reversed(checker.node(value, path, depth)))
+    return checker.problems[:MAX_PROBLEMS]
+
+
+# -- where a value is in the text ---------------------------------------------------------------------
+
+_DECODER = json.JSONDecoder(parse_constant=lambda text: None)
+_SPACE = " \t\n\r"
+
+
+def offset_of(text: str, path: Path) -> int:
+    """The offset in `text` (JSON) where the value at `path` starts; as deep as the path can be followed."""
+    index = _skip(text, 0)
+    for part in path:
+        inner = _enter(text, index, part)
+        if inner is None:
+            break
+        index = inner
+    return index
+
+
+def _skip(text: str, index: int) -> int:
+    while index < len(text) and text[index] in _SPACE:
+        index += 1
+    return index
+
+
+def _enter(text: str, index: int, part: Any) -> int | None:
+    """The start of the member `part` of the object or list starting at `index`, or None."""
+    if index >= len(text) or text[index] not in "{[":
+        return None
+    is_object = text[index] == "{"
+    index = _skip(text, index + 1)
+    position = 0
+    try:
+        while index < len(text) and text[index] not in "}]":
+            if is_object:
+                key, index = json.decoder.scanstring(text, index + 1)
+                index = _skip(text, index)
+                index = _skip(text, index + 1)  # the colon
+                if key == part:
+                    return index
+            elif position == part:
+                return index
+            _, index = _DECODER.raw_decode(text, index)
+            index = _skip(text, index)
+            if index < len(text) and text[index] == ",":
+                index = _skip(text, index + 1)
+            position += 1
+    except (ValueError, RecursionError):
+        return None
+    return None
+
+
+def location(text: str, filename: str, path: Path) -> Location:
+    offset = offset_of(text, path)
+    line = text.count("\n", 0, offset) + 1
+    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
+    return Location(filename, line, column)
+
+
+def check(data: Any, text: str, filename: str) -> None:
+    """Raise every problem of a parsed trace (InputErrors) at its place in the file."""
+    found = problems(data)
+    errors = [InputError(message, location(text, filename, path), key=_name(path) if path else None)
+              for path, message in found]
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise InputErrors(errors)

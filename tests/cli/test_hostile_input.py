@@ -1,0 +1,357 @@
+"""Hostile and malformed input (issue 18): exit 2 with file:line:column, the key and a message — never a
+traceback, a hang, a wrong exit code or a memory blow-up. One representative case per row of the issue's table."""
+from __future__ import annotations
+
+import os
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+from pycram_cli.worldfile.spec import parse_world
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def run(*args: str, timeout: float = 20.0):
+    started = time.monotonic()
+    result = CliRunner().invoke(cli, list(args))
+    assert time.monotonic() - started < timeout, f"pycram {' '.join(args)} took too long"
+    assert "Traceback" not in result.output, result.output
+    return result
+
+
+def write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+def small_world(tmp_path: Path, extra: str = "") -> Path:
+    return write(tmp_path, "w.yaml", """
+        objects:
+          - {name: floor, type: environment, file: plane.urdf}
+          - {name: box, type: box, file: cube_small.urdf, position: [0.5, 0, 0.025]}
+    """ + extra)
+
+
+def a_plan(tmp_path: Path, body: str, name: str = "p.yaml") -> Path:
+    small_world(tmp_path)
+    return write(tmp_path, name, "world: w.yaml\nbody:\n" + textwrap.indent(textwrap.dedent(body), "  "))
+
+
+# -- file-system errors: exit 2 naming the key, not an internal error --------------------------------------
+
+
+def test_a_file_name_too_long_in_a_world_is_exit_2_at_its_key(tmp_path):
+    world = write(tmp_path, "w.yaml", f"""
+        objects:
+          - {{name: box, type: box, file: {"x" * 300}.urdf}}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:3:34: file: cannot read" in result.stderr and "file name too long" in result.stderr
+
+
+def test_a_named_pipe_as_the_plan_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "plan.yaml"
+    os.mkfifo(fifo)
+    result = run("validate", str(fifo), timeout=5)
+    assert result.exit_code == 2
+    assert "named pipe, not a regular file" in result.stderr
+    assert run("run", str(fifo), timeout=5).exit_code == 2
+
+
+def test_a_symlink_to_dev_zero_as_the_plan_is_refused_without_reading_it(tmp_path):
+    link = tmp_path / "plan.yaml"
+    link.symlink_to("/dev/zero")
+    result = run("run", str(link), timeout=5)
+    assert result.exit_code == 2
+    assert "character device, not a regular file" in result.stderr
+
+
+def test_a_folder_and_a_huge_file_are_input_errors(tmp_path):
+    (tmp_path / "dir.yaml").mkdir()
+    assert "a folder" in run("validate", str(tmp_path / "dir.yaml")).stderr
+    huge = tmp_path / "huge.yaml"
+    huge.write_text("body:\n" + "  - log: x\n" * 200_000)
+    result = run("validate", str(huge))
+    assert result.exit_code == 2 and "too large" in result.stderr and "the limit is 1 MiB" in result.stderr
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads files whatever their permissions")
+def test_a_file_without_read_permission_is_an_input_error(tmp_path):
+    path = a_plan(tmp_path, "- log: x\n")
+    path.chmod(0)
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and "permission denied" in result.stderr
+
+
+def test_bytes_that_are_not_utf8_are_reported_at_their_line(tmp_path):
+    path = tmp_path / "p.yaml"
+    path.write_bytes(b"body:\n  - log: caf\xe9\n")
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and f"{path}:2:13: not UTF-8 text" in result.stderr
+
+
+# -- output paths --------------------------------------------------------------------------------------------
+
+
+def test_an_output_path_that_cannot_be_written_is_exit_2_before_the_run(tmp_path):
+    path = a_plan(tmp_path, "- log: ran\n")
+    result = run("run", str(path), "--render", "/proc/pycram/x.png")
+    assert result.exit_code == 2 and "/proc/pycram/x.png" in result.stderr and "cannot write" in result.stderr
+    assert "ran" not in result.stderr  # nothing ran
+    os.mkfifo(tmp_path / "out.json")
+    result = run("run", str(path), "--trace", str(tmp_path / "out.json"), timeout=5)
+    assert result.exit_code == 2 and "out.json: trace: cannot write: it is a named pipe" in result.stderr
+
+
+# -- YAML: merge keys work; aliases, nesting and sizes are bounded ------------------------------------------
+
+
+def test_yaml_merge_keys_share_object_fields(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: floor, type: environment, file: plane.urdf}
+          - &box {name: a, type: box, file: cube_small.urdf, position: [0, 0, 0.025]}
+          - {<<: *box, name: b, position: [1, 0, 0.025]}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 0, result.output
+    b = parse_world(world).objects[2]
+    assert (b.name, b.type, b.position) == ("b", "box", [1, 0, 0.025])
+    world.write_text(world.read_text().replace("name: b,", "name: b, name: c,"))
+    result = run("validate", str(world))  # a key given twice by the mapping itself is still an error
+    assert result.exit_code == 2 and "duplicate key 'name'" in result.stderr
+
+
+def test_an_alias_bomb_as_a_log_message_is_refused_quickly(tmp_path):
+    levels = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    levels += [f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 9)}]" for i in range(1, 9)]
+    path = tmp_path / "bomb.yaml"
+    path.write_text("params:\n" + "".join(f"  {line}\n" for line in levels) + "body:\n  - log: $a8\n")
+    result = run("validate", str(path), timeout=5)
+    assert result.exit_code == 2
+    assert f"{path}:" in result.stderr and "more than 100000 values once its aliases are expanded" in result.stderr
+
+
+def test_an_alias_bomb_in_a_parameter_is_refused(tmp_path):
+    plan = write(tmp_path, "p.yaml", "params: {x: 1}\nbody: [{log: $x}]\n")
+    value = "&a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"
+    for i in range(1, 6):
+        value = f"&a{i} [{value}, " + ", ".join([f"*a{i - 1}"] * 9) + "]"
+    result = run("run", str(plan), "-p", f"x={value}", timeout=5)
+    assert result.exit_code == 2 and "-p x" in result.stderr and "aliases" in result.stderr
+
+
+def test_nesting_deeper_than_the_limit_is_an_input_error(tmp_path):
+    path = tmp_path / "deep.yaml"
+    path.write_text("body:\n  - log: " + "[" * 10_000 + "]" * 10_000 + "\n")
+    result = run("validate", str(path))
+    assert result.exit_code == 2 and "nested deeper than 100 levels" in result.stderr
+
+
+def test_a_null_key_in_an_object_is_reported_at_the_key(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - name: box
+            type: box
+            file: cube_small.urdf
+            ~: 3
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2 and f"{world}:6:5: None: unknown key" in result.stderr and "unknown key" in result.stderr
+
+
+def test_a_non_finite_mass_is_refused(tmp_path):
+    world = small_world(tmp_path).read_text().replace("position: [0.5, 0, 0.025]", "mass: .nan")
+    (tmp_path / "w.yaml").write_text(world)
+    result = run("validate", str(tmp_path / "w.yaml"))
+    assert result.exit_code == 2 and "w.yaml:4:57: mass: not a finite number: '.nan'" in result.stderr
+
+
+# -- `-p` values are parsed strictly ----------------------------------------------------------------------------
+
+
+def test_a_malformed_parameter_value_is_exit_2_before_anything_runs(tmp_path):
+    plan = write(tmp_path, "p.yaml", "params: {types: [milk]}\nbody: [{log: ran $types}]\n")
+    result = run("run", str(plan), "-p", "types=[milk")
+    assert result.exit_code == 2
+    assert "-p types:1:6: types: malformed YAML" in result.stderr
+    assert "quote a value meant as text" in result.stderr
+    assert "ran" not in result.stderr  # nothing ran
+
+
+# -- corrupt traces: checked against the trace's own schema (with its version) --------------------------------
+
+
+def saved_trace(tmp_path: Path) -> tuple[Path, dict]:
+    import json
+
+    plan = a_plan(tmp_path, """
+        - log: hello
+        - try_all: [{fail: PerceptionFailure}, {log: b}]
+    """)
+    out = tmp_path / "t.json"
+    assert run("run", str(plan), "--trace", str(out)).exit_code == 0
+    data = json.loads(out.read_text())
+    data["final_state"]["attachments"] = [{"parent": "floor", "child": "box", "parent_link": "planeLink",
+                                           "child_link": "baseLink"}]
+    return out, data
+
+
+def test_a_trace_whose_attachment_lacks_parent_says_which_entry_and_what_is_missing(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    del data["final_state"]["attachments"][0]["parent"]
+    out.write_text(json.dumps(data, indent=2))
+    line = next(i for i, text in enumerate(out.read_text().splitlines(), 1) if '"child": "box"' in text) - 1
+    for command in (["trace", "show", str(out)], ["trace", "diff", str(out), str(out)]):
+        result = run(*command)
+        assert result.exit_code == 2, result.output
+        assert f"{out}:{line}:7: final_state.attachments[0]: an attachment needs 'parent'" in result.stderr
+
+
+def test_corrupt_traces_are_input_errors_never_internal_ones(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    broken = {
+        "a node without status": lambda d: d["root"]["children"][0].pop("status"),
+        "a designator record that is a string": lambda d: d["root"]["children"][0].update(designator="x"),
+        "children that are not a list": lambda d: d["root"].update(children=3),
+        "a position of two numbers": lambda d: d["final_state"]["objects"]["box"].update(position=[1, 2]),
+        "an unknown status": lambda d: d["root"].update(status="exploded"),
+        "another version": lambda d: d.update(version=99),
+        "a failure without type": lambda d: d["root"]["children"][1].update(failure={"message": "m"}),
+    }
+    for what, change in broken.items():
+        copy = json.loads(json.dumps(data))
+        change(copy)
+        out.write_text(json.dumps(copy))
+        result = run("trace", "show", str(out))
+        assert result.exit_code == 2, (what, result.output)
+        assert f"{out}:1:" in result.stderr, (what, result.stderr)
+    out.write_text(json.dumps(data).replace('"status": "succeeded"', '"status": NaN', 1))
+    result = run("trace", "show", str(out))
+    assert result.exit_code == 2 and "not a finite number: NaN" in result.stderr
+    out.write_text("[" * 100_000 + "]" * 100_000)
+    assert run("trace", "show", str(out)).exit_code == 2
+    out.write_text(json.dumps(data)[:1000])
+    assert "not a JSON trace" in run("trace", "show", str(out)).stderr
+
+
+def test_trace_diff_json_never_prints_a_bare_nan_and_refuses_a_nan_tolerance(tmp_path):
+    import json
+
+    out, data = saved_trace(tmp_path)
+    result = run("trace", "diff", str(out), str(out), "--atol", "nan")
+    assert result.exit_code == 2 and "--atol" in result.stderr
+    other = tmp_path / "other.json"
+    data["final_state"]["objects"]["box"]["position"][0] += 1
+    other.write_text(json.dumps(data))
+    result = run("trace", "diff", str(out), str(other), "--json")
+    assert result.exit_code == 1
+    assert "NaN" not in result.stdout and json.loads(result.stdout)["same"] is False
+
+
+# -- numbers outside what the runtime can do ------------------------------------------------------------------
+
+
+def test_numbers_beyond_what_the_runtime_can_do_are_input_errors(tmp_path):
+    plan = a_plan(tmp_path, """
+        - wait: 1.0e+10
+        - retry: 10000000000
+          body: [{log: x}]
+        - moving: {target: [1.0e+300, 0, 0]}
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    assert f"{plan}:4:11: wait: at most 86400 seconds (one day) can be waited for" in result.stderr
+    assert f"{plan}:5:12: retry: at most 1000000000 retries" in result.stderr
+    assert "numbers must be between -1e+06 and 1e+06" in result.stderr
+    assert run("run", str(plan), "--pace", "nan").exit_code == 2
+
+
+def test_a_nan_wait_is_refused(tmp_path):
+    plan = a_plan(tmp_path, "- wait: .nan\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2 and "wait: not a finite number: '.nan'" in result.stderr
+
+
+# -- validation finds what the run would find out later -----------------------------------------------------
+
+
+def test_object_link_and_joint_names_in_every_slot_are_checked_against_the_world(tmp_path):
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {thing: fridge}
+        body:
+          - looking: {object: $thing}
+          - accessing: {drawer-handle: sink_area_left_upper_drawer_handl, part-of: kitchen,
+                        drawer-joint: sink_area_left_upper_drawer_main_joit}
+          - accessing: {drawer-handle: sink_area_left_upper_drawer_handle, part-of: kitchn,
+                        drawer-joint: sink_area_left_upper_drawer_main_joint}
+          - for_each: [milk, fridge2]
+            as: o
+            do: [{looking: {object: $o}}]
+          - supporting: {a: kitchen, b: milk, link: kitchen_island_surfac}
+          - visible: {object: milk, from: wide_stereo_optical_fram}
+          - move-arm-joints: {arms: {left: {l_elbow_flex_jont: 0.1}}}
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    expected = [
+        "5:23: object: 'object': the world has no object 'fridge' ($thing)",
+        "6:32: drawer-handle: 'drawer-handle': object 'kitchen' has no link 'sink_area_left_upper_drawer_handl' "
+        "(did you mean 'sink_area_left_upper_drawer_handle'?)",
+        "7:31: drawer-joint: 'drawer-joint': object 'kitchen' has no movable joint",
+        "8:77: part-of: 'part-of': the world has no object 'kitchn' (did you mean 'kitchen'?)",
+        "12:29: object: 'object': the world has no object 'fridge2' ($o)",
+        "13:45: link: 'link': object 'kitchen' has no link 'kitchen_island_surfac'",
+        "14:35: from: 'from': robot 'pr2' has no link 'wide_stereo_optical_fram'",
+        "'l_elbow_flex_jont' is not a joint of the left arm (did you mean 'l_elbow_flex_joint'?)",
+    ]
+    for line in expected:
+        assert line in result.stderr, (line, result.stderr)
+    result = run("run", str(plan), "-p", "thing=milk")
+    assert "no object 'fridge' ($thing)" not in result.stderr and result.exit_code == 2
+
+
+def test_attachment_cycles_and_empty_names_in_worlds_are_refused(tmp_path):
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: milk, type: milk, file: objects/milk.obj, attach: [cereal]}
+          - {name: cereal, type: cereal, file: objects/milk.obj, attach: [{to: milk}]}
+          - {name: "", type: bowl, file: objects/bowl.obj}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:4:67: attach: attachments go round in a circle: milk -> cereal -> milk" in result.stderr
+    assert f"{world}:5:12: name: the object's name must not be empty" in result.stderr
+
+
+def test_a_location_on_line_100_is_printed_as_it_is(tmp_path):
+    # rich read ":100:" as an emoji code and printed the location as "file💯3"
+    plan = a_plan(tmp_path, "".join("- log: x\n" for _ in range(97)) + "- lgo: y\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2 and f"{plan}:100:5: lgo: unknown node type 'lgo'" in result.stderr
+
+
+def test_a_broken_mesh_is_found_by_validation_not_by_the_run(tmp_path):
+    (tmp_path / "empty.obj").write_text("")
+    (tmp_path / "short.obj").write_text("v 1 2\nf 1 2 3\n")
+    world = write(tmp_path, "w.yaml", """
+        objects:
+          - {name: a, type: box, file: empty.obj}
+          - {name: b, type: box, file: short.obj}
+    """)
+    result = run("validate", str(world))
+    assert result.exit_code == 2
+    assert f"{world}:3:32: file: cannot read model file empty.obj: the mesh has no triangles" in result.stderr
+    assert "a vertex needs three coordinates" in result.stderr

@@ -1,0 +1,149 @@
+"""Ctrl-C and SIGTERM (issue 18): the command ends within a second from anywhere — a `wait` alone or inside
+`par`, the start-up imports — with exit 130 (143), siblings cancelled and the trace written whole, marked
+interrupted. These run `pycram` as a real process (signals need one); each takes about a second."""
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from pycram_cli.plan import load_plan
+from pycram_cli.plan.executor import Run
+from pycram_cli.plan.trace import load
+
+PYCRAM = [sys.executable, "-c", "from pycram_cli.cli.launch import main; main()"]
+
+
+def _caught(pid: int) -> int:
+    """The mask of signals the process has handlers for (SigCgt in /proc)."""
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("SigCgt:"):
+            return int(line.split()[1], 16)
+    return 0
+
+
+def start(args: list[str], cwd: Path) -> subprocess.Popen:
+    return subprocess.Popen([*PYCRAM, *args], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def wait_for(predicate, timeout: float = 20.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.01)
+
+
+def signal_and_time(process: subprocess.Popen, signum: int) -> tuple[float, str, str]:
+    sent = time.monotonic()
+    process.send_signal(signum)
+    out, err = process.communicate(timeout=10)
+    return time.monotonic() - sent, out, err
+
+
+def plan_files(tmp_path: Path, body: str) -> Path:
+    (tmp_path / "w.yaml").write_text(textwrap.dedent("""
+        objects:
+          - {name: floor, type: environment, file: plane.urdf}
+          - {name: box, type: box, file: cube_small.urdf, position: [0.5, 0, 0.025]}
+    """))
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: w.yaml\nbody:\n" + textwrap.indent(textwrap.dedent(body), "  "))
+    return plan
+
+
+def statuses(trace: dict) -> list[str]:
+    found = []
+
+    def walk(node: dict) -> None:
+        found.append(node["status"])
+        for child in node.get("children", []):
+            walk(child)
+
+    walk(trace["root"])
+    return found
+
+
+@pytest.mark.parametrize("signum, code, body", [
+    (signal.SIGINT, 130, "- log: waiting\n- wait: 60\n- log: never\n"),
+    (signal.SIGTERM, 143, "- log: waiting\n- par:\n    - wait: 60\n    - seq: [{wait: 50}, {log: never}]\n"
+                          "    - seq: [{log: sibling}, {wait: 40}]\n"),
+])
+def test_a_signal_during_wait_ends_the_run_within_a_second_with_its_trace(tmp_path, signum, code, body):
+    plan = plan_files(tmp_path, body)
+    trace = tmp_path / "t.json"
+    trace.write_text("the previous trace")
+    process = start(["run", str(plan), "--trace", str(trace)], tmp_path)
+    wait_for(lambda: process.poll() is not None or b"waiting" in _stderr_so_far(process))
+    time.sleep(0.3)  # well inside the wait
+    took, out, err = signal_and_time(process, signum)
+    assert process.returncode == code, err
+    assert took < 1.0, f"took {took:.2f} s to end"
+    assert "Traceback" not in err
+    assert f"interrupted by {signal.Signals(signum).name}" in err
+    data = load(trace)  # complete: it passes the trace schema
+    assert data["status"] == "interrupted" and data["interrupted"] == {"signal": signal.Signals(signum).name}
+    assert not {"pending", "running"} & set(statuses(data)), "the trace is not finished"
+    assert "cancelled" in statuses(data)
+
+
+_buffers: dict[int, bytearray] = {}
+
+
+def _stderr_so_far(process: subprocess.Popen) -> bytes:
+    """What the process wrote to stderr so far (read without blocking)."""
+    buffer = _buffers.setdefault(process.pid, bytearray())
+    fd = process.stderr.fileno()
+    os.set_blocking(fd, False)
+    try:
+        chunk = os.read(fd, 65536)
+        if chunk:
+            buffer.extend(chunk)
+    except BlockingIOError:
+        pass
+    return bytes(buffer)
+
+
+def test_ctrl_c_while_the_modules_load_exits_130_without_a_traceback(tmp_path):
+    plan = plan_files(tmp_path, "- log: never\n")
+    process = start(["run", str(plan)], tmp_path)
+    sigterm = 1 << (signal.SIGTERM - 1)
+    wait_for(lambda: _caught(process.pid) & sigterm)  # pycram's handlers are in place; the heavy imports run
+    took, out, err = signal_and_time(process, signal.SIGINT)
+    assert process.returncode == 130, err
+    assert "Traceback" not in err and "never" not in err
+    assert took < 1.5
+
+
+def test_interrupting_a_run_cancels_every_branch_and_marks_the_run(tmp_path, world):
+    plan = load_plan(plan_files(tmp_path, """
+        - par:
+            - wait: 60
+            - seq: [{log: a}, {wait: 60}, {log: never}]
+            - try_all: [{wait: 60}, {wait: 50}]
+    """))
+    plan.world = None
+    run = Run(plan, world, {})
+    result = {}
+    thread = threading.Thread(target=lambda: result.update(r=run.execute()))
+    before = threading.active_count()
+    thread.start()
+    time.sleep(0.3)
+    started = time.monotonic()
+    run.interrupt("SIGINT")
+    thread.join(5)
+    assert time.monotonic() - started < 1.0
+    outcome = result["r"]
+    assert outcome.status == "interrupted"
+    assert outcome.failure == {"type": "Interrupted", "message": "interrupted by SIGINT", "path": "body"}
+    assert outcome.trace["interrupted"] == {"signal": "SIGINT"}
+    assert not {"pending", "running"} & set(statuses(outcome.trace))
+    assert threading.active_count() == before
+    json.dumps(outcome.trace)
