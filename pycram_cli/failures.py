@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from .errors import InputError, InputErrors
+
 
 class Failure(Exception):
     """Base of every plan failure; a handler for `Failure` catches them all."""
@@ -63,3 +65,13 @@ ALIASES = {"PerceptionError": "PerceptionFailure", "ReasoningError": "ReasoningF
 
 def failure_class(name: str) -> type[Failure] | None:
     return FAILURES.get(ALIASES.get(name, name))
+
+
+def as_failure(exc: BaseException, what: str) -> Failure:
+    """A bad value met at run time (an unknown object, link, arm) as a plan failure that names it, never a traceback."""
+    if isinstance(exc, (InputError, InputErrors)):
+        message = "; ".join(e.message + (f" ({e.suggestion})" if e.suggestion else "")
+                            for e in (exc.errors if isinstance(exc, InputErrors) else [exc]))
+    else:
+        message = f"{type(exc).__name__}: {exc}"
+    return Failure(f"{what}: {message}")

@@ -26,8 +26,8 @@ import re
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
-from ..errors import InputError, InputErrors, Location, PycramError, did_you_mean
-from ..failures import FAILURES, Failure, failure_class
+from ..errors import Location, PycramError, did_you_mean
+from ..failures import FAILURES, Failure, as_failure, failure_class
 from ..limits import MAX_CALL_DEPTH, MAX_WAIT
 from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
@@ -39,16 +39,6 @@ from .syntax import Node, Parser, node_family, node_type, plain
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
-
-def _as_failure(exc: BaseException, what: str) -> Failure:
-    """Errors raised inside a designator or query that are not plan failures (bad run-time values)."""
-    if isinstance(exc, (InputError, InputErrors)):
-        message = "; ".join(e.message + (f" ({e.suggestion})" if e.suggestion else "")
-                            for e in (exc.errors if isinstance(exc, InputErrors) else [exc]))
-    else:
-        message = f"{type(exc).__name__}: {exc}"
-    return Failure(f"{what}: {message}")
-
 
 def _problems_where(slots: Any, slot: str | None, fallback: Location) -> Location:
     if isinstance(slots, LMap) and slot is not None and slot in slots:
@@ -104,7 +94,7 @@ class DesignatorStep(Node):
             except Failure:
                 raise
             except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
-                raise _as_failure(exc, self.head) from exc
+                raise as_failure(exc, self.head) from exc
             tn.info["designator"] = {**tn.info["designator"], "resolved": jsonable(performed.resolved)}
         return performed.result
 
@@ -131,7 +121,7 @@ def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
         except Failure:
             raise
         except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
-            raise _as_failure(exc, name) from exc
+            raise as_failure(exc, name) from exc
     record = {"name": name, "args": jsonable(answer.args), "result": jsonable(answer.result),
               "details": jsonable(answer.details)}
     return answer.value, record

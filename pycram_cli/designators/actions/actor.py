@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from typing import Any, Callable, Mapping
 
-from ...errors import InputError, InputErrors, PycramError
-from ...failures import Failure, LocationFailure
+from ...errors import PycramError
+from ...failures import Failure, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
 from ...process_modules import Robot
@@ -27,16 +27,6 @@ from ...reasoning import QueryAnswer, run_query
 from ...world import BulletWorld, Object
 from ..performing import perform
 from .declaration import ACTIONS
-
-
-def as_failure(exc: BaseException, what: str) -> Failure:
-    """A bad value met while acting (an unknown object, link, arm) as a plan failure that names it."""
-    if isinstance(exc, (InputError, InputErrors)):
-        message = "; ".join(e.message + (f" ({e.suggestion})" if e.suggestion else "")
-                            for e in (exc.errors if isinstance(exc, InputErrors) else [exc]))
-    else:
-        message = f"{type(exc).__name__}: {exc}"
-    return Failure(f"{what}: {message}")
 
 
 #: errors of values met while acting that are reported as failures (never tracebacks)
