@@ -39,8 +39,22 @@ class Slot:
     of: str | None = None  # for a link or joint: the slot naming the object it belongs to
 
 
+class HasSlots:
+    """Looking slots up by name, for the declarations that have them (motion and action designators)."""
+
+    name: str
+    slots: tuple[Slot, ...]
+
+    def slot(self, name: str) -> Slot | None:
+        return next((s for s in self.slots if s.name == name), None)
+
+    @property
+    def slot_names(self) -> list[str]:
+        return [s.name for s in self.slots]
+
+
 @dataclass(frozen=True)
-class Designator:
+class Designator(HasSlots):
     """A motion designator type: the design's slots, its inference, its resources, its process module."""
 
     name: str
@@ -53,13 +67,6 @@ class Designator:
     needs: tuple[str, ...] = ()  # what the robot must have: "mobile base", "head", "camera", "arms"
     resource: str = ""  # what it drives, for people
     check: "Callable[[Mapping[str, Any], Robots], list[SlotProblem]] | None" = None  # checks across slots
-
-    def slot(self, name: str) -> Slot | None:
-        return next((s for s in self.slots if s.name == name), None)
-
-    @property
-    def slot_names(self) -> list[str]:
-        return [s.name for s in self.slots]
 
 
 #: every designator by name, filled by `declare_designator` (explicit imports in `designators/__init__.py`)
@@ -146,29 +153,39 @@ def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Cal
     if spec is None:
         return [SlotProblem(f"unknown designator type '{type_name}'", None,
                             did_you_mean(type_name, DESIGNATORS) or f"known types: {', '.join(DESIGNATORS)}")]
+    known = {k: v for k, v in slots.items() if not (is_reference is not None and is_reference(v))}
+    return slot_problems(spec, f"'{type_name}'", slots, lambda slot, value: is_reference is not None and is_reference(value),
+                         robots, known)
+
+
+def slot_problems(spec: Any, what: str, slots: Mapping[str, Any], skip: Callable[[Slot, Any], bool],
+                  robots: Robots, for_check: Mapping[str, Any]) -> list[SlotProblem]:
+    """The checks motion and action designators share: what the robot needs, unknown slots (with the closest name),
+    values against their kinds (unless `skip(slot, value)`: only known at run time), required slots, `one_of`,
+    and the declaration's own check across slots (given `for_check`). `what` names the designator in messages."""
+    name = spec.name
     problems: list[SlotProblem] = []
     if robots.known and len(robots.descriptions) == 1:
         for need in spec.needs:
             why = lacks(need, robots.descriptions[0])
             if why:
-                problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{type_name}': {why}"))
-    for name, value in slots.items():
-        slot = spec.slot(name)
+                problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{name}': {why}"))
+    for key, value in slots.items():
+        slot = spec.slot(key)
         if slot is None:
-            problems.append(SlotProblem(f"'{type_name}' has no slot '{name}'", name,
-                                        did_you_mean(name, spec.slot_names) or f"slots: {', '.join(spec.slot_names)}"))
+            problems.append(SlotProblem(f"{what} has no slot '{key}'", key,
+                                        did_you_mean(key, spec.slot_names) or f"slots: {', '.join(spec.slot_names)}"))
             continue
-        if is_reference is not None and is_reference(value):
+        if skip(slot, value):
             continue
         message = KINDS[slot.kind].check(value, robots)
         if message:
-            problems.append(SlotProblem(f"slot '{name}': {message}", name))
+            problems.append(SlotProblem(f"slot '{key}': {message}", key))
     for slot in spec.slots:
         if slot.required and slot.name not in slots:
-            problems.append(SlotProblem(f"'{type_name}' needs slot '{slot.name}' ({slot.doc})", slot.name))
-    if spec.one_of and not any(name in slots for name in spec.one_of):
-        problems.append(SlotProblem(f"'{type_name}' needs one of the slots {', '.join(spec.one_of)}", None))
+            problems.append(SlotProblem(f"{what} needs slot '{slot.name}' ({slot.doc})", slot.name))
+    if spec.one_of and not any(key in slots for key in spec.one_of):
+        problems.append(SlotProblem(f"{what} needs one of the slots {', '.join(spec.one_of)}", None))
     if spec.check is not None:
-        known = {k: v for k, v in slots.items() if not (is_reference is not None and is_reference(v))}
-        problems.extend(spec.check(known, robots))
+        problems.extend(spec.check(for_check, robots))
     return problems

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from ...errors import did_you_mean
 from ...kinds import KINDS, NOTHING_KNOWN, Robots
-from ..declaration import Slot, SlotProblem, Uses, lacks
+from ..declaration import HasSlots, Slot, SlotProblem, Uses, slot_problems
 
 if TYPE_CHECKING:
     from .actor import Actor
@@ -30,7 +30,7 @@ Run = Callable[["Actor", Mapping[str, Any]], Any]
 
 
 @dataclass(frozen=True)
-class Action:
+class Action(HasSlots):
     """An action designator type: its slots, how it expands (`run`), and the roles it drives (for the scheduler)."""
 
     name: str
@@ -42,13 +42,6 @@ class Action:
     needs: tuple[str, ...] = ()  # what the robot must have: "mobile base", "head", "camera", "arms"
     returns: str = ""  # what `as:` binds, for people
     check: "Callable[[Mapping[str, Any], Robots], list[SlotProblem]] | None" = None  # checks across slots
-
-    def slot(self, name: str) -> Slot | None:
-        return next((s for s in self.slots if s.name == name), None)
-
-    @property
-    def slot_names(self) -> list[str]:
-        return [s.name for s in self.slots]
 
 
 #: every action designator by name, filled by `declare_action` (explicit imports in `actions/__init__.py`)
@@ -74,29 +67,8 @@ def check_action(type_name: str, slots: Mapping[str, Any], is_reference: Callabl
     if spec is None:
         return [SlotProblem(f"unknown action '{type_name}'", None,
                             did_you_mean(type_name, ACTIONS) or f"actions: {', '.join(ACTIONS)}")]
-    problems: list[SlotProblem] = []
-    if robots.known and len(robots.descriptions) == 1:
-        for need in spec.needs:
-            why = lacks(need, robots.descriptions[0])
-            if why:
-                problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{type_name}': {why}"))
-    for name, value in slots.items():
-        slot = spec.slot(name)
-        if slot is None:
-            problems.append(SlotProblem(f"action '{type_name}' has no slot '{name}'", name,
-                                        did_you_mean(name, spec.slot_names) or f"slots: {', '.join(spec.slot_names)}"))
-            continue
+    def skip(slot: Slot, value: Any) -> bool:  # a location mapping is checked key by key, even around variables
         whole = is_reference is not None and isinstance(value, str) and is_reference(value)
-        if whole or (is_reference is not None and slot.kind != "location" and is_reference(value)):
-            continue
-        message = KINDS[slot.kind].check(value, robots)
-        if message:
-            problems.append(SlotProblem(f"slot '{name}': {message}", name))
-    for slot in spec.slots:
-        if slot.required and slot.name not in slots:
-            problems.append(SlotProblem(f"action '{type_name}' needs slot '{slot.name}' ({slot.doc})", slot.name))
-    if spec.one_of and not any(name in slots for name in spec.one_of):
-        problems.append(SlotProblem(f"action '{type_name}' needs one of the slots {', '.join(spec.one_of)}", None))
-    if spec.check is not None:
-        problems.extend(spec.check(slots, robots))
-    return problems
+        return whole or (is_reference is not None and slot.kind != "location" and is_reference(value))
+
+    return slot_problems(spec, f"action '{type_name}'", slots, skip, robots, slots)
