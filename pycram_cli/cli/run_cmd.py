@@ -1,7 +1,6 @@
 """`pycram run PLAN`: validate and run a plan, showing a live tree, and save its trace."""
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
 from typing import Any
@@ -22,29 +21,13 @@ from .files import REPORT_FORMATS, check_outputs, write_output, write_report
 from .gui_view import GuiView
 from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
                       wait_for_window)
-from .trace_cmd import PLAIN, build_tree, describe_node, find_node
+from .run_log import WIDTH, RunLog, clip
+from .trace_cmd import build_tree, find_node, short
 
 EXIT_FAILED = 1
 
 
 # -- progress views (observers of a run) ------------------------------------------------------------
-class PlainView:
-    """One line per finished node on stderr (not a terminal, e.g. CI logs)."""
-
-    def started(self, node: TraceNode) -> None:
-        pass
-
-    def finished(self, node: TraceNode) -> None:
-        data = node.to_dict(timing=True)
-        data.pop("children", None)
-        details = describe_node(data)
-        console.err.print(f"{PLAIN.get(node.status, node.status):9} {node.path}" + (f"  {details}" if details else ""),
-                          markup=False, highlight=False)
-
-    def log(self, node: TraceNode, message: str) -> None:
-        pass  # the finished line of the log step shows the message
-
-
 class LiveView:
     """A live tree of the plan on a terminal: each node with its status, finished subtrees folded."""
 
@@ -183,18 +166,19 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         elif console.err.is_terminal:
             view = LiveView()
         else:
-            view = PlainView()
+            view = RunLog()  # an indented log, one line per step (CI logs)
         if not as_json:
-            console.info(f"running {plan.path} on {world_path}"
-                         + (f" with {', '.join(f'{k}={json.dumps(v)}' for k, v in values.items())}" if values else ""))
+            for line in _running(plan.path, world_path, values):
+                console.info(line)
         started = time.perf_counter()
+        progress = view
         pace = pace if pace is not None else (0.5 if gui else 0.0)
         if pace > 0:
             view = Paced(view, pace)
         observer = GuiView(world, view, follow) if gui else view
         replay = trace_file is not None or report_file is not None
         try:
-            if isinstance(view.view if isinstance(view, Paced) else view, LiveView):
+            if isinstance(progress, LiveView):
                 with view:
                     result = scenario.run(world, observer, replay=replay)
             else:
@@ -202,6 +186,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         finally:
             if isinstance(observer, GuiView):
                 observer.close()
+            if isinstance(progress, RunLog):
+                progress.close()  # the rest of the log, also when the run was interrupted
         duration = time.perf_counter() - started
         interrupted = result.status == "interrupted"
         if trace_file is not None:
@@ -225,6 +211,14 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         ctx.exit(interrupts.exit_code() or 130)
     if not result.succeeded:
         ctx.exit(EXIT_FAILED)
+
+
+def _running(plan_path: Path, world_path: Path, values: dict[str, Any]) -> list[str]:
+    """`running PLAN on WORLD` (the files in full: which ones ran), then the parameters, shortened to one line."""
+    lines = [f"running {plan_path} on {world_path}"]
+    if values:
+        lines.append(clip("with " + ", ".join(f"{k}={short(v, 40)}" for k, v in values.items()), WIDTH - 6))
+    return lines
 
 
 def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = None) -> None:

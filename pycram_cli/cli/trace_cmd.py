@@ -22,13 +22,13 @@ PLAIN = {"succeeded": "ok", "failed": "FAILED", "recovered": "recovered", "cance
          "skipped": "skipped", "running": "running", "pending": "pending"}
 
 
-def _short(value: Any, limit: int = 70) -> str:
+def short(value: Any, limit: int = 70) -> str:
     text = json.dumps(value, ensure_ascii=False, separators=(", ", ": ")) if not isinstance(value, str) else value
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 def _slots(values: dict[str, Any]) -> str:
-    return ", ".join(f"{k}={_short(v, 40)}" for k, v in values.items())
+    return ", ".join(f"{k}={short(v, 40)}" for k, v in values.items())
 
 
 def describe_node(node: dict[str, Any], timing: bool = True) -> str:
@@ -39,7 +39,7 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
         parts.append(_slots(data.get("resolved") or data.get("slots") or {}))
     if "query" in node:
         q = node["query"]
-        parts.append(f"{_slots(q.get('args', {}))} → {_short(q.get('result'))}")
+        parts.append(f"{_slots(q.get('args', {}))} → {short(q.get('result'))}")
     if "action" in node:
         parts.append(_slots(node["action"].get("slots", {})))
     if "location" in node:
@@ -49,7 +49,7 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
     if "call" in node:
         parts.append(_slots(node["call"].get("args", {})))
     if "item" in node:
-        parts.append(f"= {_short(node['item'])}")
+        parts.append(f"= {short(node['item'])}")
     if "message" in node:
         parts.append(f"“{node['message']}”")
     if "caught" in node:
@@ -61,7 +61,7 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
     if "retries" in node and node["retries"]:
         parts.append(f"{node['retries']} retr{'y' if node['retries'] == 1 else 'ies'}")
     if "bound" in node:
-        parts.append("; ".join(f"${k} = {_short(v, 50)}" for k, v in node["bound"].items()))
+        parts.append("; ".join(f"${k} = {short(v, 50)}" for k, v in node["bound"].items()))
     failure = node.get("failure")
     if failure and node.get("status") == "failed" and failure.get("path") == node.get("path"):
         parts.append(f"{failure.get('type')}: {failure.get('message')}")
@@ -72,7 +72,7 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
 
 def describe_location(record: dict[str, Any]) -> str:
     """`{reachable-for: milk} → (0.75, 0.95) 5° left front (14 of 5845 tried)`."""
-    spec = ", ".join(f"{k}: {_short(v, 30)}" for k, v in (record.get("spec") or {}).items())
+    spec = ", ".join(f"{k}: {short(v, 30)}" for k, v in (record.get("spec") or {}).items())
     found = record.get("found")
     where = "none"
     if isinstance(found, dict):
@@ -89,22 +89,32 @@ def describe_condition(record: dict[str, Any]) -> str:
     verdict = "holds" if holds else "does not hold"
     if "query" in record:
         q = record["query"]
-        return f"{q.get('name')}({_slots(q.get('args', {}))}) → {_short(q.get('result'))}: {verdict}"
+        return f"{q.get('name')}({_slots(q.get('args', {}))}) → {short(q.get('result'))}: {verdict}"
     if "variable" in record:
-        return f"{record['variable']} = {_short(record.get('value'), 50)}: {verdict}"
+        return f"{record['variable']} = {short(record.get('value'), 50)}: {verdict}"
     if "not" in record:
         return f"not ({describe_condition(record['not'])})"
     if "equal" in record:
         a, b = record["equal"]
-        return f"{_short(a, 30)} = {_short(b, 30)}: {verdict}"
+        return f"{short(a, 30)} = {short(b, 30)}: {verdict}"
     return verdict
+
+
+def shown_status(node: dict[str, Any], saved: bool = False) -> str:
+    """A node's status as the tree shows it: a failure is `recovered` when something above it succeeded
+    (`saved`: a retry, catch or try_all that went on after it), else the node's own status."""
+    status = str(node.get("status", "pending"))
+    return "recovered" if status == "failed" and saved else status
+
+
+def saves_children(node: dict[str, Any], saved: bool = False) -> bool:
+    """Whether the failures below `node` were recovered from: it, or something above it, succeeded."""
+    return saved or node.get("status") == "succeeded"
 
 
 def node_label(node: dict[str, Any], rich_markup: bool = True, timing: bool = True, saved: bool = False) -> str:
     """A node's line in the tree; `saved`: something above it succeeded, so its failure was recovered from."""
-    status = node.get("status", "pending")
-    if status == "failed" and saved:
-        status = "recovered"
+    status = shown_status(node, saved)
     label = node.get("path", "?").rsplit("/", 1)[-1]
     details = describe_node(node, timing)
     if not rich_markup:
@@ -121,7 +131,7 @@ def build_tree(root: dict[str, Any], collapse: bool = False, timing: bool = True
     with its status (a failure that something above recovered from as recovered); with `collapse`,
     finished successful subtrees are folded."""
     tree = Tree(node_label(root, timing=timing), guide_style="dim")
-    _add(tree, root, collapse, timing, root.get("status") == "succeeded")
+    _add(tree, root, collapse, timing, saves_children(root))
     return tree
 
 
@@ -136,7 +146,7 @@ def _add(tree: Tree, node: dict[str, Any], collapse: bool, timing: bool, saved: 
             pending += 1  # upcoming steps are summed up in one line
             continue
         branch = tree.add(node_label(child, timing=timing, saved=saved))
-        _add(branch, child, collapse, timing, saved or child.get("status") == "succeeded")
+        _add(branch, child, collapse, timing, saves_children(child, saved))
     if pending:
         tree.add(f"[dim]○ {pending} more step{'s' if pending != 1 else ''}[/]")
 
@@ -180,7 +190,7 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
     status = data.get("status", "?")
     header = f"{data.get('plan')} on {data.get('world')}: {status}"
     if data.get("params"):
-        header += "  (" + ", ".join(f"{k}={_short(v, 30)}" for k, v in data["params"].items()) + ")"
+        header += "  (" + ", ".join(f"{k}={short(v, 30)}" for k, v in data["params"].items()) + ")"
     console.out.print(f"[bold]{escape(header)}[/]")
     console.out.print(build_tree(data["root"], timing=timing))
     failure = data.get("failure")

@@ -41,8 +41,8 @@ def test_a_plan_that_succeeds_exits_0_with_a_summary(tmp_path):
     result = run("run", str(path))
     assert result.exit_code == 0, result.output
     assert "plan p.yaml succeeded in" in result.stdout
-    # progress goes to stderr, one line per finished node when not on a terminal
-    assert "ok        body/0:log" in result.stderr and "“hello box”" in result.stderr
+    # progress goes to stderr, one line per step when not on a terminal (tests/cli/test_run_log.py)
+    assert "  ok        0:log  “hello box”" in result.stderr
 
 
 def test_a_plan_that_fails_exits_1_and_says_where_and_why(tmp_path):
