@@ -128,9 +128,10 @@ def check_writable(path: str | Path, key: str | None = None) -> None:
         raise InputError(f"cannot write: it is {kind_of(info.st_mode)}, not a regular file", where, key=key)
     if len(target.name.encode()) > 255:
         raise InputError("cannot write: file name too long", where, key=key)
-    try:  # the real test: make the folder and a temporary file in it, as writing will
+    try:  # the real test: a temporary file in its folder (which must exist), as writing will make
         folder = _real(target).parent
-        folder.mkdir(parents=True, exist_ok=True)
+        if not folder.is_dir():
+            raise InputError(f"cannot write: folder '{folder}' does not exist", where, key=key)
         fd, temporary = tempfile.mkstemp(dir=folder, prefix=".pycram-", suffix=".tmp")
         os.close(fd)
         os.unlink(temporary)

@@ -17,18 +17,16 @@ from . import console
 __all__ = ["REPORT_FORMATS", "check_output", "check_outputs", "write_output", "write_report"]
 
 
-def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "file",
-                 make_folders: bool = False) -> None:
-    """`path` can be written: it is not a folder, its folder exists (unless `make_folders`: then it is
-    made when the file is written), and (with `kinds`, extension -> format) its extension names a
-    format we write."""
+def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "file") -> None:
+    """`path` can be written: it is not a folder, its folder exists (a missing folder is an input error,
+    never made silently), and (with `kinds`, extension -> format) its extension names a format we write."""
     where = Location(str(path))
     folder = path.parent if str(path.parent) else Path(".")
     if path.is_dir():
         raise InputError(f"is a folder, expected a {what} to write", where)
-    if not make_folders and not folder.exists():
+    if not folder.exists():
         raise InputError(f"cannot write the {what}: folder '{folder}' does not exist", where)
-    if folder.exists() and not folder.is_dir():
+    if not folder.is_dir():
         raise InputError(f"cannot write the {what}: '{folder}' is not a folder", where)
     if kinds is not None and path.suffix.lower() not in kinds:
         known = ", ".join(sorted(kinds))
@@ -37,16 +35,15 @@ def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "f
 
 
 def check_outputs(items: Iterable[tuple[Path | None, dict[str, str] | None, str]]) -> None:
-    """`check_output` for each (path, kinds, what) whose path is given; traces may go to new folders."""
+    """`check_output` for each (path, kinds, what) whose path is given."""
     for path, kinds, what in items:
         if path is not None:
-            check_output(path, kinds, what, make_folders=what == "trace")
+            check_output(path, kinds, what)
 
 
-def write_output(path: Path, data: bytes | str, what: str, make_folders: bool = False) -> None:
-    """Write `data` to `path` (making its folders with `make_folders`) and report it on stderr:
-    `wrote PATH (WHAT)`."""
-    if not make_folders and not Path(path).parent.is_dir():
+def write_output(path: Path, data: bytes | str, what: str) -> None:
+    """Write `data` to `path` (its folder must exist) and report it on stderr: `wrote PATH (WHAT)`."""
+    if not Path(path).parent.is_dir():
         raise InputError("cannot write the file: its folder does not exist", Location(str(path)))
     write_atomic(path, data)  # a temporary file renamed over it: readers see the old or the new file, never a part
     console.info(f"wrote {path} ({what})")

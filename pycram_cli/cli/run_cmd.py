@@ -191,7 +191,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         duration = time.perf_counter() - started
         interrupted = result.status == "interrupted"
         if trace_file is not None:
-            write_output(trace_file, dumps(result.trace), "trace", make_folders=True)
+            write_output(trace_file, dumps(result.trace), "trace")
         if render_file is not None and not interrupted:
             cam = image_camera(world, view_name, image_size, moved_since(world, before) or None)
             write_output(render_file, encode_image(render(world, cam, *image_size), render_file.suffix),
