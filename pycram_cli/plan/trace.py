@@ -238,7 +238,8 @@ def save(data: dict[str, Any], path: str | Path, timing: bool = True) -> None:
 
 
 def load(path: str | Path) -> dict[str, Any]:
-    """Read a saved trace, checked against the trace schema of its version (`trace_schema.py`).
+    """Read a saved trace, checked against the trace schema of its version (`trace_schema.py`): a file
+    `pycram run --trace` wrote, or what `pycram run --json` printed (the trace is its `trace` key).
 
     Every problem is an input error at its place in the file: a missing file, malformed JSON,
     another format or version, a field of the wrong kind or missing ("which entry, what is missing").
@@ -246,6 +247,10 @@ def load(path: str | Path) -> dict[str, Any]:
     path = Path(path)
     text = read_text(path, MAX_TRACE_BYTES, "trace file")
     data = trace_schema.parse(text, str(path))
+    within: tuple[str, ...] = ()
+    if isinstance(data, dict) and "format" not in data and isinstance(data.get("trace"), dict) \
+            and data["trace"].get("format") == FORMAT:
+        data, within = data["trace"], ("trace",)  # what `pycram run --json` printed: the trace is inside
     if not isinstance(data, dict) or data.get("format") != FORMAT or "root" not in data:
         raise InputError(f"not a pycram trace (expected a JSON object with \"format\": \"{FORMAT}\" and a \"root\")",
                          Location(str(path), 1, 1), suggestion="write one with `pycram run PLAN --trace FILE`")
@@ -253,8 +258,8 @@ def load(path: str | Path) -> dict[str, Any]:
         version = data.get("version")
         shown = version if isinstance(version, (int, float, str)) or version is None else "?"
         raise InputError(f"unsupported trace version {shown!r} (this pycram reads version {VERSION})",
-                         trace_schema.location(text, str(path), ("version",)), key="version")
-    trace_schema.check(data, text, str(path))
+                         trace_schema.location(text, str(path), within + ("version",)), key="version")
+    trace_schema.check(data, text, str(path), within)
     return data
 
 

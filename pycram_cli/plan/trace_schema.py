@@ -326,10 +326,11 @@ def location(text: str, filename: str, path: Path) -> Location:
     return Location(filename, line, column)
 
 
-def check(data: Any, text: str, filename: str) -> None:
-    """Raise every problem of a parsed trace (InputErrors) at its place in the file."""
+def check(data: Any, text: str, filename: str, within: Path = ()) -> None:
+    """Raise every problem of a parsed trace (InputErrors) at its place in the file; `within`: where in
+    the file's JSON the trace is (`("trace",)` in the output of `pycram run --json`)."""
     found = problems(data)
-    errors = [InputError(message, location(text, filename, path), key=_name(path) if path else None)
+    errors = [InputError(message, location(text, filename, within + path), key=_name(path) if path else None)
               for path, message in found]
     if len(errors) == 1:
         raise errors[0]

@@ -102,3 +102,38 @@ def test_not_a_trace_file_exits_2(tmp_path):
     broken.write_text("{")
     assert run("trace", "diff", str(broken), str(bad)).exit_code == 2
     assert run("trace", "show", str(tmp_path / "none.json")).exit_code == 2
+
+
+def json_output(tmp_path, name="out.json"):
+    """What `pycram run PLAN --json > out.json` leaves: status, failure, duration and the trace inside."""
+    traced(tmp_path)  # writes the plan and its world
+    result = run("run", str(tmp_path / "p.yaml"), "--json")
+    assert result.exit_code == 0, result.output
+    out = tmp_path / name
+    out.write_text(result.stdout)
+    assert set(json.loads(result.stdout)) == {"status", "failure", "duration", "trace"}
+    return out
+
+
+def test_show_reads_what_run_json_printed(tmp_path):
+    result = run("trace", "show", str(json_output(tmp_path)))
+    assert result.exit_code == 0, result.output
+    assert "p.yaml on w.yaml: succeeded" in result.stdout and "↺ 0:fail  PerceptionFailure: left" in result.stdout
+
+
+def test_diff_compares_run_json_output_with_a_saved_trace(tmp_path):
+    saved = traced(tmp_path, "saved.json")
+    result = run("trace", "diff", str(json_output(tmp_path)), str(saved))
+    assert result.exit_code == 0, result.output
+    assert "match" in result.stdout
+
+
+def test_a_problem_inside_run_json_output_is_reported_at_its_place(tmp_path):
+    path = json_output(tmp_path)
+    data = json.loads(path.read_text())
+    data["trace"]["root"]["status"] = "great"
+    path.write_text(json.dumps(data, indent=2))
+    result = run("trace", "show", str(path))
+    assert result.exit_code == 2
+    line = next(i for i, text in enumerate(path.read_text().splitlines(), 1) if '"great"' in text)
+    assert f"{path}:{line}:" in result.stderr and "unknown status" in result.stderr
