@@ -6,6 +6,7 @@ terminal; `emit_json` writes machine output to stdout with nothing else mixed in
 from __future__ import annotations
 
 import json
+import shutil
 import sys
 from typing import Any, Iterable, Sequence
 
@@ -79,6 +80,12 @@ def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any
     for row in rows:
         grid.add_row(*(_escape(str(c)) for c in row))
     out.print(grid)
+
+
+def text_width(limit: int = 100) -> int:
+    """The width to fold text at: the terminal's (when stdout is not one: COLUMNS, else `limit`), at most `limit`."""
+    columns = out.width if out.is_terminal else shutil.get_terminal_size((limit, 24)).columns
+    return max(40, min(columns, limit))
 
 
 def emit_json(data: Any) -> None:

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import json
+import os
+import re
 import subprocess
 import sys
 
@@ -25,8 +27,10 @@ def small_world(tmp_path, data_dir):
 def test_world_show_lists_objects_with_type_file_position_and_joints(tmp_path, data_dir):
     result = run("world", "show", str(small_world(tmp_path, data_dir)))
     assert result.exit_code == 0, result.output
-    for text in ("floor", "environment", "plane.urdf", "cube", "(0.500, 0.000, 0.000)", "slide=0.10"):
+    for text in ("floor", "environment", "plane.urdf", "cube", "(0.500, 0.000, 0.000)"):
         assert text in result.output
+    assert re.search(r"slide +0\.100 m +\[0\.000, 0\.200\]", result.output)
+    assert "links     4: base, upper, slider, hand" in result.output
 
 
 def test_world_show_json_is_machine_readable(tmp_path, data_dir):
@@ -35,6 +39,33 @@ def test_world_show_json_is_machine_readable(tmp_path, data_dir):
     assert [o["name"] for o in data["objects"]] == ["floor", "arm", "cube"]
     assert data["robot"] == "arm"
     assert data["objects"][1]["movable_joints"]["slide"] == 0.1
+
+
+def test_world_show_fits_80_columns_and_names_every_movable_joint_with_limits_and_every_link():
+    result = subprocess.run([sys.executable, "-m", "pycram_cli.cli.main", "world", "show"], capture_output=True,
+                            text=True, env={**os.environ, "COLUMNS": "80"})
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert max(len(line) for line in lines) <= 80, "\n".join(line for line in lines if len(line) > 80)
+    # one block per object; the kitchen's drawers by joint (value, limits) and handle link, as `accessing` needs them
+    assert "kitchen  environment, fixed" in lines
+    joint = next(line for line in lines if "sink_area_left_upper_drawer_main_joint" in line)
+    assert re.search(r"0\.000 m +\[0\.000, 0\.480\]", joint)
+    assert "sink_area_left_upper_drawer_handle" in result.stdout
+    # the robot's links (for `--from`) and its continuous joints, which have no limits
+    assert "wide_stereo_optical_frame" in result.stdout
+    assert re.search(r"r_forearm_roll_joint +-?\d\.\d{3} rad +continuous", result.stdout)
+
+
+def test_world_show_json_lists_joints_with_limits_and_links():
+    data = json.loads(run("world", "show", "--json").stdout)
+    kitchen = next(o for o in data["objects"] if o["name"] == "kitchen")
+    assert {"name": "sink_area_left_upper_drawer_main_joint", "type": "prismatic", "value": 0.0, "lower": 0.0,
+            "upper": 0.48} in kitchen["joints"]
+    assert "sink_area_left_upper_drawer_handle" in kitchen["links"]
+    pr2 = next(o for o in data["objects"] if o["name"] == "pr2")
+    roll = next(j for j in pr2["joints"] if j["name"] == "r_forearm_roll_joint")
+    assert roll["type"] == "continuous" and roll["lower"] is None and roll["upper"] is None
 
 
 def test_world_render_writes_a_png(tmp_path, data_dir):
