@@ -105,6 +105,7 @@ def test_json_prints_status_failure_and_trace_only(tmp_path):
 def test_trace_file_and_world_override(tmp_path):
     path = plan(tmp_path, "- log: hi\n")
     other = small_world(tmp_path, "other.yaml", x=0.75)
+    (tmp_path / "out").mkdir()  # output folders are not made (tests/cli/test_output_files.py)
     out = tmp_path / "out" / "t.json"
     result = run("run", str(path), "--world", str(other), "--trace", str(out))
     assert result.exit_code == 0, result.output
