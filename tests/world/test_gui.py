@@ -100,7 +100,7 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
     try:
         assert run.stderr is not None
         for line in run.stderr:
-            if line.startswith("ok ") and not shots["start"]:
+            if line.lstrip().startswith("ok ") and not shots["start"]:  # the first step done (the log is indented)
                 for _ in range(4):  # during the pause after the first step
                     time.sleep(0.15)
                     shots["start"].append(ImageGrab.grab(xdisplay=display))
