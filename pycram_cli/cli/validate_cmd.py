@@ -19,6 +19,7 @@ from ..scenario.variations import SUFFIX, parse_variations
 from ..worldfile.spec import parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
+from .complete import plan_or_world_names, world_names
 
 
 def _resolve(value: str) -> Path:
@@ -69,8 +70,8 @@ def check_variations(path: Path, world_file: str | None, params: tuple[str, ...]
 
 
 @click.command()
-@click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True)
-@click.option("--world", "world_file", metavar="WORLD", help="Check plans against this world (default: each plan's own).")
+@click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True, shell_complete=plan_or_world_names)
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names, help="Check plans against this world (default: each plan's own).")
 @click.option("-p", "--param", "params", multiple=True, metavar="NAME=VALUE",
               help="Check plans with this parameter value, as `run -p` sets it (read as YAML). Repeatable.")
 def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, ...]) -> None:
