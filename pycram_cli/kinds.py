@@ -174,6 +174,22 @@ def _types(value: Any, robots: Robots) -> str | None:
     return None if ok else "expected an object type or a list of types"
 
 
+def _list(value: Any, robots: Robots) -> str | None:
+    return None if isinstance(value, (list, tuple)) else "expected a list"
+
+
+def _mapping(value: Any, robots: Robots) -> str | None:
+    return None if isinstance(value, Mapping) else "expected a mapping"
+
+
+def _string(value: Any, robots: Robots) -> str | None:
+    return None if isinstance(value, str) else "expected text (quote it if it looks like a number or a list)"
+
+
+def _boolean(value: Any, robots: Robots) -> str | None:
+    return None if isinstance(value, bool) else "expected true or false"
+
+
 def _camera(value: Any, robots: Robots) -> str | None:
     return None if _name(value) or is_vector(value, 3) else ("expected a link name or a position [x, y, z]"
                                                              + _range_hint(value))
@@ -354,8 +370,27 @@ KINDS: dict[str, Kind] = {k.name: k for k in (
     Kind("location", "a mapping: {reachable-for: OBJECT|[x, y, z], arm?, grasp?}, {visible-for: OBJECT} (or both), "
          "{on: SURFACE, for: OBJECT?, near: [x, y, z]?}, or {accessing: HANDLE_LINK}", _location,
          names_in=location_names),
+    Kind("list", "a list of any values, e.g. [milk, bowl]", _list),
+    Kind("mapping", "a mapping of any values, e.g. {target: [0, 0, 0], orientation: [0, 0, 0, 1]}", _mapping),
+    Kind("string", "text", _string),
+    Kind("boolean", "true or false", _boolean),
 )}
+
+#: other names a plan parameter's `type:` may use for a kind
+KIND_ALIASES: dict[str, str] = {"orientation": "quaternion"}
 
 
 def kind(name: str) -> Kind:
     return KINDS[name]
+
+
+def param_kind(name: Any) -> Kind | None:
+    """The kind a plan parameter's `type:` names (a kind's name or an alias), or None."""
+    if not isinstance(name, str):
+        return None
+    return KINDS.get(KIND_ALIASES.get(name, name))
+
+
+def param_kind_names() -> list[str]:
+    """Every name a plan parameter's `type:` may use."""
+    return [*KINDS, *KIND_ALIASES]

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import InputError, Location, did_you_mean
@@ -46,6 +47,34 @@ def cache_dir() -> Path:
     folder = (root / "pycram") if not os.environ.get("PYCRAM_CACHE_DIR") else root
     folder.mkdir(parents=True, exist_ok=True)
     return folder
+
+
+@dataclass(frozen=True)
+class Found:
+    """A plan or world a name can mean: where it comes from (`local`: the working folder's `plans/` or
+    `worlds/`; `bundled`: installed with pycram) and whether a local file of the same name hides it."""
+
+    name: str
+    path: Path
+    source: str
+    shadowed: bool = False
+
+    @property
+    def origin(self) -> str:
+        """`local`, `bundled`, or `bundled (shadowed by the local one)`, with the path."""
+        return self.source + (" (shadowed by the local one)" if self.shadowed else "") + f"  {self.path}"
+
+
+def available(kind: str) -> list[Found]:
+    """The plans or worlds (`kind`: `plans` or `worlds`) in the order names resolve: the working folder's
+    `plans/` (`worlds/`) first, then the bundled ones (in a source checkout they are the same folder)."""
+    local_folder, bundled_folder = Path.cwd() / kind, bundled(kind)
+    local = [Found(name, Path(kind) / f"{name}.yaml", "local") for name in _names(local_folder)]
+    if local_folder.is_dir() and local_folder.resolve() == bundled_folder.resolve():
+        return local
+    hidden = {item.name for item in local}
+    return local + [Found(name, bundled_folder / f"{name}.yaml", "bundled", name in hidden)
+                    for name in _names(bundled_folder)]
 
 
 def _names(folder: Path) -> list[str]:

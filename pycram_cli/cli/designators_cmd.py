@@ -4,6 +4,7 @@ declarations. `pick-up` and `place` are both: motion designators (`- pick-up: {.
 from __future__ import annotations
 
 import click
+from click.shell_completion import CompletionItem
 
 from ..designators import DESIGNATORS, Designator
 from ..designators.actions import ACTIONS, Action
@@ -43,8 +44,14 @@ def _as_dict(spec: Designator | Action, robots: list[RobotDescription]) -> dict[
     }
 
 
+def type_names(ctx: click.Context, param: click.Parameter, incomplete: str) -> list[CompletionItem]:
+    """TYPE: every motion designator and action, each with its doc."""
+    docs = {**{name: spec.doc for name, spec in ACTIONS.items()}, **{name: spec.doc for name, spec in DESIGNATORS.items()}}
+    return [CompletionItem(name, help=doc) for name, doc in docs.items() if name.startswith(incomplete)]
+
+
 @click.command("designators")
-@click.argument("type_name", metavar="[TYPE]", required=False)
+@click.argument("type_name", metavar="[TYPE]", required=False, shell_complete=type_names)
 @click.option("--motions", "only", flag_value="motions", help="Only the motion designators.")
 @click.option("--actions", "only", flag_value="actions", help="Only the action designators.")
 @json_option

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 import click
+from click.shell_completion import CompletionItem
 
 from ..errors import InputError, Location
 from ..failures import LocationFailure
@@ -25,6 +26,7 @@ from ..locations import BasePose, locate
 from ..locations.plot import COLOURS, draw
 from ..world.camera import write_png
 from . import console
+from .complete import link_names, object_names
 from .options import open_world, world_option
 
 EXIT_FAILED = 1
@@ -46,6 +48,17 @@ def _location(goal: str, target: str, arm: str | None, grasp: str | None, visibl
     return location
 
 
+def target_names(ctx: click.Context, param: click.Parameter, incomplete: str) -> list[CompletionItem]:
+    """TARGET: a link for `on` and `accessing` (handles first for `accessing`), else an object."""
+    goal = ctx.params.get("goal")
+    if goal not in ("on", "accessing"):
+        return object_names(ctx, param, incomplete)
+    links = link_names(ctx, incomplete)
+    if goal == "accessing":
+        links.sort(key=lambda item: "handle" not in str(item.value))
+    return (object_names(ctx, param, incomplete) if goal == "on" else []) + links
+
+
 def _row(rank: int, found: Any) -> tuple[str, ...]:
     x, y, z = found.position
     if isinstance(found, BasePose):
@@ -57,12 +70,15 @@ def _row(rank: int, found: Any) -> tuple[str, ...]:
 
 @click.command("locate", short_help="Resolve a location designator: where to stand, or a free spot on a surface.")
 @click.argument("goal", metavar="GOAL", type=click.Choice(LOCATION_GOALS))
-@click.argument("target", metavar="TARGET")
+@click.argument("target", metavar="TARGET", shell_complete=target_names)
 @click.option("--arm", metavar="ARM", help="reachable-for, accessing: the arm that must reach.")
 @click.option("--grasp", metavar="GRASP", help="reachable-for: the grasp (front, top, ... or x,y,z,w).")
-@click.option("--visible-for", "visible_for", metavar="OBJECT", help="reachable-for: seeing this object too.")
-@click.option("--reachable-for", "reachable_for", metavar="TARGET", help="visible-for: reaching this too.")
-@click.option("--for", "for_object", metavar="OBJECT", help="on: the object that must fit.")
+@click.option("--visible-for", "visible_for", metavar="OBJECT", shell_complete=object_names,
+              help="reachable-for: seeing this object too.")
+@click.option("--reachable-for", "reachable_for", metavar="TARGET", shell_complete=object_names,
+              help="visible-for: reaching this too.")
+@click.option("--for", "for_object", metavar="OBJECT", shell_complete=object_names,
+              help="on: the object that must fit.")
 @click.option("--near", metavar="X,Y,Z", help="on: a position the spot should be close to.")
 @click.option("-n", "--count", default=3, show_default=True, metavar="N", type=click.IntRange(1, 50),
               help="How many poses (or spots) to find, best first.")

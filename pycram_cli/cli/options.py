@@ -13,6 +13,7 @@ from ..paths import find_world
 from ..world import BulletWorld, Object
 from ..world.camera import VIEWS, Camera, named_camera, parse_camera
 from ..worldfile.loader import load_world
+from .complete import world_names
 
 F = TypeVar("F", bound=Callable[..., object])
 
@@ -60,7 +61,7 @@ def wait_for_window(world: "BulletWorld") -> None:
 
 
 def world_option(func: F) -> F:
-    return click.option("--world", "world_file", metavar="WORLD",
+    return click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
                         help="World file or bundled world name (default: kitchen).")(func)  # type: ignore[return-value]
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 import click
+from click.shell_completion import CompletionItem
 
 from ..errors import InputError, Location, did_you_mean
 from ..jsonable import jsonable
@@ -20,6 +21,7 @@ from ..kinds import KINDS, parse_vector
 from ..reasoning import QUERIES, QuerySpec, run_query
 from ..reasoning.query import unknown_query
 from . import console
+from .complete import object_names
 from .options import open_world, world_option
 
 FIXED_OPTIONS = ("--world", "--json", "--help")
@@ -102,6 +104,11 @@ def build_args(query: str, tokens: tuple[str, ...]) -> dict[str, Any]:
     return args
 
 
+def query_names(ctx: click.Context, param: click.Parameter, incomplete: str) -> list[CompletionItem]:
+    """QUERY: the declared queries, each with its one-line doc."""
+    return [CompletionItem(name, help=spec.doc) for name, spec in QUERIES.items() if name.startswith(incomplete)]
+
+
 def _option_hint(token: str, spec: QuerySpec) -> str | None:
     allowed = [p.option for p in spec.options]
     return did_you_mean(token, [*allowed, *FIXED_OPTIONS]) or (f"its options: {', '.join(allowed)}" if allowed else None)
@@ -109,8 +116,8 @@ def _option_hint(token: str, spec: QuerySpec) -> str | None:
 
 @click.command("query", cls=QueryCommand, context_settings={"ignore_unknown_options": True},
                short_help="Ask a reasoning question (stable, visible, reachable, ...) about a world.")
-@click.argument("query_name", metavar="QUERY")
-@click.argument("tokens", metavar="ARGS...", nargs=-1, type=click.UNPROCESSED)
+@click.argument("query_name", metavar="QUERY", shell_complete=query_names)
+@click.argument("tokens", metavar="ARGS...", nargs=-1, type=click.UNPROCESSED, shell_complete=object_names)
 @world_option
 @click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")
 def query(query_name: str, tokens: tuple[str, ...], world_file: str | None, as_json: bool) -> None:

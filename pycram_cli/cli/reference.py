@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ..designators import DESIGNATORS
 from ..designators.actions import ACTIONS
-from ..kinds import KINDS, LOCATION_KEYS
+from ..kinds import KIND_ALIASES, KINDS, LOCATION_KEYS
 from ..reasoning import QUERIES
 
 def _cell(text: object) -> str:
@@ -68,7 +68,10 @@ def render() -> str:
             lines.append(f"| `{param.name}` | {where}{', required' if param.required else ''} | "
                          f"{_cell(KINDS[param.kind].doc)} | {_cell(default)} | {_cell(param.doc)} |")
         lines.append("")
-    lines += ["## Value kinds", "", "| kind | written as |", "|---|---|"]
+    aliases = ", ".join(f"`{alias}` for `{name}`" for alias, name in KIND_ALIASES.items())
+    lines += ["## Value kinds", "", "Slots, query parameters and typed plan parameters (`type:`, see docs/plans.md) "
+              f"take these kinds of value; a plan parameter's `type:` may also use {aliases}.", "",
+              "| kind | written as |", "|---|---|"]
     lines += [f"| `{kind.name}` | {_cell(kind.doc)} |" for kind in KINDS.values()]
     return "\n".join(lines) + "\n"
 

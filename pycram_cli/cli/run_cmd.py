@@ -17,6 +17,7 @@ from ..scenario import prepare
 from ..scenario.variations import beside, read_variations
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
+from .complete import plan_names, world_names
 from .files import REPORT_FORMATS, check_outputs, write_output, write_report
 from .gui_view import GuiView
 from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
@@ -103,8 +104,8 @@ class QuietView:
 
 # -- the command -----------------------------------------------------------------------------------------
 @click.command("run")
-@click.argument("plan_file", metavar="PLAN")
-@click.option("--world", "world_file", metavar="WORLD",
+@click.argument("plan_file", metavar="PLAN", shell_complete=plan_names)
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
               help="World file or bundled world name (default: the plan's `world:`, else the kitchen).")
 @click.option("-p", "--param", "params", multiple=True, metavar="NAME=VALUE",
               help="Set a plan parameter (VALUE is read as YAML: 0.3, [1, 0, 0], milk). Repeatable.")

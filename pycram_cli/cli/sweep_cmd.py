@@ -12,6 +12,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 from ..sweep import BACKENDS, PreparedSweep, SweepSettings, prepare_sweep, run_sweep, summary_of
 from ..sweep.plot import plot_outcomes
 from . import console
+from .complete import plan_names, world_names
 from .options import json_option
 
 EXIT_INTERRUPTED = 130
@@ -49,8 +50,8 @@ class _Progress:
 
 
 @click.command("sweep")
-@click.argument("plan_file", metavar="PLAN")
-@click.option("--world", "world_file", metavar="WORLD",
+@click.argument("plan_file", metavar="PLAN", shell_complete=plan_names)
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
               help="World file or bundled world name (default: the plan's `world:`, else the kitchen).")
 @click.option("--vary", "vary_file", metavar="VARY.yaml",
               help="The variation file (default: PLAN.vary.yaml beside the plan).")

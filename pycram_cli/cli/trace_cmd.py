@@ -13,6 +13,7 @@ from rich.tree import Tree
 from ..plan import trace as traces
 from ..report import REPORT_FORMATS, report_world
 from . import console
+from .complete import world_names
 from .files import check_output, write_report
 from .options import Number
 
@@ -179,7 +180,7 @@ def trace() -> None:
 @click.option("--no-timing", is_flag=True, help="Leave durations out.")
 @click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Also write the run's replay report (HTML), as `pycram run --report` does.")
-@click.option("--world", "world_file", metavar="WORLD",
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
               help="With --report: the world file the run used (default: the one the trace names).")
 def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str | None) -> None:
     """Print the trace in FILE as a tree (as the live view of `pycram run` shows it), then the world's final state."""

@@ -1,7 +1,8 @@
 """`pycram validate FILE...`: check world, plan and variation files as `run` and `sweep` would, running nothing.
 
 A plan is checked against its world file (`--world`, else its own `world:`): object names,
-the robot's description (its arms, grasps and poses), and its parameters' defaults. A
+the robot's description (its arms, grasps and poses), and its parameters' defaults, or the
+values `-p` gives them (as `run -p` would set them: every value must fit its declared type). A
 variation file is checked against its plan (its `plan:`, else the plan it is named after:
 `set_table.vary.yaml` goes with `set_table.yaml`) and that plan's world.
 """
@@ -18,6 +19,7 @@ from ..scenario.variations import SUFFIX, parse_variations
 from ..worldfile.spec import parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
+from .complete import plan_or_world_names, world_names
 
 
 def _resolve(value: str) -> Path:
@@ -49,7 +51,7 @@ def kind_of(path: Path) -> str:
                      Location(str(path), 1, 1))
 
 
-def check_variations(path: Path, world_file: str | None) -> None:
+def check_variations(path: Path, world_file: str | None, params: tuple[str, ...] = ()) -> None:
     """A variation file against its plan and world."""
     data = load_yaml(path)
     named = data.get("plan") if isinstance(data, LMap) and isinstance(data.get("plan"), str) else None
@@ -63,28 +65,34 @@ def check_variations(path: Path, world_file: str | None) -> None:
     else:
         raise InputError("which plan are these variations for? name it with 'plan:' (or call the file "
                          "PLAN.vary.yaml beside PLAN.yaml)", Location(str(path), 1, 1), key="plan")
-    scenario = prepare(plan, world_file)
+    scenario = prepare(plan, world_file, assignments=params)
     parse_variations(path, scenario.world, scenario.plan)
 
 
 @click.command()
-@click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True)
-@click.option("--world", "world_file", metavar="WORLD", help="Check plans against this world (default: each plan's own).")
-def validate(files: tuple[str, ...], world_file: str | None) -> None:
+@click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True, shell_complete=plan_or_world_names)
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names, help="Check plans against this world (default: each plan's own).")
+@click.option("-p", "--param", "params", multiple=True, metavar="NAME=VALUE",
+              help="Check plans with this parameter value, as `run -p` sets it (read as YAML). Repeatable.")
+def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, ...]) -> None:
     """Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every problem with file, line and key."""
     problems: list[InputError] = []
+    kinds: list[str] = []
     for value in files:
         path = _resolve(value)
         try:
             kind = kind_of(path)
+            kinds.append(kind)
             if kind == "world":
                 parse_world(path)
             elif kind == "variation":
-                check_variations(path, world_file)
+                check_variations(path, world_file, params)
             else:
-                prepare(path, world_file)
+                prepare(path, world_file, assignments=params)
             console.success(f"{path}: valid {kind} file")
         except (InputError, InputErrors) as exc:
             problems.extend(as_list(exc))
+    if params and kinds and all(kind == "world" for kind in kinds):
+        problems.append(InputError("sets a plan parameter, but no plan or variation file is given", Location("-p")))
     if problems:
         raise InputErrors(problems)

@@ -13,6 +13,7 @@ from ..world.camera import IMAGE_FORMATS, encode_image, image_format, movable_ob
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
 from . import console
+from .complete import world_names
 from ..paths import find_world
 from .files import check_output, write_output
 from .options import (camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
@@ -29,7 +30,7 @@ def _fmt(values: tuple[float, ...] | list[float]) -> str:
 
 
 @world.command("show")
-@click.argument("world_file", metavar="[WORLD]", required=False)
+@click.argument("world_file", metavar="[WORLD]", required=False, shell_complete=world_names)
 @json_option
 @gui_option
 def show(world_file: str | None, as_json: bool, gui: bool) -> None:
@@ -123,7 +124,7 @@ def _fold(text: str, width: int, indent: str) -> str:
 
 
 @world.command("render")
-@click.argument("world_file", metavar="[WORLD]", required=False)
+@click.argument("world_file", metavar="[WORLD]", required=False, shell_complete=world_names)
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=Path("scene.png"),
               show_default=True, help="Image file to write; its extension sets the format (.png, .jpg, ...).")
 @camera_option

@@ -5,6 +5,7 @@ A plan file:
     description: ...            # optional
     world: kitchen              # bundled world name, or a path relative to the plan file
     params: {object: milk}      # parameters with defaults (a list entry without default is required)
+                                # or declared: {target: {type: position, default: [1, 0.5, 0.9]}}
     plans:                      # subplans, called with `call:`
       fetch:
         params: [object]
@@ -27,6 +28,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..kinds import param_kind, param_kind_names
 from ..limits import MAX_PLAN_DEPTH
 from ..schema import check_keys, describe
 from ..yamlsource import LList, LMap, load_yaml, where_of
@@ -147,12 +149,26 @@ def all_heads() -> list[str]:
     return names
 
 
+#: the keys of a declared parameter: `target: {type: position, default: [1, 0.5, 0.9], description: ...}`
+PARAM_DECLARATION_KEYS = ("type", "default", "description")
+
+
 @dataclass
 class Param:
+    """A plan's or subplan's parameter: its default (none when required) and, when declared, its type.
+
+    `type` names a kind of value (`kinds.py`: position, object, arm, list, ...); values given for a
+    typed parameter (its default, `-p`, sweep variations, literal call arguments) are checked
+    against it before anything runs.
+    """
+
     name: str
     default: Any = None
     required: bool = False
     where: Location = field(default_factory=Location)
+    type: str | None = None
+    description: str = ""
+    default_where: Location = field(default_factory=Location)
 
 
 @dataclass
@@ -317,19 +333,24 @@ class Parser:
 
     # -- parameters ----------------------------------------------------------------------
     def params(self, value: Any, where: Location, context: str) -> list[Param]:
-        """`params` as a mapping name: default, or a list whose items are `name` (required) or `{name: default}`."""
+        """`params` as a mapping name: default, or a list whose items are `name` (required) or `{name: default}`.
+
+        A default that is a mapping of `type` (a kind of value) and optionally `default` and
+        `description` is a declaration: `target: {type: position, default: [1, 0.5, 0.9]}`; without
+        `default` the parameter is required. Any other mapping is a plain default.
+        """
         result: list[Param] = []
         if isinstance(value, LMap):
-            entries = [(k, value[k], True, value.loc(k)) for k in value]
+            entries = [(k, value[k], True, value.loc(k), value.loc(k, True)) for k in value]
         elif isinstance(value, LList):
             entries = []
             for index, item in enumerate(value):
                 at = value.loc(index)
                 if isinstance(item, str):
-                    entries.append((item, None, False, at))
+                    entries.append((item, None, False, at, at))
                 elif isinstance(item, LMap) and len(item) == 1:
                     (name, default), = item.items()
-                    entries.append((name, default, True, item.loc(name)))
+                    entries.append((name, default, True, item.loc(name), item.loc(name, True)))
                 else:
                     self.error(f"expected a parameter name or {{name: default}}, got {describe(item)}", at, key="params")
         elif value is None:
@@ -339,18 +360,45 @@ class Parser:
                        key="params")
             return result
         seen: set[str] = set()
-        for name, default, has_default, at in entries:
+        for name, default, has_default, at, default_at in entries:
             if self.identifier(name, at, "params") is None:
                 continue
             if name in seen:
                 self.error(f"parameter '{name}' is given twice in {context}", at, key="params")
                 continue
             seen.add(name)
-            if has_default:
-                if references(default):
-                    self.error(f"the default of parameter '{name}' cannot use variables", at, key="params")
-            result.append(Param(name, _plain(default), not has_default, at))
+            param = Param(name, None, not has_default, at, default_where=default_at)
+            if has_default and not self._declaration(default, param):
+                param.default = default
+            if not param.required:
+                if references(param.default):
+                    self.error(f"the default of parameter '{name}' cannot use variables", param.default_where,
+                               key="params")
+                param.default = _plain(param.default)
+            result.append(param)
         return result
+
+    def _declaration(self, value: Any, param: Param) -> bool:
+        """Fill `param` from a declaration `{type: KIND, default: ..., description: ...}`; False for a plain default."""
+        if not (isinstance(value, LMap) and value and "type" in value
+                and all(isinstance(k, str) and k in PARAM_DECLARATION_KEYS for k in value)):
+            return False
+        kind = param_kind(value["type"])
+        if kind is None:
+            typo = did_you_mean(value["type"], param_kind_names()) if isinstance(value["type"], str) else None
+            if typo and len(value) > 1:  # `{type: positon, default: [...]}`: a misspelt declaration, not a value
+                self.error(f"unknown parameter type '{value['type']}'", value.loc("type", True), key="type",
+                           suggestion=typo)
+            return False
+        param.type = str(value["type"])
+        if "description" in value:
+            param.description = self.string(value["description"], value.loc("description", True), "description") or ""
+        if "default" in value:
+            param.default, param.required = value["default"], False
+            param.default_where = value.loc("default", True)
+        else:
+            param.required = True
+        return True
 
 
 def _article(word: str) -> str:

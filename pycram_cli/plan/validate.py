@@ -25,7 +25,8 @@ from ..yamlsource import LList, LMap
 from .context import REFERENCE, Ref, UnboundVariable, attribute, references
 from ..paths import find_world
 from ..world.model_files import describe_model
-from .syntax import Node, Plan
+from .params import type_problem
+from .syntax import Node, Param, Plan, plain
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
@@ -98,11 +99,21 @@ class Validator:
 
     # -- the whole plan --------------------------------------------------------------------
     def check(self) -> None:
+        self._defaults(self.plan.params)
         for name, sub in self.plan.plans.items():
+            self._defaults(sub.params)
             self._body(sub.body, {p.name: p.where for p in sub.params})
             if sub.has_returns:
                 self.refs(sub.returns, sub.returns_where, "returns")
         self._body(self.plan.body, {})
+
+    def _defaults(self, params: list[Param]) -> None:
+        """The defaults of typed parameters must fit their types."""
+        for param in params:
+            if not param.required:
+                problem = type_problem(param, param.default, self.robots)
+                if problem:
+                    self.error(f"the default of {problem}", param.default_where, key=param.name)
 
     def _body(self, steps: list[Node], params: dict[str, Location]) -> None:
         self.defined = dict(params)
@@ -211,6 +222,11 @@ class Validator:
                     self.error(f"{signature} has no parameter '{key}'", args.loc(key), key="args",
                                suggestion=did_you_mean(str(key), names))
             given = [k for k in args if k in names]
+        for param, value, at in _arguments(sub.params, args, args_where):
+            if not references(value):  # a literal argument; values of variables are only known when the call runs
+                problem = type_problem(param, plain(value), self.robots)
+                if problem:
+                    self.error(f"{signature}: {problem}", at, key="args")
         missing = [param for param in required if param not in given]
         if missing:
             self.error(f"missing argument{'s' if len(missing) > 1 else ''} {', '.join(missing)}: "
@@ -286,6 +302,16 @@ class Validator:
                 what = "link" if kind == "link" else "movable joint"
                 self.error(f"'{slot_name}': object '{owner}' has no {what} '{item}'{origin}", where,
                            key=str(slot_name), suggestion=did_you_mean(item, known))
+
+
+def _arguments(params: list[Param], args: Any, where: Location) -> list[tuple[Param, Any, Location]]:
+    """The arguments of a call that go with typed parameters: (parameter, value, place)."""
+    if isinstance(args, LList):
+        return [(p, v, args.loc(i)) for i, (p, v) in enumerate(zip(params, args)) if p.type]
+    if isinstance(args, LMap):
+        by_name = {p.name: p for p in params}
+        return [(by_name[k], v, args.loc(k, True)) for k, v in args.items() if k in by_name and by_name[k].type]
+    return []
 
 
 def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:

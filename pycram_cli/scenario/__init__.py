@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 from ..errors import InputError, PycramError, as_list, raise_if_any
+from ..kinds import NOTHING_KNOWN
 from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
 from ..plan.executor import Observer
@@ -79,7 +80,8 @@ class Scenario:
 
     def with_params(self, values: Mapping[str, Any]) -> "Scenario":
         """This scenario with some parameters set otherwise (values checked by `bind_params`)."""
-        return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values})})
+        robots = WorldFacts.of_spec(self.world).robots
+        return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values}, robots=robots)})
 
     def run(self, world: BulletWorld | None = None, observer: Observer | None = None, mode: str = "direct",
             replay: bool = False) -> RunResult:
@@ -125,16 +127,16 @@ def prepare(plan: str | Path, world: str | Path | None = None, params: Mapping[s
         spec = parse_world(world_path)
     except PycramError as exc:
         errors.extend(as_list(exc))
+    facts = WorldFacts.of_spec(spec) if spec is not None else None
     values: dict[str, Any] = {}
     try:
         given = dict(params or {})
         given.update(parse_assignments(assignments))
-        values = bind_params(parsed, given)
+        values = bind_params(parsed, given, robots=facts.robots if facts is not None else NOTHING_KNOWN)
     except PycramError as exc:
         errors.extend(as_list(exc))
     try:
-        check_plan(parsed, facts=WorldFacts.of_spec(spec) if spec is not None else None, check_world_file=False,
-                   errors=errors, values=values or None)
+        check_plan(parsed, facts=facts, check_world_file=False, errors=errors, values=values or None)
     except PycramError as exc:
         raise_if_any(as_list(exc))
     raise_if_any(errors)

@@ -45,7 +45,9 @@ from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..jsonable import jsonable
-from ..plan import Plan
+from ..kinds import Robots
+from ..plan import Plan, WorldFacts
+from ..plan.params import type_problem
 from ..world import BulletWorld
 from ..world.pose import quat_multiply, yaw_quaternion
 from ..schema import check_keys, describe, expect, is_number, number_list
@@ -350,7 +352,8 @@ def parse_variations(path: str | Path, world: WorldSpec, plan: Plan | None = Non
                 errors.append(InputError("the robot stands on the floor: give it a region 'box', not 'on'",
                                          data.loc("robot", True), key="region"))
     if "params" in data:
-        result.params = _parse_params(data["params"], data.loc("params", True), plan, errors)
+        result.params = _parse_params(data["params"], data.loc("params", True), plan, WorldFacts.of_spec(world).robots,
+                                      errors)
     for item in result.objects + ([result.robot] if result.robot else []):
         if item.region is not None and item.region.on is not None:
             owner = item.region.on[0]
@@ -507,7 +510,8 @@ def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[Inp
     return swaps
 
 
-def _parse_params(value: Any, where: Location, plan: Plan | None, errors: list[InputError]) -> list[ParamDraw]:
+def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots,
+                  errors: list[InputError]) -> list[ParamDraw]:
     if not isinstance(value, LMap):
         errors.append(InputError("expected a mapping of parameter name to [choices] or {range: [lo, hi]}", where,
                                  key="params"))
@@ -521,11 +525,20 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, errors: list[I
                                      suggestion=did_you_mean(str(name), known)
                                      or (f"its parameters: {', '.join(known)}" if known else "it takes no parameters")))
             continue
+        declared = plan.param(str(name)) if plan is not None else None
+
+        def typed(values: list[Any], places: list[Location]) -> bool:
+            """The drawn values fit the parameter's declared type (as `-p` values must)."""
+            problems = [(type_problem(declared, v, robots), at) for v, at in zip(values, places)] if declared else []
+            errors.extend(InputError(problem, at, key=str(name)) for problem, at in problems if problem)
+            return not any(problem for problem, _ in problems)
+
         if isinstance(spec, LList):
             if not spec:
                 errors.append(InputError("expected at least one value to choose from", at, key=str(name)))
                 continue
-            draws.append(ParamDraw(str(name), choices=[_plain(v) for v in spec]))
+            if typed([_plain(v) for v in spec], [spec.loc(i) for i in range(len(spec))]):
+                draws.append(ParamDraw(str(name), choices=[_plain(v) for v in spec]))
             continue
         if isinstance(spec, LMap):
             count = len(errors)
@@ -540,7 +553,10 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, errors: list[I
                     errors.append(InputError("expected a non-empty list of values", spec.loc("choose", True),
                                              key="choose"))
                     continue
-                draws.append(ParamDraw(str(name), choices=[_plain(v) for v in choices]))
+                places = [choices.loc(i) if isinstance(choices, LList) else spec.loc("choose", True)
+                          for i in range(len(choices))]
+                if typed([_plain(v) for v in choices], places):
+                    draws.append(ParamDraw(str(name), choices=[_plain(v) for v in choices]))
                 continue
             bounds = number_list(spec["range"], 2, spec.loc("range", True), "range", errors)
             if bounds is None or len(errors) != count:
@@ -549,6 +565,9 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, errors: list[I
                 errors.append(InputError("expected [lo, hi] with lo <= hi", spec.loc("range", True), key="range"))
                 continue
             integer = all(isinstance(b, int) and not isinstance(b, bool) for b in spec["range"])
+            ends = spec.loc("range", True)
+            if not (typed([spec["range"][0]], [ends]) and typed([spec["range"][1]], [ends])):
+                continue
             draws.append(ParamDraw(str(name), range=(bounds[0], bounds[1]), integer=integer))
             continue
         errors.append(InputError(f"expected [choices] or {{range: [lo, hi]}}, got {describe(spec)}", at, key=str(name),

@@ -88,6 +88,26 @@ def test_an_unknown_parameter_exits_2_with_a_suggestion(tmp_path):
     assert run("run", str(path), "-p", "who").exit_code == 2
 
 
+def test_a_parameter_value_of_the_wrong_shape_exits_2_before_anything_is_simulated():
+    from pycram_cli.world import BulletWorld
+
+    worlds_before = len(BulletWorld._live)
+    result = run("run", "fetch_spoon", "-p", "target=[1,2]")  # fetch_spoon declares target a position
+    assert result.exit_code == 2
+    assert ("-p: target: parameter 'target' is a position: expected a position [x, y, z], got a list of 2 "
+            "(e.g. -p target=[-0.8, 1.4, 0.862])") in result.stderr
+    assert "running" not in result.stderr and len(BulletWorld._live) == worlds_before  # nothing ran
+
+
+def test_a_required_typed_parameter_left_out_exits_2_saying_what_to_give(tmp_path):
+    path = plan(tmp_path, "- log: $where\n", extra="")
+    path.write_text(path.read_text().replace("params: {who: box}", "params: {who: box, where: {type: position}}"))
+    result = run("run", str(path))
+    assert result.exit_code == 2
+    assert "-p: where: plan 'p' needs parameter 'where' (give it with -p where=VALUE ([x, y, z]" in result.stderr
+    assert run("run", str(path), "-p", "where=[1, 2, 0]").exit_code == 0
+
+
 def test_json_prints_status_failure_and_trace_only(tmp_path):
     path = plan(tmp_path, """
         - fail: GripperFailure

@@ -41,3 +41,28 @@ def test_a_name_means_the_working_folders_own_plan_before_the_bundled_one(tmp_pa
     assert "edited here" in result.stdout
     plain = run("run", "set_table")
     assert str(Path("plans") / "set_table.yaml") in plain.stderr  # says which file it ran
+
+
+def test_parameter_values_given_with_p_are_checked_as_run_would_check_them():
+    result = run("validate", "fetch_spoon", "-p", "target=[1, 2]")
+    assert result.exit_code == 2
+    assert "-p: target: parameter 'target' is a position: expected a position [x, y, z], got a list of 2" in result.stderr
+    unknown = run("validate", "fetch_spoon", "-p", "targte=[1, 2, 0.9]")
+    assert unknown.exit_code == 2 and "has no parameter 'targte' (did you mean 'target'?)" in unknown.stderr
+    fine = run("validate", "fetch_spoon", "-p", "target=[-0.8, 1.2, 0.862]")
+    assert fine.exit_code == 0, fine.output
+    assert "fetch_spoon.yaml: valid plan file" in fine.stdout
+
+
+def test_a_parameter_value_naming_no_object_of_the_world_is_found_where_the_plan_uses_it(tmp_path: Path):
+    plan = tmp_path / "pick.yaml"
+    plan.write_text("params: {thing: {type: object, default: milk}}\nbody:\n  - pick-up: {object: $thing}\n")
+    assert run("validate", str(plan)).exit_code == 0
+    result = run("validate", str(plan), "-p", "thing=botle")
+    assert result.exit_code == 2
+    assert f"{plan}:3:" in result.stderr and "the world has no object 'botle' ($thing)" in result.stderr
+
+
+def test_p_without_a_plan_to_set_it_for_is_an_input_error():
+    result = run("validate", "kitchen", "-p", "target=[1, 2, 3]")
+    assert result.exit_code == 2 and "-p: sets a plan parameter, but no plan or variation file is given" in result.stderr

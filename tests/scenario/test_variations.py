@@ -65,6 +65,18 @@ def test_every_problem_is_reported_at_its_place_with_its_key(tmp_path, kitchen):
     assert "plan 'set_table' has no parameter 'jobz' (did you mean 'jobs'?)" in messages
 
 
+def test_drawn_parameter_values_must_fit_the_parameters_declared_types(tmp_path):
+    scenario = prepare("set_table_actions")  # objects: a list, table: a link
+    path = write(tmp_path, "typed.vary.yaml", """\
+        params:
+          objects: [[milk], milk]
+          table: {range: [0, 1]}
+    """)
+    found = [(e.location.line, e.location.column, e.key, e.message) for e in problems(path, scenario)]
+    assert found == [(2, 21, "objects", "parameter 'objects' is a list: expected a list, got the string 'milk'"),
+                     (3, 18, "table", "parameter 'table' is a link: expected a name, got 0")]
+
+
 def test_bad_variation_files_exit_2_in_validate_and_sweep(tmp_path):
     path = write(tmp_path, "set_table.vary.yaml", "plan: set_table\nobjects:\n  milk: {noise: -1}\n")
     result = CliRunner().invoke(cli, ["validate", str(path)])
