@@ -11,7 +11,8 @@ One set of kinds serves designator slots and query parameters alike. A kind know
 * `names_object`: whether a literal string names an object of the world (checked against
   the world's objects when one is known);
 * `schema`: the JSON Schema of a literal value (for editors: `pycram schema`), as loose as
-  `check` without a robot or a world (arms, grasps and objects are any name there).
+  `check` without a robot or a world (arms, grasps and objects are any name there); without
+  descriptions, so that an editor shows the slot's own when the pointer rests on a value.
 """
 from __future__ import annotations
 
@@ -335,23 +336,23 @@ _NUMBER: JsonSchema = {"type": "number", "minimum": -MAX_MAGNITUDE, "maximum": M
 _NAME: JsonSchema = {"type": "string", "minLength": 1}
 
 
-def _vector_schema(size: int, what: str) -> JsonSchema:
-    return {"type": "array", "items": _NUMBER, "minItems": size, "maxItems": size, "description": what}
+def _vector_schema(size: int) -> JsonSchema:
+    return {"type": "array", "items": _NUMBER, "minItems": size, "maxItems": size}
 
 
 def _either(*schemas: JsonSchema) -> JsonSchema:
     return {"anyOf": list(schemas)}
 
 
-_POSITION = _vector_schema(3, "[x, y, z]")
-_QUATERNION = _vector_schema(4, "[x, y, z, w]")
+_POSITION = _vector_schema(3)
+_QUATERNION = _vector_schema(4)
 _ARM_CONFIG = _either(_NAME, {"type": "array", "items": _NUMBER, "minItems": 1},
                       {"type": "object", "additionalProperties": _NUMBER, "minProperties": 1})
 
 
 def _location_schema(kinds: Mapping[str, "Kind"]) -> JsonSchema:
     """A location mapping: its keys (each value of its kind, or a `$variable`), one goal, what goes with what."""
-    variable = {"type": "string", "pattern": r"^\$", "description": "a $variable, known when the step runs"}
+    variable = {"type": "string", "pattern": r"^\$"}  # a $variable, known when the step runs
     together = [[a, b] for i, a in enumerate(LOCATION_GOALS) for b in LOCATION_GOALS[i + 1:]
                 if not {a, b} <= LOCATION_GOALS_TOGETHER]
     return {
@@ -385,7 +386,7 @@ KINDS: dict[str, Kind] = {k.name: k for k in (
     Kind("object", "an object name (or a $variable bound to an object)", _object, names_object=True, schema=_NAME),
     Kind("target", "an object name or a position [x, y, z]", _target, _vector_or_name(3), names_object=True,
          schema=_either(_NAME, _POSITION, {"type": "array", "prefixItems": [_POSITION, _QUATERNION], "minItems": 2,
-                                           "maxItems": 2, "description": "a pose [[x, y, z], [x, y, z, w]]"})),
+                                           "maxItems": 2})),  # a pose from Python
     Kind("arm", "an arm of the robot (its description names them, e.g. left or right)", _arm, schema=_NAME),
     Kind("grasp", "a grasp of the robot (e.g. front, top, left, right) or a quaternion [x, y, z, w]", _grasp,
          _vector_or_name(4), schema=_either(_NAME, _QUATERNION)),

@@ -227,15 +227,14 @@ class Schemas:
     def plan(self) -> Schema:
         defs: Schema = {
             "variable": {"type": "string", "pattern": rf"(^|[^$])(\$\$)*\$\{{?{NAME}",
-                         "description": "text holding a $variable: known when the step runs"},
-            "dynamic": {"description": "a value that holds a $variable (checked when the step runs)",
+                         "$comment": "text holding a $variable: known when the step runs"},
+            "dynamic": {"$comment": "a value that holds a $variable (checked when the step runs)",
                         "anyOf": [ref("variable"), {"type": "array", "contains": ref("dynamic")},
                                   {"type": "object", "not": {"additionalProperties": {"not": ref("dynamic")}}}]},
-            "reference": {"type": "string", "pattern": REFERENCE.pattern,
-                          "description": "a $variable ($name or $name.attr)"},
+            "reference": {"type": "string", "pattern": REFERENCE.pattern, "$comment": "a $variable ($name.attr)"},
             "name": {"type": "string", "pattern": IDENTIFIER.pattern,
-                     "description": "a variable name (letters, digits, _ and -), without $"},
-            "failure-type": {"enum": [*FAILURES, *ALIASES], "description": "a failure type"},
+                     "$comment": "a variable name (letters, digits, _ and -), without $"},
+            "failure-type": {"enum": [*FAILURES, *ALIASES], "$comment": "a failure type"},
             "params": {"anyOf": [
                 {"type": "null"},
                 {"type": "object", "propertyNames": ref("name")},
@@ -244,11 +243,11 @@ class Schemas:
                                                                       "propertyNames": ref("name")}]}}]},
             "subplan-name": {"allOf": [ref("name"), {"not": {"enum": sorted(all_heads())}}]},
             "subplan": self.mapping("subplan", SUBPLAN_KEYS, SUBPLAN_REQUIRED, SUBPLAN_VALUES),
-            "steps": {"description": "a list of steps (or one step)",
+            "steps": {"$comment": "a list of steps (or one step)",
                       "anyOf": [ref("step"), {"type": "array", "minItems": 1, "items": ref("step")}]},
         }
         for name, kind in KINDS.items():
-            defs[f"kind.{name}"] = {"description": kind.doc, **(kind.schema or {})}
+            defs[f"kind.{name}"] = {"$comment": kind.doc, **(kind.schema or {})}
         variants: list[Schema] = []
         for head, cls in NODE_TYPES.items():
             if head == "action":
@@ -261,17 +260,17 @@ class Schemas:
             self.missing.extend(f"node type {head}: {k}" for k in extra)
             properties = {head: {**HEAD_VALUES.get(head, {}), "description": cls.DOC},
                           **{k: NODE_KEY_VALUES.get(k, {}) for k in keys}}
-            variants.append({"type": "object", "description": f"{head}: {cls.DOC}", "properties": properties,
+            variants.append({"title": head, "type": "object", "description": cls.DOC, "properties": properties,
                              "required": [head, *cls.REQUIRED], "additionalProperties": False})
         for family, heads, cls in FAMILIES:
             for head in heads():
                 variants.append(self._family_step(family, head, cls.allowed_keys(head), defs))
-        defs["step"] = {"type": "object", "description": "a step: one node type (its head key) and the keys it takes",
+        defs["step"] = {"type": "object", "$comment": "a step: one node type (its head key) and the keys it takes",
                         "anyOf": variants}
-        defs["condition"] = {"description": "a condition: a $variable, true/false, a query, {equal: [a, b]} or "
-                                            "{not: condition}",
+        defs["condition"] = {"$comment": "a condition: a $variable, true/false, a query, {equal: [a, b]} or "
+                                         "{not: condition}",
                              "anyOf": [{"type": "boolean"}, ref("reference"), *self._condition_forms(),
-                                       *({"type": "object", "properties": {name: ref(f"query.{name}")},
+                                       *({"title": name, "type": "object", "properties": {name: ref(f"query.{name}")},
                                           "required": [name], "additionalProperties": False}
                                          for name in QUERIES)]}
         root = self.mapping("the plan", PLAN_KEYS, PLAN_REQUIRED, PLAN_VALUES)
@@ -283,7 +282,8 @@ class Schemas:
         for form, doc in CONDITION_FORMS.items():
             if form not in values:
                 self.missing.append(f"condition {form}")
-            forms.append({"type": "object", "properties": {form: {**values.get(form, {}), "description": doc}},
+            forms.append({"title": form, "type": "object",
+                          "properties": {form: {**values.get(form, {}), "description": doc}},
                           "required": [form], "additionalProperties": False})
         return forms
 
@@ -291,7 +291,7 @@ class Schemas:
         """A step whose head is a motion designator or a query: its slots or parameters as a mapping."""
         if family == "designator":
             spec = DESIGNATORS[head]
-            defs[f"designator.{head}"] = self._slots(spec.doc, spec.slots, spec.one_of, whole_only=False)
+            defs[f"designator.{head}"] = self._slots(head, spec.doc, spec.slots, spec.one_of, whole_only=False)
             value, doc = ref(f"designator.{head}"), spec.doc
         elif family == "query":
             query = QUERIES[head]
@@ -301,7 +301,7 @@ class Schemas:
             self.missing.append(f"node family {family}")
             value, doc = {}, ""
         properties = {head: {**value, "description": doc}, **{k: NODE_KEY_VALUES.get(k, {}) for k in keys}}
-        return {"type": "object", "description": f"{head}: {doc}", "properties": properties, "required": [head],
+        return {"title": head, "type": "object", "description": doc, "properties": properties, "required": [head],
                 "additionalProperties": False}
 
     def _slot(self, slot: Slot, whole_only: bool) -> Schema:
@@ -313,9 +313,10 @@ class Schemas:
         return {"description": f"{slot.doc} ({need}{default}) — {KINDS[slot.kind].doc}",
                 "anyOf": [ref(f"kind.{slot.kind}"), dynamic]}
 
-    def _slots(self, doc: str, slots: tuple[Slot, ...], one_of: tuple[str, ...], whole_only: bool) -> Schema:
+    def _slots(self, title: str, doc: str, slots: tuple[Slot, ...], one_of: tuple[str, ...],
+               whole_only: bool) -> Schema:
         required = [s.name for s in slots if s.required]
-        schema: Schema = {"type": "object" if required or one_of else ["object", "null"], "description": doc,
+        schema: Schema = {"title": title, "type": "object" if required or one_of else ["object", "null"], "description": doc,
                           "properties": {s.name: self._slot(s, whole_only) for s in slots},
                           "additionalProperties": False}
         if required:
@@ -334,22 +335,32 @@ class Schemas:
             properties[param.name] = {"description": f"{param.doc} ({need}{f'; default: {default}' if default else ''})"
                                                      f" — {KINDS[param.kind].doc}", "anyOf": values}
         required = [p.name for p in query.params if p.required]
-        schema: Schema = {"type": "object" if required else ["object", "null"], "description": query.doc,
+        schema: Schema = {"title": name, "type": "object" if required else ["object", "null"], "description": query.doc,
                           "properties": properties, "additionalProperties": False}
         return {**schema, "required": required} if required else schema
 
     def _action(self, name: str, defs: Schema) -> Schema:
-        """`- action: NAME` with the action's slots beside it."""
+        """`- action: NAME` with the action's slots beside it.
+
+        The required slots are asked for only once `action` holds a string (always, in a valid file): an
+        editor completing `action: ` (no value yet) then finds every action's variant usable and offers every
+        name, and once a name is there it completes that action's slots alone.
+        """
         spec = ACTIONS[name]
         gives = f" Gives: {spec.returns}." if spec.returns else ""
         properties: Schema = {"action": {"const": name, "description": f"{spec.doc}{gives}"},
                               **{s.name: self._slot(s, whole_only=True) for s in spec.slots},
                               "as": NODE_KEY_VALUES["as"]}
-        schema: Schema = {"type": "object", "description": f"action {name}: {spec.doc}", "properties": properties,
-                          "required": ["action", *(s.name for s in spec.slots if s.required)],
-                          "additionalProperties": False}
+        schema: Schema = {"title": f"action {name}", "type": "object", "description": spec.doc,
+                          "properties": properties, "required": ["action"], "additionalProperties": False}
+        then: Schema = {}
+        if any(s.required for s in spec.slots):
+            then["required"] = [s.name for s in spec.slots if s.required]
         if spec.one_of:
-            schema["anyOf"] = [{"required": [slot]} for slot in spec.one_of]
+            then["anyOf"] = [{"required": [slot]} for slot in spec.one_of]
+        if then:
+            schema["if"] = {"properties": {"action": {"type": "string"}}}
+            schema["then"] = then
         return schema
 
     # -- worlds -----------------------------------------------------------------------------------------------

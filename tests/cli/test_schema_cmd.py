@@ -160,7 +160,7 @@ def test_the_schema_names_every_designator_action_and_query_pycram_designators_l
         else:
             assert entry["type"] in actions
             slots = next(v["properties"] for v in plan["$defs"]["step"]["anyOf"]
-                         if v["properties"].get("action", {}).get("const") == entry["type"])
+                         if v.get("title") == f"action {entry['type']}")
         for slot in entry["slots"]:
             assert slot["name"] in slots and slot["doc"] in slots[slot["name"]]["description"]
         assert entry["doc"] in text
@@ -194,3 +194,13 @@ def test_an_unknown_kind_is_an_input_error_with_a_suggestion():
     assert "unknown kind of file 'plna'" in result.stderr and "did you mean 'plan'?" in result.stderr
     result = run("schema", "robot", "--json")
     assert result.exit_code == 2 and json.loads(result.stdout)["errors"][0]["suggestion"] == "kinds: world, plan, vary"
+
+
+def test_an_editor_completing_action_finds_every_action_usable_until_a_name_is_there():
+    """yaml-language-server offers the values of `action: ` from the variants that match the step so far:
+    each action's variant asks for its required slots only once `action` holds a name."""
+    plan = build("plan")
+    for variant in plan["$defs"]["step"]["anyOf"]:
+        if variant.get("title", "").startswith("action "):
+            check = jsonschema.Draft202012Validator({**variant, "$defs": plan["$defs"]})
+            assert [e.validator for e in check.iter_errors({"action": None})] == ["const"], variant["title"]
