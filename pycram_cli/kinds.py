@@ -9,7 +9,10 @@ One set of kinds serves designator slots and query parameters alike. A kind know
   known, or nothing;
 * `from_text(text)`: the value a command-line string stands for (`1.3,0.6,1` is a position);
 * `names_object`: whether a literal string names an object of the world (checked against
-  the world's objects when one is known).
+  the world's objects when one is known);
+* `schema`: the JSON Schema of a literal value (for editors: `pycram schema`), as loose as
+  `check` without a robot or a world (arms, grasps and objects are any name there); without
+  descriptions, so that an editor shows the slot's own when the pointer rests on a value.
 """
 from __future__ import annotations
 
@@ -18,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 from .errors import did_you_mean
+from .limits import MAX_MAGNITUDE
 from .schema import is_number, is_vector, number_problem
 
 
@@ -247,10 +251,15 @@ LOCATION_KEYS: dict[str, str] = {
     "near": "with on: a position [x, y, z] the spot should be close to",
     "accessing": "a handle link: base poses from which an arm opens its drawer or door",
 }
-#: a location asks for one of these (reachable-for and visible-for may go together)
+#: a location asks for one of these
 LOCATION_GOALS = ("reachable-for", "visible-for", "on", "accessing")
+#: the only goals that may go together
+LOCATION_GOALS_TOGETHER = frozenset({"reachable-for", "visible-for"})
 #: the keys that go with each goal
 LOCATION_WITH = {"arm": ("reachable-for", "accessing"), "grasp": ("reachable-for",), "for": ("on",), "near": ("on",)}
+#: the kind of each key's value (`on` names a link or an object: any name, as the `link` kind checks)
+LOCATION_KEY_KINDS = {"reachable-for": "target", "visible-for": "object", "arm": "arm", "grasp": "grasp", "on": "link",
+                      "for": "object", "near": "position", "accessing": "link"}
 
 
 def location_mapping(value: Any) -> Any:
@@ -275,18 +284,15 @@ def _location(value: Any, robots: Robots) -> str | None:
     goals = location_goals(value)
     if not goals:
         return f"a location needs one of {', '.join(LOCATION_GOALS)}"
-    if len(goals) > 1 and set(goals) != {"reachable-for", "visible-for"}:
-        return f"{' and '.join(goals)} do not go together (only reachable-for and visible-for do)"
+    if len(goals) > 1 and not set(goals) <= LOCATION_GOALS_TOGETHER:
+        return f"{' and '.join(goals)} do not go together (only {' and '.join(sorted(LOCATION_GOALS_TOGETHER))} do)"
     for key, goes_with in LOCATION_WITH.items():
         if key in value and not any(goal in value for goal in goes_with):
             return f"'{key}' goes with {' or '.join(goes_with)}"
-    checks: dict[str, Callable[[Any, Robots], str | None]] = {
-        "reachable-for": _target, "visible-for": _object, "arm": _arm, "grasp": _grasp, "on": _plain_name,
-        "for": _object, "near": _position, "accessing": _plain_name}
     for key, item in value.items():
         if _is_reference_text(item):
             continue
-        problem = checks[key](item, robots)
+        problem = KINDS[LOCATION_KEY_KINDS[key]].check(item, robots)
         if problem:
             return f"{key}: {problem}"
     return None
@@ -338,6 +344,45 @@ def _float_or_text(text: str) -> Any:
         return text
 
 
+# -- JSON Schemas of the written forms (for editors: `pycram schema`) --------------------------------
+
+JsonSchema = Mapping[str, Any]
+
+_NUMBER: JsonSchema = {"type": "number", "minimum": -MAX_MAGNITUDE, "maximum": MAX_MAGNITUDE}
+_NAME: JsonSchema = {"type": "string", "minLength": 1}
+
+
+def _vector_schema(size: int) -> JsonSchema:
+    return {"type": "array", "items": _NUMBER, "minItems": size, "maxItems": size}
+
+
+def _either(*schemas: JsonSchema) -> JsonSchema:
+    return {"anyOf": list(schemas)}
+
+
+_POSITION = _vector_schema(3)
+_QUATERNION = _vector_schema(4)
+_ARM_CONFIG = _either(_NAME, {"type": "array", "items": _NUMBER, "minItems": 1},
+                      {"type": "object", "additionalProperties": _NUMBER, "minProperties": 1})
+
+
+def _location_schema(kinds: Mapping[str, "Kind"]) -> JsonSchema:
+    """A location mapping: its keys (each value of its kind, or a `$variable`), one goal, what goes with what."""
+    variable = {"type": "string", "pattern": r"^\$"}  # a $variable, known when the step runs
+    together = [[a, b] for i, a in enumerate(LOCATION_GOALS) for b in LOCATION_GOALS[i + 1:]
+                if not {a, b} <= LOCATION_GOALS_TOGETHER]
+    return {
+        "type": "object",
+        "properties": {key: {"description": doc, "anyOf": [kinds[LOCATION_KEY_KINDS[key]].schema or {}, variable]}
+                       for key, doc in LOCATION_KEYS.items()},
+        "additionalProperties": False,
+        "anyOf": [{"required": [goal]} for goal in LOCATION_GOALS],
+        "allOf": [*({"not": {"required": pair}} for pair in together),
+                  *({"if": {"required": [key]}, "then": {"anyOf": [{"required": [goal]} for goal in goals]}}
+                    for key, goals in LOCATION_WITH.items())],
+    }
+
+
 @dataclass(frozen=True)
 class Kind:
     name: str
@@ -347,34 +392,45 @@ class Kind:
     names_object: bool = False
     #: the names of objects and links inside a value (location mappings): (key, name, `object`/`link`/`object or link`)
     names_in: Callable[[Any], list[tuple[str, str, str]]] | None = None
+    #: the JSON Schema of a literal value (None: any value)
+    schema: JsonSchema | None = None
 
 
 KINDS: dict[str, Kind] = {k.name: k for k in (
-    Kind("position", "[x, y, z] in metres, world frame", _position, _vector_or_name(3)),
-    Kind("quaternion", "[x, y, z, w], unit length", _quaternion, _vector_or_name(4)),
-    Kind("object", "an object name (or a $variable bound to an object)", _object, names_object=True),
-    Kind("target", "an object name or a position [x, y, z]", _target, _vector_or_name(3), names_object=True),
-    Kind("arm", "an arm of the robot (its description names them, e.g. left or right)", _arm),
+    Kind("position", "[x, y, z] in metres, world frame", _position, _vector_or_name(3), schema=_POSITION),
+    Kind("quaternion", "[x, y, z, w], unit length", _quaternion, _vector_or_name(4), schema=_QUATERNION),
+    Kind("object", "an object name (or a $variable bound to an object)", _object, names_object=True, schema=_NAME),
+    Kind("target", "an object name or a position [x, y, z]", _target, _vector_or_name(3), names_object=True,
+         schema=_either(_NAME, _POSITION, {"type": "array", "prefixItems": [_POSITION, _QUATERNION], "minItems": 2,
+                                           "maxItems": 2})),  # a pose from Python
+    Kind("arm", "an arm of the robot (its description names them, e.g. left or right)", _arm, schema=_NAME),
     Kind("grasp", "a grasp of the robot (e.g. front, top, left, right) or a quaternion [x, y, z, w]", _grasp,
-         _vector_or_name(4)),
-    Kind("number", "a number", _number, _float_or_text),
-    Kind("distance", "a positive distance in metres", _distance, _float_or_text),
-    Kind("fraction", "a fraction between 0 and 1", _fraction, _float_or_text),
-    Kind("joint", "a joint name of the part-of object", _plain_name),
-    Kind("link", "a link name", _plain_name, names_in=_link_name),
-    Kind("object-type", "an object type, e.g. milk", _plain_name),
-    Kind("types", "an object type or a list of types", _types),
-    Kind("camera", "a link of the robot or a position [x, y, z]", _camera, _vector_or_name(3)),
-    Kind("arm-config", "a named pose (park), joint values in order, or {joint: value}", _arm_config),
-    Kind("arm-configs", "{arm: configuration}, each a named pose, joint values, or {joint: value}", _arm_configs),
-    Kind("location", "a mapping: {reachable-for: OBJECT|[x, y, z], arm?, grasp?}, {visible-for: OBJECT} (or both), "
-         "{on: SURFACE, for: OBJECT?, near: [x, y, z]?}, or {accessing: HANDLE_LINK}", _location,
-         names_in=location_names),
-    Kind("list", "a list of any values, e.g. [milk, bowl]", _list),
-    Kind("mapping", "a mapping of any values, e.g. {target: [0, 0, 0], orientation: [0, 0, 0, 1]}", _mapping),
-    Kind("string", "text", _string),
-    Kind("boolean", "true or false", _boolean),
+         _vector_or_name(4), schema=_either(_NAME, _QUATERNION)),
+    Kind("number", "a number", _number, _float_or_text, schema=_NUMBER),
+    Kind("distance", "a positive distance in metres", _distance, _float_or_text,
+         schema={**_NUMBER, "exclusiveMinimum": 0}),
+    Kind("fraction", "a fraction between 0 and 1", _fraction, _float_or_text,
+         schema={"type": "number", "minimum": 0, "maximum": 1}),
+    Kind("joint", "a joint name of the part-of object", _plain_name, schema=_NAME),
+    Kind("link", "a link name", _plain_name, names_in=_link_name, schema=_NAME),
+    Kind("object-type", "an object type, e.g. milk", _plain_name, schema=_NAME),
+    Kind("types", "an object type or a list of types", _types, schema=_either(_NAME, {"type": "array", "items": _NAME})),
+    Kind("camera", "a link of the robot or a position [x, y, z]", _camera, _vector_or_name(3),
+         schema=_either(_NAME, _POSITION)),
+    Kind("arm-config", "a named pose (park), joint values in order, or {joint: value}", _arm_config,
+         schema=_ARM_CONFIG),
+    Kind("arm-configs", "{arm: configuration}, each a named pose, joint values, or {joint: value}", _arm_configs,
+         schema={"type": "object", "additionalProperties": _ARM_CONFIG, "minProperties": 1}),
+    Kind("list", "a list of any values, e.g. [milk, bowl]", _list, schema={"type": "array"}),
+    Kind("mapping", "a mapping of any values, e.g. {target: [0, 0, 0], orientation: [0, 0, 0, 1]}", _mapping,
+         schema={"type": "object"}),
+    Kind("string", "text", _string, schema={"type": "string"}),
+    Kind("boolean", "true or false", _boolean, schema={"type": "boolean"}),
 )}
+KINDS["location"] = Kind(
+    "location", "a mapping: {reachable-for: OBJECT|[x, y, z], arm?, grasp?}, {visible-for: OBJECT} (or both), "
+    "{on: SURFACE, for: OBJECT?, near: [x, y, z]?}, or {accessing: HANDLE_LINK}", _location, names_in=location_names,
+    schema=_location_schema(KINDS))
 
 #: other names a plan parameter's `type:` may use for a kind
 KIND_ALIASES: dict[str, str] = {"orientation": "quaternion"}

@@ -75,3 +75,9 @@ def test_validation_checks_the_new_declarations(extension, tmp_path: Path):
 def test_without_the_import_neither_exists():
     assert "count" not in QUERIES and "waving" not in DESIGNATORS
     assert run("query", "count", "milk").exit_code == 2
+
+
+def test_a_new_query_and_designator_are_in_the_editor_schema(extension):
+    plan = json.loads(run("schema", "plan").stdout)
+    assert set(plan["$defs"]["designator.waving"]["properties"]) == {"arm", "times"}
+    assert "How many objects of a type are in the world?" in plan["$defs"]["query.count"]["description"]

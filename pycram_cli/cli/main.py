@@ -40,6 +40,9 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "designators": ("designators_cmd", "designators",
                     "List every motion designator and action designator with its slots (or just TYPE)."),
     "trace": ("trace_cmd", "trace", "Show saved plan traces and compare them."),
+    "schema": ("schema_cmd", "schema",
+               "Print the JSON Schema of world, plan or variation files, for editors (completion, checks as you "
+               "type)."),
 }
 
 #: options of the whole program that may also be written after the command (`pycram run x --verbose`)

@@ -156,6 +156,11 @@ class QueryStep(Node):
 
 
 # -- conditions ------------------------------------------------------------------------------------------------
+#: the condition forms beside the queries, and what each holds for
+CONDITION_FORMS = {"not": "the condition given does not hold",
+                   "equal": "the two values [a, b] are equal (objects compare by name)"}
+
+
 class Condition:
     """`$variable`, true/false, a query mapping, {equal: [a, b]}, or {not: condition}."""
 
@@ -174,7 +179,7 @@ class Condition:
             return cls("variable", where, value)
         if isinstance(value, LMap) and len(value) == 1:
             (head, args), = value.items()
-            if head == "not":
+            if head == "not":  # CONDITION_FORMS
                 inner = cls.parse(args, value.loc("not", True), key, parser)
                 return None if inner is None else cls("not", where, inner=inner)
             if head == "equal":
@@ -187,7 +192,7 @@ class Condition:
                 mapping = _mapping(args, value.loc(head, True), head, parser, "arguments")
                 return None if mapping is None else cls("query", where, mapping, name=head)
             parser.error(f"unknown query '{head}' in a condition", value.loc(head), key=key,
-                         suggestion=did_you_mean(str(head), [*QUERIES, "not", "equal"])
+                         suggestion=did_you_mean(str(head), [*QUERIES, *CONDITION_FORMS])
                          or f"queries: {', '.join(QUERIES)}")
             return None
         parser.error(f"expected a condition: a $variable, true/false, a query like {{stable: {{object: $obj}}}}, "

@@ -40,7 +40,9 @@ if TYPE_CHECKING:  # for annotations only: these modules import this one
     from .validate import Validator
 
 PLAN_KEYS = ("description", "world", "params", "plans", "body")
+PLAN_REQUIRED = ("body",)
 SUBPLAN_KEYS = ("description", "params", "body", "returns")
+SUBPLAN_REQUIRED = ("body",)
 COMMON_KEYS = ("as",)
 
 
@@ -442,7 +444,7 @@ def read_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan:
     if not isinstance(data, LMap):
         raise InputError("a plan file must be a mapping with a 'body' (and optionally world, params, plans)",
                          Location(fname, 1, 1))
-    check_keys(data, PLAN_KEYS, ("body",), "the plan", parser.errors)
+    check_keys(data, PLAN_KEYS, PLAN_REQUIRED, "the plan", parser.errors)
     plan = Plan(path=path, body=[], where=data.where)
     if "description" in data:
         plan.description = parser.string(data["description"], data.loc("description", True), "description") or ""
@@ -486,7 +488,7 @@ def _parse_subplan(name: Any, value: Any, key_where: Location, where: Location, 
         parser.error(f"subplan '{name}': expected a mapping with params and body, got {describe(value)}", where,
                      key=str(name))
         return None
-    check_keys(value, SUBPLAN_KEYS, ("body",), f"subplan '{name}'", parser.errors)
+    check_keys(value, SUBPLAN_KEYS, SUBPLAN_REQUIRED, f"subplan '{name}'", parser.errors)
     sub = Subplan(name, [], [], where=key_where)
     if "description" in value:
         sub.description = parser.string(value["description"], value.loc("description", True), "description") or ""

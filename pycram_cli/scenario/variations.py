@@ -61,6 +61,7 @@ OBJECT_KEYS = ("noise", "region", "yaw", "present", "swap")
 ROBOT_KEYS = ("noise", "region", "yaw")
 REGION_KEYS = ("box", "on", "margin")
 SWAP_KEYS = ("type", "file", "color", "mass")
+SWAP_REQUIRED = ("type", "file")
 PARAM_KEYS = ("range", "choose")
 DEFAULT_MARGIN = 0.05
 #: draws of a position before giving up on `separation` (the last draw is kept)
@@ -485,8 +486,8 @@ def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[Inp
                                      key="swap"))
             continue
         count = len(errors)
-        check_keys(entry, SWAP_KEYS, ("type", "file"), "swap", errors)
-        for key in ("type", "file"):
+        check_keys(entry, SWAP_KEYS, SWAP_REQUIRED, "swap", errors)
+        for key in SWAP_REQUIRED:
             if key in entry:
                 expect(entry[key], str, entry.loc(key, True), key, errors)
         if len(errors) != count:

@@ -31,10 +31,12 @@ from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simula
 from ..yamlsource import LList, LMap, load_yaml
 
 WORLD_KEYS = ("description", "gravity", "objects")
+WORLD_REQUIRED = ("objects",)
 OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "color", "joints", "attach", "fixed", "mass",
                "description")
 OBJECT_REQUIRED = ("name", "type", "file")
 ATTACH_KEYS = ("to", "parent_link", "child_link")
+ATTACH_REQUIRED = ("to",)
 MODEL_SUFFIXES = {".urdf", *MESH_SUFFIXES}
 
 
@@ -131,7 +133,7 @@ def parse_world(path: Path) -> WorldSpec:
     errors: list[InputError] = []
     if not isinstance(data, LMap):
         raise InputError("a world file must be a mapping with 'objects' (and optionally 'gravity')", Location(fname, 1, 1))
-    check_keys(data, WORLD_KEYS, ("objects",), "the world", errors)
+    check_keys(data, WORLD_KEYS, WORLD_REQUIRED, "the world", errors)
     gravity = [0.0, 0.0, -9.81]
     if "gravity" in data:
         gravity = number_list(data["gravity"], 3, data.loc("gravity", True), "gravity", errors) or gravity
@@ -292,7 +294,7 @@ def _parse_attach(value: Any, where: Location, errors: list[InputError]) -> list
             errors.append(InputError("expected an object name or a mapping {to, parent_link, child_link}", at, key="attach"))
             continue
         count = len(errors)
-        check_keys(entry, ATTACH_KEYS, ("to",), "attach", errors)
+        check_keys(entry, ATTACH_KEYS, ATTACH_REQUIRED, "attach", errors)
         for key in ATTACH_KEYS:
             if key in entry:
                 expect(entry[key], str, entry.loc(key, True), key, errors)
