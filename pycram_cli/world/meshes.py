@@ -11,6 +11,12 @@ from pathlib import Path
 import numpy as np
 
 
+#: a closed mesh enclosing less than this fraction of its bounding box is hollow (see Mesh.is_hollow)
+HOLLOW = 0.3
+#: the grid cell for convex pieces of hollow meshes (m)
+PIECE_CELL = 0.015
+
+
 @dataclass
 class Mesh:
     vertices: np.ndarray  # (n, 3)
@@ -30,6 +36,84 @@ class Mesh:
             return 0.0, (lo + hi) / 2.0
         centroid = (vols[:, None] * (a + b + c) / 4.0).sum(axis=0) / volume
         return abs(volume), centroid
+
+
+    def is_hollow(self) -> bool:
+        """A closed mesh enclosing less than 30 % of its bounding box: a bowl, a cup, a pitcher (thin walls around
+        empty space), which its convex hull would fill. An open mesh (no volume) is not hollow: it has no inside."""
+        volume, _ = self.volume_and_centroid()
+        lo, hi = self.bounds
+        box = float(np.prod(np.maximum(hi - lo, 1e-9)))
+        return volume > 0.0 and volume < HOLLOW * box
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points on every triangle, at most `spacing` apart (its vertices included)."""
+        tris = self.vertices[self.triangles]  # (m, 3, 3)
+        longest = np.max(np.linalg.norm(tris - np.roll(tris, 1, axis=1), axis=2), axis=1)
+        counts = np.maximum(1, np.ceil(longest / spacing).astype(int))
+        found = [self.vertices]
+        for n in np.unique(counts):
+            if n == 1:
+                continue
+            i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+            keep = i + j <= n
+            weights = np.stack([i[keep], j[keep], n - i[keep] - j[keep]], axis=1) / n  # (k, 3) barycentric
+            found.append(np.einsum("kc,mcd->mkd", weights, tris[counts == n]).reshape(-1, 3))
+        return np.concatenate(found)
+
+    def convex_pieces(self, cell: float = PIECE_CELL) -> list[np.ndarray]:
+        """The mesh cut into convex pieces for collision: the points of its surface in each cell of a grid (cells of
+        about `cell` metres, overlapping by the sample spacing so that the pieces leave no gaps), in grid order.
+
+        Each piece is the convex hull of a patch of the surface, so a thin wall stays a thin slab and the empty
+        space it encloses stays empty; a curved wall is approximated within cell² / (8 × its radius) (1 mm for a
+        bowl of radius 7 cm).
+        """
+        lo, hi = self.bounds
+        size = np.maximum(hi - lo, 1e-9)
+        counts = np.clip(np.round(size / cell), 1, 12).astype(int)
+        step = size / counts
+        spacing = float(step.min()) / 4.0
+        points = self.surface_points(spacing)
+        rel = (points - lo) / step
+        pieces: dict[tuple[int, int, int], list[np.ndarray]] = {}
+        overlap = spacing / step
+        low = np.clip(np.floor(rel - overlap), 0, counts - 1).astype(int)
+        high = np.clip(np.floor(rel + overlap), 0, counts - 1).astype(int)
+        for dx in (0, 1):
+            for dy in (0, 1):
+                for dz in (0, 1):
+                    index = np.where(np.array([dx, dy, dz], dtype=bool), high, low)
+                    keys = index[:, 0] * 10000 + index[:, 1] * 100 + index[:, 2]
+                    for key in np.unique(keys):
+                        pieces.setdefault((int(key) // 10000, int(key) // 100 % 100, int(key) % 100), []).append(
+                            points[keys == key])
+        result = []
+        for key in sorted(pieces):
+            cloud = np.unique(np.round(np.concatenate(pieces[key]), 7), axis=0)
+            if len(cloud) >= 4:
+                result.append(cloud)
+        return result
+
+
+
+def write_pieces_obj(pieces: list[np.ndarray], path: Path) -> None:
+    """Convex pieces as a Wavefront OBJ with one object per piece (PyBullet collides each as its convex hull)."""
+    lines = ["# convex pieces for collision, one object each (written by pycram)"]
+    first = 1
+    for k, cloud in enumerate(pieces):
+        lines.append(f"o piece{k}")
+        lines += [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in cloud]
+        lines += [f"f {first} {first + i} {first + i + 1}" for i in range(1, len(cloud) - 1)]
+        first += len(cloud)
+    path.write_text("\n".join(lines) + "\n")
+
+
+def obj_objects(path: Path) -> int:
+    """How many objects (`o`/`g` groups) an OBJ file has: PyBullet collides each as a convex hull of its own."""
+    if path.suffix.lower() != ".obj":
+        return 1
+    return sum(1 for line in path.read_text(errors="replace").splitlines() if line.startswith(("o ", "g ")))
 
 
 def is_binary_stl(path: Path) -> bool:
