@@ -27,6 +27,8 @@ if TYPE_CHECKING:
     from .object import Object
 
 STEP_HZ = 240
+#: how many shapes along one ray `cast_rays` looks at (it sees through the ignored ones)
+_RAY_HITS = 16
 
 
 class WorldError(RuntimeError):
@@ -47,6 +49,18 @@ class ClosestPoint:
     position_on_b: Vec3
     normal_on_b: Vec3
     distance: float
+
+
+@dataclass(frozen=True)
+class RayHit:
+    """Where a ray first meets a collision shape: the object and link (-1: the base) hit, how far along the ray
+    (0 at its start, 1 at its end), the point and the surface normal there (world frame)."""
+
+    object: "Object | None"
+    link: int
+    fraction: float
+    position: Vec3
+    normal: Vec3
 
 
 class BulletWorld:
@@ -240,6 +254,29 @@ class BulletWorld:
         if link_b is not None:
             links["linkIndexB"] = link_b
         return p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
+
+    def cast_rays(self, starts: Sequence[Sequence[float]], ends: Sequence[Sequence[float]],
+                  ignore: Sequence["Object"] = ()) -> list["RayHit | None"]:
+        """Where each ray from `starts[k]` to `ends[k]` first hits a collision shape, or None; objects in `ignore`
+        are seen through. Read as the shapes are now (no simulation step), like `closest_points`."""
+        self._check_alive()
+        skip = {obj.id for obj in ignore}
+        froms = [tuple(float(v) for v in s) for s in starts]
+        tos = [tuple(float(v) for v in e) for e in ends]
+        hits: list[RayHit | None] = [None] * len(froms)
+        for number in range(_RAY_HITS):  # the n-th shape along each ray, until a shape that counts or none is left
+            rows = p.rayTestBatch(froms, tos, reportHitNumber=number, physicsClientId=self.client_id)
+            more = False
+            for k, (body, link, fraction, position, normal) in enumerate(rows):
+                if body < 0:
+                    continue
+                more = True
+                if body in skip or (hits[k] is not None and hits[k].fraction <= fraction):  # type: ignore[union-attr]
+                    continue
+                hits[k] = RayHit(self._by_id.get(body), link, float(fraction), tuple(position), tuple(normal))  # type: ignore[arg-type]
+            if not more:
+                break
+        return hits
 
     # -- rendering --------------------------------------------------------------
     def segmentation(self, width: int, height: int, view: Sequence[float],

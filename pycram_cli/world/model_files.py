@@ -19,8 +19,8 @@ from pathlib import Path
 
 import pybullet_data
 
-from ..paths import cache_dir
-from .meshes import inertial_for, is_binary_stl, obj_objects, read_mesh, write_binary_stl, write_pieces_obj
+from ..paths import cache_dir, resources_dir
+from .meshes import PIECES_VERSION, inertial_for, is_binary_stl, obj_objects, read_mesh, write_binary_stl, write_pieces_obj
 
 MESH_SUFFIXES = {".stl", ".obj"}
 
@@ -28,6 +28,22 @@ MESH_SUFFIXES = {".stl", ".obj"}
 def simulator_models_dir() -> Path:
     """PyBullet's bundled models folder (plane.urdf, ...), a last place to look for model files."""
     return Path(pybullet_data.getDataPath())
+
+
+def find_model_file(path: str | Path) -> Path:
+    """The model file a name stands for, searched like a world file's `file:` — as given (relative to the current
+    folder), then in pycram's bundled resources, then in PyBullet's models — so `Object(..., "plane.urdf")` finds
+    PyBullet's plane as the design's scripts expect. FileNotFoundError naming the places looked in otherwise."""
+    given = Path(os.path.expanduser(str(path)))
+    if given.exists() or given.is_absolute():
+        if not given.exists():
+            raise FileNotFoundError(f"file not found: {given}")
+        return given
+    places = [resources_dir(), simulator_models_dir()]
+    for folder in places:
+        if (folder / given).is_file():
+            return (folder / given).resolve()
+    raise FileNotFoundError(f"file not found: {given} (looked in the current folder, {', '.join(str(p) for p in places)})")
 
 
 def _digest(*parts: object) -> str:
@@ -48,7 +64,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     mesh_path = mesh_path.resolve()
     rgba = tuple(color) if color is not None else (0.8, 0.8, 0.8, 1.0)
     stat = mesh_path.stat()
-    key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 3)
+    key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 3, PIECES_VERSION)
     target = cache_dir() / "meshes" / f"{mesh_path.stem}-{key}.urdf"
     if target.exists():
         return target
