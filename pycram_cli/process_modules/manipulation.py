@@ -236,7 +236,7 @@ def support_height(robot: Robot, obj: Object, orientation: Quat, xy: Sequence[fl
         p = rotation @ local
         starts.append((xy[0] + p[0], xy[1] + p[1], top))
         ends.append((xy[0] + p[0], xy[1] + p[1], top - depth))
-    ignore = [robot.body, *motion._robot_holds(robot.body)]
+    ignore = [robot.body, *motion.followers(robot.body)]
     hits = [h for h in robot.world.cast_rays(starts, ends, ignore) if h is not None]
     if not hits:
         return -math.inf, None
@@ -251,7 +251,7 @@ def rest_pose(robot: Robot, obj: Object, orientation: Quat, target: Sequence[flo
     if len(target) > 2:  # the surface at the target's height (within SURFACE of it)
         height, support = support_height(robot, obj, orientation, target, float(target[2]) + SURFACE, 2 * SURFACE)
     else:  # the highest surface under it that the arm can come down on: below the arm's first joint
-        top = robot.body.get_link_position(robot.description.arm(arm).joints[0])[2]
+        top = robot.body.get_link_position(robot.body.joint(robot.description.arm(arm).joints[0]).index)[2]
         height, support = support_height(robot, obj, orientation, target, top)
     if support is None:
         where = ", ".join(f"{v:.3f}" for v in target)

@@ -80,7 +80,7 @@ def _downstream(body: Object, joint_indices: set[int]) -> set[int]:
     return found
 
 
-def _robot_holds(body: Object) -> list[Object]:
+def followers(body: Object) -> list[Object]:
     """Everything that follows the robot (attached to it, and what is attached to that)."""
     found: list[Object] = []
     frontier = [body]
@@ -114,7 +114,7 @@ class Motion:
         self.links = sorted(_downstream(body, {j.index for j in self.joints}))
         # what the moving links hold moves with them; what the robot holds elsewhere (in the other hand, or in
         # this gripper's palm while its fingers move) is something to avoid like anything else
-        self.held = [obj for obj in _robot_holds(body) if self._holder(obj) in self.links]
+        self.held = [obj for obj in followers(body) if self._holder(obj) in self.links]
         skip = {body, *self.held, *ignore}
         self.obstacles = [obj for obj in self.world.objects if obj not in skip]
         skip_links = set((obj.id, link) for obj, link in ignore_links)
