@@ -48,8 +48,10 @@ SETTLED = (1e-4, math.radians(0.05))
 #: when closing fingers stop on something else, the tool backs off this far (m), at most GRIP_TRIES - 1 times
 GRIP_BACKOFF = 0.005
 GRIP_TRIES = 7
-#: a place target's z names the surface at that height, give or take this (m)
+#: a place target's z names the surface at that height: the highest one from SURFACE above it to SURFACE_BELOW below
+#: it (the design's targets give the height of the object's origin, up to half a tall object above its surface) (m)
 SURFACE = 0.05
+SURFACE_BELOW = 0.15
 #: a placed object is lowered to this gap above its support before it is let go (m)
 DROP = 0.0005
 
@@ -248,16 +250,17 @@ def rest_pose(robot: Robot, obj: Object, orientation: Quat, target: Sequence[flo
     """Where `obj` rests, stood with `orientation` at the target's x, y on the surface under it: its lowest point on the
     support, DROP above (measured with closest points, so whatever the mesh's origin and the shapes' margins)."""
     lo, _ = obj.get_local_aabb()
-    if len(target) > 2:  # the surface at the target's height (within SURFACE of it)
-        height, support = support_height(robot, obj, orientation, target, float(target[2]) + SURFACE, 2 * SURFACE)
+    if len(target) > 2:  # the surface at the target's height: from SURFACE above it to SURFACE_BELOW below it
+        height, support = support_height(robot, obj, orientation, target, float(target[2]) + SURFACE,
+                                         SURFACE + SURFACE_BELOW)
     else:  # the highest surface under it that the arm can come down on: below the arm's first joint
         top = robot.body.get_link_position(robot.body.joint(robot.description.arm(arm).joints[0]).index)[2]
         height, support = support_height(robot, obj, orientation, target, top)
     if support is None:
         where = ", ".join(f"{v:.3f}" for v in target)
         raise ManipulationFailure(f"there is nothing to place {obj.name} on at ({where})"
-                                  + (f" (no surface within {SURFACE * 100:.0f} cm of that height)" if len(target) > 2
-                                     else ""), object=obj.name)
+                                  + (f" (no surface from {SURFACE * 100:.0f} cm above to {SURFACE_BELOW * 100:.0f} cm "
+                                     "below that height)" if len(target) > 2 else ""), object=obj.name)
     # stood upright (a turn about z), its lowest point is its box's bottom: 2 mm above the surface the rays met,
     # then lowered by the gap closest points measure (shapes, margins and all)
     position = (float(target[0]), float(target[1]), height - lo[2] + 0.002)

@@ -64,14 +64,23 @@ class RayHit:
 
 
 class BulletWorld:
-    """A simulated world. `BulletWorld.current_world` is the newest one that has not exited."""
+    """A simulated world. `BulletWorld.current_world` is the newest one that has not exited (the design's name for it,
+    `current_bullet_world`, is kept equal).
+
+    `BulletWorld("DIRECT")`, `BulletWorld(type="GUI")`: the design's spelling of the mode is accepted too.
+    """
 
     current_world: "BulletWorld | None" = None
+    current_bullet_world: "BulletWorld | None" = None  # the design's name for current_world
+    #: the design's scripts set `BulletWorld.robot = robot` and read it back; each world's own robot is `world.robot`
+    robot: "Object | None" = None
     _live: list["BulletWorld"] = []
     _gui_world: "BulletWorld | None" = None
     _registry_lock = threading.Lock()
 
-    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81)) -> None:
+    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81), type: str | None = None) -> None:
+        mode = (type if type is not None else mode)
+        mode = mode.lower() if isinstance(mode, str) else mode
         if mode not in ("direct", "gui"):
             raise ValueError(f"mode must be 'direct' or 'gui', got {mode!r}")
         with BulletWorld._registry_lock:
@@ -95,7 +104,7 @@ class BulletWorld:
                         time.sleep(0.02)
                     time.sleep(0.2)
             BulletWorld._live.append(self)
-            BulletWorld.current_world = self
+            BulletWorld.current_world = BulletWorld.current_bullet_world = self
         self.objects: list[Object] = []
         self._by_id: dict[int, Object] = {}
         self.robot: Object | None = None
@@ -149,6 +158,7 @@ class BulletWorld:
             if BulletWorld._gui_world is self:
                 BulletWorld._gui_world = None
             BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
+            BulletWorld.current_bullet_world = BulletWorld.current_world
 
     def __enter__(self) -> "BulletWorld":
         return self
@@ -159,6 +169,19 @@ class BulletWorld:
     def _check_alive(self) -> None:
         if self._exited:
             raise WorldError("this world has exited")
+
+    # -- events (the design's getters) ---------------------------------------------
+    def get_attachment_event(self) -> Event:
+        """The event fired with (parent, child) when two objects are attached (also `attachment_event`)."""
+        return self.attachment_event
+
+    def get_detachment_event(self) -> Event:
+        """The event fired with (parent, child) when two objects are detached (also `detachment_event`)."""
+        return self.detachment_event
+
+    def get_manipulation_event(self) -> Event:
+        """The event fired with (object, joint, old, new) when a joint of the environment is moved."""
+        return self.manipulation_event
 
     # -- physics ----------------------------------------------------------------
     def set_gravity(self, vector: Sequence[float]) -> None:
