@@ -87,7 +87,7 @@ class Accessing(ProcessModule):
             raise GripperFailure(f"the {arm} gripper cannot hold the handle {handle}", arm=arm)
         what = f"the handle {handle}"
         set_gripper(robot, arm, "open")
-        pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -APPROACH), grasp.orientation,
+        pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
                          f"the pre-grasp pose for {what}")
         at = solve_tool(robot, arm, grasp.position, grasp.orientation, what)
         move_from_above(robot, arm, pre, f"the {arm} arm's motion to {what}")

@@ -16,9 +16,15 @@ from .base import ProcessModule, Robot
 from .registry import process_module
 
 
+#: how close the arm must bring its tool to a pose it moves to: 1 cm, and 2° of the orientation (grasps are aligned
+#: with objects' sides: a looser angle would hold a square carton askew)
+REACH = 0.01
+REACH_ANGLE = math.radians(2.0)
+
+
 def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
     tool = robot.description.arm(arm).tool_frame
-    return solve(robot.body, tool, position, orientation)
+    return solve(robot.body, tool, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE)
 
 
 #: an IK solution that turns some joint of the arm farther than this from where it is (rad) is compared with one
@@ -101,8 +107,9 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
     """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
     what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
     or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), and, for a goal that is
-    a tool pose, down onto the goal from above it; each leg is checked. Raises the straight path's
-    ManipulationFailure when no way is free; then nothing has moved."""
+    a tool pose, down onto the goal from above it; last, a search through the arm's joint space
+    (`motion.search_path`). Each leg is checked. Raises the straight path's ManipulationFailure when no way is
+    free; then nothing has moved."""
     try:
         motion.move(robot, goal, what)
         return
@@ -139,6 +146,15 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
             except ManipulationFailure:
                 body.reset_joints(start)  # back where it was, along legs that were free
                 body.move_attached()
+    way = motion.search_path(robot, goal)  # last: a search through the arm's joint space
+    if way:
+        try:
+            for leg in way:
+                motion.move(robot, leg, what)
+            return
+        except ManipulationFailure:
+            body.reset_joints(start)
+            body.move_attached()
     raise first
 
 

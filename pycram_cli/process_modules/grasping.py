@@ -53,6 +53,7 @@ class Grasp:
     height: float  # the object's extent along the fingers (across approach and closing), for the finger pads (m)
     name: str | Sequence[float]  # the robot's grasp (or the quaternion) this realises
     approach: np.ndarray  # the direction the tool moves in to take the object (world frame)
+    depth: float = 0.0  # how far the tool frame is in from the side of the object's box it comes through (m)
 
 
 _AXES: "weakref.WeakKeyDictionary[Object, dict[str, np.ndarray]]" = weakref.WeakKeyDictionary()
@@ -222,16 +223,18 @@ def grasps_of_box(robot: Robot, arm: str, pose: tuple[Sequence[float], Sequence[
             local_half = np.abs(frame.T @ rotation) @ half if not round_ else np.array(
                 [max(half[0], half[1]), max(half[0], half[1]), half[2]])
             world_centre = origin + rotation @ centre
+            reach = _extent(half, rotation, approach) / 2.0
             for point in points:
                 position = world_centre + frame @ (np.asarray(point.at) * local_half + np.asarray(point.offset))
-                found.append(Grasp(_vec(position), orientation, point.width, height, grasp, approach))
+                depth = reach + float((position - world_centre) @ approach)
+                found.append(Grasp(_vec(position), orientation, point.width, height, grasp, approach, depth))
             continue
         # the middle of the box, no deeper along the approach than the palm allows
         world_centre = origin + rotation @ centre
         reach = _extent(half, rotation, approach) / 2.0
         depth = min(reach, depth_limit)
         position = world_centre - approach * (reach - depth)
-        found.append(Grasp(_vec(position), orientation, width, height, grasp, approach))
+        found.append(Grasp(_vec(position), orientation, width, height, grasp, approach, depth))
     if points:
         base = np.asarray(robot.body.get_position())
         found.sort(key=lambda g: float(np.hypot(g.position[0] - base[0], g.position[1] - base[1])))

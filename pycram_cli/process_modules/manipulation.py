@@ -29,7 +29,7 @@ from .base import ProcessModule, Robot
 from .grasping import Grasp, holdable_grasps, tool_axes, wanted_orientation
 from .registry import process_module
 
-#: the pre-grasp pose is this far back along the approach (m)
+#: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
 APPROACH = 0.10
 #: a picked-up object is lifted this far off its support first, then pulled back RETREAT towards the robot, then
 #: lifted to LIFT, clear of what stands around it (m)
@@ -83,7 +83,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     for candidate in candidates:
         solution = reach_near(robot, arm, candidate.position, candidate.orientation)
         if solution.success:
-            pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -APPROACH), candidate.orientation)
+            pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -(candidate.depth + APPROACH)), candidate.orientation)
             if pre.success:
                 # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object
                 # itself may be touched before: the approach stops there

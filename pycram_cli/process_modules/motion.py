@@ -300,6 +300,13 @@ class Motion:
             return 1.0, [], {}
         self._prune(self._levers())
         self.allow_current()
+        last_free, hits = self._follow(start, end, stop_at_contact)
+        reached = start + last_free * (end - start)
+        return (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
+
+    def _follow(self, start: np.ndarray, end: np.ndarray, stop_at_contact: bool = False) -> tuple[float, list[Hit]]:
+        """The checks of `walk` along the straight path from `start` to `end` (the joints are put back at `start`):
+        how far it is free (a fraction) and what ends it."""
         parts = self._parts()
         below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
         delta = np.abs(end - start)
@@ -338,8 +345,7 @@ class Motion:
                 last_free = low
         finally:
             self._put(start)
-        reached = start + last_free * (end - start)
-        return (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
+        return last_free, hits
 
 
 def joints_of(robot: Robot, arms: Iterable[str], gripper: bool = False) -> list[str]:
@@ -399,3 +405,107 @@ def collision_failure(what: str, hits: Sequence[Hit], fraction: float) -> Manipu
     return ManipulationFailure(f"{what} would collide: {hit}{also}, {fraction:.0%} of the way",
                                colliding=[hit.obstacle.name, *others], link=hit.link, part=hit.mover,
                                depth=round(hit.depth, 4))
+
+
+# -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
+
+#: the longest step of the search (rad, or m for a prismatic joint, per joint), its budget of edges checked, its seed
+SEARCH_STEP = 0.4
+SEARCH_EDGES = 300
+SEARCH_SEED = 20191028
+
+
+def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> list[dict[str, float]] | None:
+    """Joint values to pass through, from the current ones to `goal`, every leg between them free (checked as `move`
+    checks a path), or None when none is found within SEARCH_EDGES checks.
+
+    RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
+    configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
+    other; the way found is then shortened by joining its waypoints directly wherever that is free. The random
+    numbers come from a fixed seed, so the same world gives the same way.
+    """
+    names = [name for name in goal]
+    motion = Motion(robot, names, ignore)
+    start_values, end_values = motion._endpoints(goal)
+    order = [j.name for j in motion.joints]
+    if not order:
+        return []
+    lows, highs = [], []
+    for joint, value in zip(motion.joints, start_values):
+        if joint.limited:
+            lows.append(joint.lower)
+            highs.append(joint.upper)
+        else:
+            lows.append(value - math.pi)
+            highs.append(value + math.pi)
+    low, high = np.array(lows), np.array(highs)
+    rng = np.random.default_rng(SEARCH_SEED)
+    budget = [SEARCH_EDGES]
+
+    motion._prune(motion._levers())
+    motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else
+
+    def free(a: np.ndarray, b: np.ndarray) -> bool:
+        if budget[0] <= 0:
+            return False
+        budget[0] -= 1
+        fraction, hits = motion._follow(a, b)
+        return not hits and fraction >= 1.0
+
+    def toward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        step = np.max(np.abs(b - a))
+        return b if step <= SEARCH_STEP else a + (b - a) * (SEARCH_STEP / step)
+
+    trees: list[list[tuple[np.ndarray, int]]] = [[(start_values, -1)], [(end_values, -1)]]
+    meeting: tuple[int, int] | None = None
+    try:
+        while budget[0] > 0 and meeting is None:
+            grow, other = trees[0], trees[1]
+            # a random configuration, or (one time in five) the other tree's root
+            sample = other[0][0] if rng.random() < 0.2 else low + rng.random(len(low)) * (high - low)
+            near = min(range(len(grow)), key=lambda i: float(np.max(np.abs(grow[i][0] - sample))))
+            new = toward(grow[near][0], sample)
+            if not free(grow[near][0], new):
+                trees.reverse()
+                continue
+            grow.append((new, near))
+            # the other tree reaches for the new node, step by step
+            reach = min(range(len(other)), key=lambda i: float(np.max(np.abs(other[i][0] - new))))
+            while budget[0] > 0:
+                nxt = toward(other[reach][0], new)
+                if not free(other[reach][0], nxt):
+                    break
+                other.append((nxt, reach))
+                reach = len(other) - 1
+                if np.max(np.abs(nxt - new)) < 1e-9:
+                    meeting = (len(grow) - 1, reach) if grow is trees[0] else (reach, len(grow) - 1)
+                    break
+            if meeting is None:
+                trees.reverse()
+        if meeting is None:
+            return None
+        # the trees may have been swapped: the one holding the start comes first
+        if not np.array_equal(trees[0][0][0], start_values):
+            trees.reverse()
+            meeting = (meeting[1], meeting[0])
+
+        def chain(tree: list[tuple[np.ndarray, int]], index: int) -> list[np.ndarray]:
+            found = []
+            while index != -1:
+                found.append(tree[index][0])
+                index = tree[index][1]
+            return found
+
+        path = list(reversed(chain(trees[0], meeting[0]))) + chain(trees[1], meeting[1])[1:]
+        budget[0] = max(budget[0], len(path) * 2)  # shortening gets a few checks of its own
+        short = [path[0]]
+        i = 0
+        while i < len(path) - 1:
+            j = len(path) - 1
+            while j > i + 1 and not free(path[i], path[j]):
+                j -= 1
+            short.append(path[j])
+            i = j
+        return [{n: float(v) for n, v in zip(order, values)} for values in short[1:]]
+    finally:
+        motion._put(start_values)
