@@ -60,6 +60,16 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     return solution
 
 
+def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
+               orientation: Sequence[float] | None) -> IKSolution:
+    """`reach`, starting from the arm configuration `joints` (the pose before a short straight move: the solution is
+    then on the same branch, and the joint-space path between the two stays close to the straight line)."""
+    body = robot.body
+    with body.joints_kept(joints):
+        body.reset_joints(joints)
+        return reach(robot, arm, position, orientation)
+
+
 def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
                what: str) -> IKSolution:
     """Joint values that bring the arm's tool frame to a pose, or raise ReachabilityFailure saying how far off it stays."""

@@ -24,7 +24,7 @@ from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
-from .arms import close_on, move_from_above, reach, reach_near, set_gripper, solve_tool
+from .arms import close_on, move_from_above, reach, reach_from, reach_near, set_gripper, solve_tool
 from .base import ProcessModule, Robot
 from .grasping import Grasp, holdable_grasps, tool_axes, wanted_orientation
 from .registry import process_module
@@ -81,9 +81,12 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     gripper = robot.description.arm(arm).gripper
     opened = {joint: gripper.open for joint in gripper.joints}
     for candidate in candidates:
-        solution = reach_near(robot, arm, candidate.position, candidate.orientation)
+        # the pre-grasp pose near where the arm is, the grasp from there (so that the approach is a short straight move)
+        pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -(candidate.depth + APPROACH)),
+                         candidate.orientation)
+        solution = reach_from(robot, arm, pre.joint_positions, candidate.position, candidate.orientation) \
+            if pre.success else pre
         if solution.success:
-            pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -(candidate.depth + APPROACH)), candidate.orientation)
             if pre.success:
                 # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object
                 # itself may be touched before: the approach stops there
@@ -326,11 +329,13 @@ class Place(ProcessModule):
             tool = compose((position, orientation), held)
             solution = reach_near(robot, arm, tool[0], tool[1])
             if solution.success:
-                for height in (LOWER, LOWER / 2):
+                for height in (LOWER, LOWER / 2):  # above the place, from there down onto it: one branch
                     above = reach_near(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
                     if above.success:
-                        chosen = (position, orientation, solution, above, support)
-                        break
+                        down = reach_from(robot, arm, above.joint_positions, tool[0], tool[1])
+                        if down.success:
+                            chosen = (position, orientation, down, above, support)
+                            break
                 if chosen is not None:
                     break
                 solution = above

@@ -76,7 +76,6 @@ def design_world(tmp_path, shared_models):
 BREAKFAST = [{"type": "bowl", "target": [-0.8, 1.2, 0.862], "arm": "right", "look": [1.3, 0.8, 0.95]},
              {"type": "milk", "target": [-0.8, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]},
              {"type": "breakfast_cereal", "target": [-1.0, 1.0, 0.862], "arm": "right", "look": [1.3, 0.8, 0.95]}]
-SPOON = [{"type": "spoon", "target": [-0.8, 1.4, 0.862], "arm": "right", "look": [1.25, 0.9, 0.7], "drawer": True}]
 
 
 def test_the_design_world_takes_the_robot_descriptions_torso_height(design_world):
@@ -94,16 +93,23 @@ def test_set_table_sets_milk_bowl_and_cereal_with_the_designs_meshes_in_the_real
         assert stable(obj), name
 
 
-def test_the_designs_spoon_is_fetched_from_the_drawer_but_never_rests(design_world):
-    """Why set_table cannot set the design's spoon: spoon.stl is an open, arched surface (no volume), which PyBullet
-    collides as its convex hull resting on three points (the bottom of its bowl and the two corners of its handle's
-    end, 1.6 cm apart); it keeps rocking by 1-4° every 0.05 s wherever it lies — already in the drawer, before anything
-    touches it. The robot opens the drawer, takes it by its handle and stands it on the island all the same."""
+def test_the_whole_demo_sets_the_breakfast_and_stands_the_designs_spoon_on_the_island_still_rocking(design_world):
+    """set_table as shipped (all four jobs): milk, bowl and cereal are set; the spoon is taken from the drawer by its
+    handle and stood on the island, but the plan's last assert fails: the design's spoon.stl is an open, arched
+    surface (no volume), which PyBullet collides as its convex hull resting on three points (the bottom of its bowl
+    and the two corners of its handle's end, 1.6 cm apart). Let go, it rocks by 1-4° every 0.05 s for longer than a
+    placed object is left to settle (1 s), and `stable` rightly says no; lying in the drawer, untouched since the
+    world was loaded, it rocks just the same. (Placed alone, from another pose, it sometimes happens to come to rest.)"""
     spoon = design_world.get_object_by_name("spoon")
     assert not stable(spoon)  # as loaded, untouched, in the drawer
-    result = run_plan(load_plan(plans_dir() / "set_table.yaml"), design_world, {"jobs": SPOON})
+    result = run_plan(load_plan(plans_dir() / "set_table.yaml"), design_world)
     assert result.status == "failed"
     assert result.failure["type"] == "ReasoningFailure" and "spoon is not stable" in result.failure["message"]
-    assert result.failure["path"].endswith(":assert")
-    assert spoon.get_position()[0] < -0.6  # it was taken out of the drawer and stood on the island
-    assert supporting(design_world.get_object_by_name("kitchen"), spoon, link="kitchen_island_surface")
+    assert result.failure["path"].startswith("body/0:for_each/item 3/")  # the spoon's job, the last
+    kitchen = design_world.get_object_by_name("kitchen")
+    for name in ("milk", "bowl", "cereal", "spoon"):
+        obj = design_world.get_object_by_name(name)
+        assert obj.get_position()[0] < -0.6, name  # on the island
+        assert supporting(kitchen, obj, link="kitchen_island_surface"), name
+    for name in ("milk", "bowl", "cereal"):
+        assert stable(design_world.get_object_by_name(name)), name
