@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from pycram_cli.paths import plans_dir
 from pycram_cli.process_modules.collisions import supports_from_below
-from pycram_cli.scenario import prepare
+from pycram_cli.scenario import golden, prepare
 
-PLANS = sorted(plans_dir().glob("*.yaml"))
+PLANS = golden.bundled_plans()  # every shipped plan (those with a golden trace)
 PENETRATION = 0.001
 
 
