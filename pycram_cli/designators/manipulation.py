@@ -1,7 +1,7 @@
 """`pick-up`, `place` and `accessing`: the designators that take, put down and pull with an arm."""
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean
 from ..failures import ManipulationFailure

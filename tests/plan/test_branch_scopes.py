@@ -6,7 +6,7 @@ import pytest
 
 from pycram_cli.errors import InputError, InputErrors, as_list
 
-from plan_helpers import messages, nodes
+from plan_helpers import messages
 
 
 def test_sibling_for_each_loops_with_the_same_variable_name_each_see_their_own_items(plans, world):

@@ -10,7 +10,6 @@ import pytest
 from pycram_cli import Object, load_world
 from pycram_cli.designators import perform
 from pycram_cli.failures import ManipulationFailure, NavigationFailure
-from pycram_cli.paths import resources_dir
 from pycram_cli.process_modules import Robot
 from pycram_cli.process_modules.arms import reach
 from pycram_cli.process_modules.collisions import supports_from_below

@@ -1,8 +1,6 @@
 """Hollow meshes (a bowl) collide as convex pieces of their surface, not as their convex hull: their inside is empty."""
 from __future__ import annotations
 
-import pytest
-
 from pycram_cli import Object
 from pycram_cli.paths import resources_dir
 from pycram_cli.world.meshes import read_mesh
