@@ -169,7 +169,7 @@ class Exec:
         try:
             value = node.execute(self, tn)
             if node.bind:
-                self.frame.bind(node.bind, value)
+                self.frame.binder(node.scope).bind(node.bind, value)
                 tn.info["bound"] = {node.bind: jsonable(value)}
             tn.status = "succeeded"
             if node.LEAF:
@@ -251,7 +251,7 @@ class Exec:
         keys = scheduler.spawn(self.key, len(nodes), self.run.resources.waits_for(nodes))
         threads = []
         for i, (node, child, key, token) in enumerate(zip(nodes, children, keys, tokens)):
-            branch = self.derive(token=token, key=key)
+            branch = self.derive(frame=Frame(parent=self.frame, branch=True), token=token, key=key)  # own bindings
             threads.append(threading.Thread(target=branch._branch, args=(i, node, child, outcome),
                                             name=f"pycram {child.path}", daemon=True))
         started: list[threading.Thread] = []
