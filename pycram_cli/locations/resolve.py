@@ -39,7 +39,7 @@ from ..kinds import arm_phrase
 from ..process_modules import Robot
 from ..process_modules.arms import reach
 from ..process_modules.head import look_at
-from ..process_modules.manipulation import grasp_orientation, grasp_target, level
+from ..process_modules.manipulation import grasp_orientation, grasp_pose, level
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..world import Object
@@ -671,8 +671,8 @@ class BasePoseResolution(_Resolution):
         for grasp in grasps:
             orientation = grasp_orientation(robot, grasp) if grasp is not None else None
             if isinstance(target, Object):
-                found = grasp_target(robot, arm, target, grasp)
-                yield grasp, (found[0] if found is not None else None), orientation
+                found = grasp_pose(robot, arm, target, grasp)  # the tool aligned with the object's own frame
+                yield grasp, (found[0] if found is not None else None), (found[1] if found is not None else orientation)
             else:
                 yield grasp, tuple(target), orientation  # type: ignore[arg-type]
                 if spec.grasp is None:
