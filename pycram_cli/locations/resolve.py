@@ -34,16 +34,16 @@ from typing import TYPE_CHECKING, Any, Iterator, Sequence
 
 import numpy as np
 
-from ..failures import LocationFailure
+from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..process_modules import Robot
 from ..process_modules.arms import reach
 from ..process_modules.head import look_at
-from ..process_modules.manipulation import grasp_orientation, grasp_pose, level
+from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..world import Object
-from ..world.pose import compose, invert, quat_multiply, yaw_quaternion
+from ..world.pose import compose, invert, yaw_quaternion
 from . import floor
 from .spec import LocationSpec
 
@@ -306,7 +306,6 @@ def _below(obj: Object, index: int, ancestor: int) -> bool:
 
 
 #: place: the held object's turns about the vertical tried, in the place process module's order
-PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
 
 
 class _Resolution:
@@ -622,6 +621,11 @@ class BasePoseResolution(_Resolution):
         blocked: list[str] = []
         holdable = False
         arms = [self.arm_names[k] for k in self.arm_order[i] if k >= 0] if len(self.arm_order) else self.arm_names
+        target = spec.reachable_for
+        if isinstance(target, Object) and spec.placing is None and spec.accessing is None:
+            return self._grasp(i, arms, target)
+        if spec.placing is not None:
+            return self._place(i, arms, spec.placing, target)
         for arm in arms:
             for grasp, position, orientation in self._reach_targets(arm):
                 if position is None:
@@ -650,6 +654,75 @@ class BasePoseResolution(_Resolution):
             cand.mark(i, "out of reach")
         return None
 
+    def _grasp(self, i: int, arms: list[str], obj: Object) -> tuple[str, Any] | None:
+        """The first arm and grasp with which pick-up itself would take `obj` from here: the test is the pick-up
+        process module's own planning (pre-grasp and grasp reached, the open gripper inside nothing), so a pose found
+        here is one from which the pick-up succeeds; the arm at the grasp then touches nothing but the object and
+        what it stands on."""
+        robot, spec, cand = self.robot, self.spec, self.candidates
+        body = robot.body
+        blocked: list[str] = []
+        holdable = False
+        grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
+        for arm in arms:
+            for grasp in grasps:
+                try:
+                    _, _, solution = plan_grasp(robot, arm, obj, grasp)
+                except GripperFailure:
+                    continue
+                except ManipulationFailure as failure:
+                    holdable = True
+                    blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    continue
+                except ReachabilityFailure:
+                    holdable = True
+                    continue
+                holdable = True
+                saved = body.get_joint_positions(list(solution.joint_positions))
+                body.set_joint_positions(solution.joint_positions)
+                try:
+                    touched = touching(robot, self.held, *self._allowed)
+                finally:
+                    body.set_joint_positions(saved)
+                if touched:
+                    blocked.extend(t for t in touched if t not in blocked)
+                    continue
+                return arm, grasp
+        if blocked:
+            cand.mark(i, "blocked", ", ".join(blocked))
+        elif not holdable:
+            cand.mark(i, "cannot hold", obj.name)
+        else:
+            cand.mark(i, "out of reach")
+        return None
+
+    def _place(self, i: int, arms: list[str], obj: Object, target: Any) -> tuple[str, Any] | None:
+        """The arm with which place itself would put `obj` down at `target` from here (the place process module's own
+        planning), the arm there touching nothing but the surface."""
+        robot, cand = self.robot, self.candidates
+        body = robot.body
+        blocked: list[str] = []
+        for arm in arms:
+            try:
+                _, _, solution, _, _ = plan_place(robot, arm, obj, tuple(float(v) for v in target))
+            except (ManipulationFailure, ReachabilityFailure):
+                continue
+            saved = body.get_joint_positions(list(solution.joint_positions))
+            body.set_joint_positions(solution.joint_positions)
+            try:
+                touched = touching(robot, self.held, *self._allowed)
+            finally:
+                body.set_joint_positions(saved)
+            if touched:
+                blocked.extend(t for t in touched if t not in blocked)
+                continue
+            return arm, None
+        if blocked:
+            cand.mark(i, "blocked", ", ".join(blocked))
+        else:
+            cand.mark(i, "out of reach")
+        return None
+
     def _reach_targets(self, arm: str) -> Iterator[tuple[Any, Any, Any]]:
         """(grasp, tool position or None when the gripper cannot hold it so, tool orientation) to try, in order."""
         robot, spec = self.robot, self.spec
@@ -658,25 +731,12 @@ class BasePoseResolution(_Resolution):
             pull = next(iter(robot.description.grasps), None)
             yield pull, tuple(self._handle_path[0]), grasp_orientation(robot, pull) if pull is not None else None
             return
-        if spec.placing is not None:
-            att = robot.body.attachments[spec.placing]
-            in_hand = invert(att.transform)
-            upright = level(spec.placing.get_orientation())
-            for turn in PLACE_TURNS:
-                orientation = quat_multiply(yaw_quaternion(turn), upright)
-                tool = compose((tuple(target), orientation), in_hand)  # type: ignore[arg-type]
-                yield None, tool[0], tool[1]
-            return
         grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
-        for grasp in grasps:
+        for grasp in grasps:  # a position (an object is tested by `_grasp`)
             orientation = grasp_orientation(robot, grasp) if grasp is not None else None
-            if isinstance(target, Object):
-                found = grasp_pose(robot, arm, target, grasp)  # the tool aligned with the object's own frame
-                yield grasp, (found[0] if found is not None else None), (found[1] if found is not None else orientation)
-            else:
-                yield grasp, tuple(target), orientation  # type: ignore[arg-type]
-                if spec.grasp is None:
-                    return  # a position in any orientation: one IK call answers for every grasp
+            yield grasp, tuple(target), orientation  # type: ignore[arg-type]
+            if spec.grasp is None:
+                return  # a position in any orientation: one IK call answers for every grasp
 
     def _follows_handle(self, arm: str, orientation: Any) -> bool:
         """The arm also reaches the handle half and fully opened."""

@@ -54,6 +54,8 @@ SURFACE = 0.05
 SURFACE_BELOW = 0.15
 #: a placed object is lowered to this gap above its support before it is let go (m)
 DROP = 0.0005
+#: a placed object keeps its heading, or is turned about the vertical by these (rad, in this order) if the arm needs it
+PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
 
 
 def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
@@ -307,6 +309,43 @@ def settle(obj: Object) -> float:
     return simulated
 
 
+def plan_place(robot: Robot, arm: str, obj: Object,
+               target: Sequence[float]) -> tuple[Vec3, Quat, IKSolution, IKSolution, Object]:
+    """How the held `obj` is put down at `target`: where it will rest and how it stands (upright, its heading kept or
+    turned about the vertical if that is what the arm needs), the arm's configuration there and above it (a short
+    move down on one IK branch), and what it will rest on. ReachabilityFailure when the arm reaches no way,
+    ManipulationFailure when there is nothing to put it on."""
+    att = robot.body.attachments[obj]
+    held = invert(att.transform)  # the tool frame seen from the object
+    upright = level(obj.get_orientation())
+    where = f"({', '.join(f'{v:.3f}' for v in target)})"
+    best: tuple[float, Any] | None = None
+    chosen = None
+    for turn in PLACE_TURNS:
+        orientation = quat_multiply(yaw_quaternion(turn), upright)
+        position, support = rest_pose(robot, obj, orientation, target, arm)
+        tool = compose((position, orientation), held)
+        solution = reach_near(robot, arm, tool[0], tool[1])
+        if solution.success:
+            for height in (LOWER, LOWER / 2):  # above the place, from there down onto it: one branch
+                above = reach_near(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
+                if above.success:
+                    down = reach_from(robot, arm, above.joint_positions, tool[0], tool[1])
+                    if down.success:
+                        chosen = (position, orientation, down, above, support)
+                        break
+            if chosen is not None:
+                break
+            solution = above
+        if best is None or solution.position_error < best[0]:
+            best = (solution.position_error, solution)
+    if chosen is None:
+        error = best[0] if best is not None else math.inf
+        raise ReachabilityFailure(f"{arm} arm cannot place {obj.name} at {where}: the tool frame stays "
+                                  f"{error * 100:.1f} cm away", arm=arm, object=obj.name)
+    return chosen
+
+
 @process_module("place")
 class Place(ProcessModule):
 
@@ -316,36 +355,7 @@ class Place(ProcessModule):
         target = tuple(float(v) for v in slots["target"])
         if robot.arm_holding(obj) != arm:
             raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
-        att = robot.body.attachments[obj]
-        held = invert(att.transform)  # the tool frame seen from the object
-        upright = level(obj.get_orientation())
-        where = f"({', '.join(f'{v:.3f}' for v in target)})"
-        best: tuple[float, Any] | None = None
-        chosen = None
-        # keep the object's heading, turned about the vertical if that is what the arm needs
-        for turn in (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4):
-            orientation = quat_multiply(yaw_quaternion(turn), upright)
-            position, support = rest_pose(robot, obj, orientation, target, arm)
-            tool = compose((position, orientation), held)
-            solution = reach_near(robot, arm, tool[0], tool[1])
-            if solution.success:
-                for height in (LOWER, LOWER / 2):  # above the place, from there down onto it: one branch
-                    above = reach_near(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
-                    if above.success:
-                        down = reach_from(robot, arm, above.joint_positions, tool[0], tool[1])
-                        if down.success:
-                            chosen = (position, orientation, down, above, support)
-                            break
-                if chosen is not None:
-                    break
-                solution = above
-            if best is None or solution.position_error < best[0]:
-                best = (solution.position_error, solution)
-        if chosen is None:
-            error = best[0] if best is not None else math.inf
-            raise ReachabilityFailure(f"{arm} arm cannot place {obj.name} at {where}: the tool frame stays "
-                                      f"{error * 100:.1f} cm away", arm=arm, object=obj.name)
-        position, orientation, solution, above, support = chosen
+        position, orientation, solution, above, support = plan_place(robot, arm, obj, target)
         move_from_above(robot, arm, above, f"the {arm} arm's motion above the place for {obj.name}")
         motion.advance(robot, solution.joint_positions)  # down until it touches the surface
         robot.body.detach(obj)
