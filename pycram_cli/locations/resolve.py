@@ -37,7 +37,7 @@ import numpy as np
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..process_modules import Robot
-from ..process_modules.arms import reach
+from ..process_modules.arms import move_over, reach
 from ..process_modules.head import look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
@@ -667,7 +667,7 @@ class BasePoseResolution(_Resolution):
         for arm in arms:
             for grasp in grasps:
                 try:
-                    _, _, solution = plan_grasp(robot, arm, obj, grasp)
+                    _, pre, solution = plan_grasp(robot, arm, obj, grasp)
                 except GripperFailure:
                     continue
                 except ManipulationFailure as failure:
@@ -687,6 +687,13 @@ class BasePoseResolution(_Resolution):
                 if touched:
                     blocked.extend(t for t in touched if t not in blocked)
                     continue
+                # and the arm's way from where it is to the pre-grasp pose, as pick-up will move it
+                with body.joints_kept(list(pre.joint_positions)):
+                    try:
+                        move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose")
+                    except ManipulationFailure as failure:
+                        blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                        continue
                 return arm, grasp
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))

@@ -15,19 +15,17 @@ import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..world import Object
-from ..world.pose import Quat, Vec3, compose, invert, quat_to_matrix
+from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
-from .arms import close_on, move_from_above, set_gripper, solve_tool
+from .arms import back_off, close_on, move_from_above, set_gripper, solve_tool
 from .base import ProcessModule, Robot
-from .grasping import Grasp, grasps_of_box, holdable, tool_axes
+from .grasping import Grasp, grasps_of_box, holdable
 from .registry import process_module
 
 #: how many steps the drawer is pulled in (the arm's path between two is checked)
 STEPS = 6
 #: the pre-grasp pose is this far back along the approach (m)
 APPROACH = 0.10
-#: after letting go, the tool backs off this far (m)
-RETREAT = 0.08
 
 
 def contents_of(part: Object, link: int) -> list[Object]:
@@ -120,8 +118,5 @@ class Accessing(ProcessModule):
             for obj in riders:
                 part.detach(obj)
             set_gripper(robot, arm, "open")
-        tool = robot.body.get_link_position_and_orientation(tool_frame)
-        approach = quat_to_matrix(tool[1]) @ tool_axes(robot, arm)[:, 0]
-        back = solve_tool(robot, arm, _offset(tool[0], approach, -RETREAT), tool[1], f"the pose back from {what}")
-        motion.move(robot, back.joint_positions, f"the {arm} arm's retreat from {what}")
+        back_off(robot, arm, what)
 

@@ -11,8 +11,10 @@ from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..reasoning.ik import IKSolution, solve
 from ..world import JointLimitError, Object
+from ..world.pose import quat_to_matrix
 from . import motion
 from .base import ProcessModule, Robot
+from .grasping import tool_axes
 from .registry import process_module
 
 
@@ -166,6 +168,30 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
             body.reset_joints(start)
             body.move_attached()
     raise first
+
+
+#: after letting go, the tool backs off along its approach this far, or, when the arm cannot, the shorter of these (m)
+BACK_OFF = (0.08, 0.05, 0.03)
+
+
+def back_off(robot: Robot, arm: str, what: str) -> float:
+    """Back the (open) tool straight out along its approach after letting go of something: `BACK_OFF[0]`, or the
+    longest of the shorter distances the arm reaches and the way to which is free. The distance backed off (0 when
+    none: the hand stays where it let go, and the next motion starts from there)."""
+    tool_frame = robot.description.arm(arm).tool_frame
+    position, orientation = robot.body.get_link_position_and_orientation(tool_frame)
+    approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
+    for distance in BACK_OFF:
+        target = tuple(float(v) for v in np.asarray(position) - approach * distance)
+        solution = reach(robot, arm, target, orientation)
+        if not solution.success:
+            continue
+        try:
+            motion.move(robot, solution.joint_positions, f"the {arm} arm's retreat from {what}")
+        except ManipulationFailure:
+            continue
+        return distance
+    return 0.0
 
 
 def move_from_above(robot: Robot, arm: str, solution: IKSolution, what: str) -> None:

@@ -7,7 +7,7 @@ touch the object, the object is attached to the tool frame and lifted `LIFT` str
 
 Place: the object is stood upright (as held, turned about the vertical if the arm needs it) on the
 surface under the target — its lowest point on the highest surface found below it, whatever its
-mesh's origin — lowered onto it from `LIFT` above, let go; the tool backs off `RETREAT` along its
+mesh's origin — lowered onto it from `LIFT` above, let go; the tool backs off along its
 approach, and physics settles the object (at most `SETTLE` seconds, less once it has come to
 rest), so that what `stable` checks afterwards is the pose it really rests in.
 """
@@ -24,9 +24,9 @@ from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
-from .arms import close_on, move_from_above, reach, reach_from, reach_near, set_gripper, solve_tool
+from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, set_gripper
 from .base import ProcessModule, Robot
-from .grasping import Grasp, holdable_grasps, tool_axes, wanted_orientation
+from .grasping import Grasp, holdable_grasps, wanted_orientation
 from .registry import process_module
 
 #: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
@@ -360,12 +360,9 @@ class Place(ProcessModule):
         motion.advance(robot, solution.joint_positions)  # down until it touches the surface
         robot.body.detach(obj)
         set_gripper(robot, arm, "open")
-        tool_frame = robot.description.arm(arm).tool_frame
-        tool = robot.body.get_link_position_and_orientation(tool_frame)
-        approach = quat_to_matrix(tool[1]) @ tool_axes(robot, arm)[:, 0]
-        back = solve_tool(robot, arm, _offset(tool[0], approach, -RETREAT), tool[1], f"the pose back from {obj.name}")
-        motion.move(robot, back.joint_positions, f"the {arm} arm's retreat from {obj.name}")
-        up = reach(robot, arm, _offset(_offset(tool[0], approach, -RETREAT), np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
+        back_off(robot, arm, obj.name)
+        tool = robot.body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
+        up = reach(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
         if up.success:  # and up, clear of what stands there, if the way is free
             try:
                 motion.move(robot, up.joint_positions, f"the {arm} arm's retreat from {obj.name}")
