@@ -70,7 +70,7 @@ CHUNK = 48
 TOUCH = 0.001
 #: spots on a surface: lattice spacing (m) and the free margin kept around the object (m)
 SPOT_STEP = 0.025
-SPOT_MARGIN = 0.02
+SPOT_MARGIN = 0.06
 
 #: why a candidate was ruled out, in the order the tests run, and how the reasons read
 REASONS = {
@@ -708,6 +708,8 @@ class BasePoseResolution(_Resolution):
         planning), the arm there touching nothing but the surface."""
         robot, cand = self.robot, self.candidates
         body = robot.body
+        if robot.arm_holding(obj) is None:  # let go since the resolution began (a step after the place failed)
+            raise self._fail(f"no pose for {self.spec.describe()}: the robot no longer holds {obj.name}")
         blocked: list[str] = []
         for arm in arms:
             try:

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+from dataclasses import replace
 from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
@@ -54,6 +55,8 @@ SURFACE = 0.05
 SURFACE_BELOW = 0.15
 #: a placed object is lowered to this gap above its support before it is let go (m)
 DROP = 0.0005
+#: a grasp whose open gripper would be inside something is tried this much (m) short of that, see `_short_of`
+SHORT_MARGIN = 0.002
 #: a placed object keeps its heading, or is turned about the vertical by these (rad, in this order) if the arm needs it
 PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
 
@@ -95,6 +98,9 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
                 hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
                 if not hits:
                     return candidate, pre, solution
+                shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
+                if shifted is not None:
+                    return shifted
                 blocked += hits
                 continue
             solution = pre
@@ -106,6 +112,25 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     error = best[0] if best is not None else math.inf
     raise ReachabilityFailure(f"{arm} arm cannot reach {obj.name} with {how}: the tool frame stays "
                               f"{error * 100:.1f} cm away", arm=arm, position_error=error, object=obj.name)
+
+
+def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolution, hits: list[motion.Hit],
+              opened: Mapping[str, float]) -> tuple[Grasp, IKSolution, IKSolution] | None:
+    """The grasp stopped short by as far as the open gripper would be inside something (the bottom of a drawer under a
+    flat spoon: the approach stops there anyway), if the gripper there is inside nothing and its closing fingers still
+    meet the object; else None."""
+    back = max(h.depth for h in hits) + SHORT_MARGIN
+    position = _offset(candidate.position, candidate.approach, -back)
+    solution = reach_from(robot, arm, pre.joint_positions, position, candidate.orientation)
+    if not solution.success or motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj]):
+        return None
+    gripper = robot.description.arm(arm).gripper
+    with robot.body.joints_kept([*solution.joint_positions, *gripper.joints]):
+        robot.body.reset_joints({**solution.joint_positions, **opened})
+        close_on(robot, arm)
+        if not touches(robot, arm, obj):
+            return None
+    return replace(candidate, position=position), pre, solution
 
 
 def grasp_pose(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[Vec3, Quat] | None:
@@ -314,7 +339,9 @@ def plan_place(robot: Robot, arm: str, obj: Object,
     """How the held `obj` is put down at `target`: where it will rest and how it stands (upright, its heading kept or
     turned about the vertical if that is what the arm needs), the arm's configuration there and above it (a short
     move down on one IK branch), and what it will rest on. ReachabilityFailure when the arm reaches no way,
-    ManipulationFailure when there is nothing to put it on."""
+    ManipulationFailure when there is nothing to put it on or the arm does not hold it."""
+    if robot.arm_holding(obj) != arm:
+        raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
     att = robot.body.attachments[obj]
     held = invert(att.transform)  # the tool frame seen from the object
     upright = level(obj.get_orientation())
@@ -353,8 +380,6 @@ class Place(ProcessModule):
         obj: Object = slots["object"]
         arm: str = slots["arm"]
         target = tuple(float(v) for v in slots["target"])
-        if robot.arm_holding(obj) != arm:
-            raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
         position, orientation, solution, above, support = plan_place(robot, arm, obj, target)
         move_from_above(robot, arm, above, f"the {arm} arm's motion above the place for {obj.name}")
         motion.advance(robot, solution.joint_positions)  # down until it touches the surface
