@@ -10,7 +10,7 @@ import numpy as np
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..reasoning.ik import IKSolution, solve
-from ..world import JointLimitError, Object
+from ..world import JointLimitError
 from ..world.pose import quat_to_matrix
 from . import motion
 from .base import ProcessModule, Robot
@@ -49,17 +49,23 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
 
     if solution.success and spread(solution) <= FAR:
         return solution
-    middle = {}
-    for name in names:
-        joint = body.joint(name)
-        middle[name] = (joint.lower + joint.upper) / 2.0 if joint.limited else current[name]
-    with body.joints_kept(names):
-        body.reset_joints(middle)
-        other = reach(robot, arm, position, orientation)
+    other = _from_middle(robot, arm, position, orientation)
     if other.success and (not solution.success or sum(abs(other.joint_positions[n] - current[n]) for n in names)
                           < sum(abs(solution.joint_positions[n] - current[n]) for n in names)):
         return other
     return solution
+
+
+def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
+    """`reach` solved from the middle of the arm's joint ranges (an arm held out in front, elbow out)."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    current = body.get_joint_positions(names)
+    middle = {}
+    for name in names:
+        joint = body.joint(name)
+        middle[name] = (joint.lower + joint.upper) / 2.0 if joint.limited else current[name]
+    return reach_from(robot, arm, middle, position, orientation)
 
 
 def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
@@ -85,11 +91,16 @@ def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: S
 
 
 def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
-              what: str, ignore: Sequence[Object] = ()) -> IKSolution:
-    """Bring the arm's tool frame to a pose along a collision-free path: ReachabilityFailure when no arm configuration
-    gets there, ManipulationFailure naming what the arm (or what it holds) would hit on the way."""
+              what: str) -> IKSolution:
+    """Bring the arm's tool frame to a pose along a collision-free path (straight in joint space, else around what is
+    in the way: `move_over`): ReachabilityFailure when no arm configuration gets there, ManipulationFailure naming
+    what the arm (or what it holds) would hit on the straight way when no way is free."""
     solution = solve_tool(robot, arm, position, orientation, what)
-    motion.move(robot, solution.joint_positions, f"the {arm} arm's motion to {what}", ignore)
+    if motion.hits_at(robot, solution.joint_positions):  # a configuration there inside nothing, if there is one
+        other = _from_middle(robot, arm, position, orientation)
+        if other.success and not motion.hits_at(robot, other.joint_positions):
+            solution = other
+    move_over(robot, arm, solution.joint_positions, f"the {arm} arm's motion to {what}")
     return solution
 
 
@@ -136,6 +147,8 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
     departures.append([back])
     for h in VIA_HEIGHTS:
         departures.append([back, _shifted(robot, arm, back, h)])
+    for h in VIA_HEIGHTS:  # up and back at once (where the arm cannot draw back at its height)
+        departures.append([_shifted(robot, arm, start, h, BACK)])
     # or joint by joint: the arm's outer half first (folding it in, out of the way), or its inner half first
     names = [n for n in robot.description.arm(arm).joints if n in goal]
     half = len(names) // 2

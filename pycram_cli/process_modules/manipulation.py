@@ -125,8 +125,9 @@ def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolu
     if not solution.success or motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj]):
         return None
     gripper = robot.description.arm(arm).gripper
-    with robot.body.joints_kept([*solution.joint_positions, *gripper.joints]):
-        robot.body.reset_joints({**solution.joint_positions, **opened})
+    with robot.body.joints_kept([*solution.joint_positions, *gripper.joints]):  # as pick-up will: in from the
+        robot.body.reset_joints({**pre.joint_positions, **opened})              # pre-grasp pose until a touch, close
+        motion.advance(robot, solution.joint_positions)
         close_on(robot, arm)
         if not touches(robot, arm, obj):
             return None
@@ -200,12 +201,20 @@ def grip(robot: Robot, arm: str, obj: Object, back: Mapping[str, float]) -> bool
         if length <= 0:
             break
         fraction = min(1.0, GRIP_BACKOFF * (attempt + 1) / length)
-        goal = {name: start[name] + (back[name] - start[name]) * fraction for name in back}
+        goal = {name: start[name] + _turn(body, name, start[name], back[name]) * fraction for name in back}
         try:
             motion.move(robot, goal, f"the {arm} arm backing off from {obj.name}")
         except ManipulationFailure:
             break
     return False
+
+
+def _turn(body: Object, joint: str, start: float, end: float) -> float:
+    """How far a joint moves from `start` to `end`: a continuous joint the short way round (after a path of several
+    legs it may stand a whole turn from where the goal's numbers say)."""
+    if body.joint(joint).type == "continuous":
+        return math.remainder(end - start, 2 * math.pi)
+    return end - start
 
 
 def _tool_at(robot: Robot, arm: str, joints: Mapping[str, float]) -> Vec3:
