@@ -86,8 +86,8 @@ class Accessing(ProcessModule):
         what = f"the handle {handle}"
         set_gripper(robot, arm, "open")
         pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
-                         f"the pre-grasp pose for {what}")
-        at = solve_tool(robot, arm, grasp.position, grasp.orientation, what)
+                         f"the pre-grasp pose for {what}", near=True)
+        at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
         move_from_above(robot, arm, pre, f"the {arm} arm's motion to {what}")
         motion.advance(robot, at.joint_positions)
         close_on(robot, arm)

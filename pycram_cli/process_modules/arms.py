@@ -79,9 +79,16 @@ def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Se
 
 
 def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
-               what: str) -> IKSolution:
-    """Joint values that bring the arm's tool frame to a pose, or raise ReachabilityFailure saying how far off it stays."""
-    solution = reach(robot, arm, position, orientation)
+               what: str, near: bool = False, start: Mapping[str, float] | None = None) -> IKSolution:
+    """Joint values that bring the arm's tool frame to a pose, or raise ReachabilityFailure saying how far off it stays.
+    `near`: prefer a solution near the arm's configuration (`reach_near`); `start`: solved from that configuration
+    (`reach_from`, for a short straight move from it)."""
+    if start is not None:
+        solution = reach_from(robot, arm, start, position, orientation)
+    elif near:
+        solution = reach_near(robot, arm, position, orientation)
+    else:
+        solution = reach(robot, arm, position, orientation)
     if not solution.success:
         angle = "" if solution.orientation_error is None else f", {math.degrees(solution.orientation_error):.0f}° off in orientation"
         raise ReachabilityFailure(
@@ -122,14 +129,18 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         position, orientation = body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
         toward = np.subtract(body.get_position(), position)[:2]
         toward = toward / (np.linalg.norm(toward) or 1.0) * back
-        solution = reach(robot, arm, (position[0] + toward[0], position[1] + toward[1], position[2] + up), orientation)
+        target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
+        solution = reach(robot, arm, target, orientation)
+        if not solution.success:  # inverse kinematics may stall from a folded arm: from the middle of its ranges
+            solution = _from_middle(robot, arm, target, orientation)
     return solution.joint_positions if solution.success else None
 
 
 def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True) -> None:
     """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
     what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
-    or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), and, for a goal that is
+    or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
+    arm's named poses (the description's park, carry, ...), and, for a goal that is
     a tool pose, down onto the goal from above it; last, a search through the arm's joint space
     (`motion.search_path`). Each leg is checked. Raises the straight path's ManipulationFailure when no way is
     free; then nothing has moved."""
@@ -155,6 +166,11 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
     outer_first = {n: (goal[n] if i >= half else start[n]) for i, n in enumerate(names)}
     inner_first = {n: (goal[n] if i < half else start[n]) for i, n in enumerate(names)}
     departures += [[outer_first], [_shifted(robot, arm, start, VIA_HEIGHTS[0]), outer_first], [inner_first]]
+    # or through one of the arm's named poses (its description's park, carry, ...): folded in, away from things
+    for pose in robot.description.arm(arm).poses:
+        via = arm_configuration(robot, arm, pose)
+        if any(abs(via[n] - goal[n]) > 1e-9 for n in via if n in goal):
+            departures.append([via])
     arrivals: list[list[dict[str, float] | None]] = [[]]
     if down_onto_goal:
         arrivals += [[_shifted(robot, arm, goal, h)] for h in VIA_HEIGHTS]
