@@ -22,5 +22,6 @@ from .bullet_world import BulletWorld, Event, Object
 from .designator import MotionDesignator
 from .process_module import ProcessModule
 
-__all__ = ["BulletWorld", "Event", "Object", "MotionDesignator", "ProcessModule", "bullet_world",
-           "bullet_world_reasoning", "designator", "process_module"]
+# the design's modules (bullet_world, bullet_world_reasoning, designator, process_module) are submodules, imported
+# above; what the package itself names is the objects
+__all__ = ["BulletWorld", "Event", "Object", "MotionDesignator", "ProcessModule"]

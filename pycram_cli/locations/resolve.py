@@ -37,7 +37,7 @@ import numpy as np
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..process_modules import Robot
-from ..process_modules.arms import move_over, reach
+from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
 from ..process_modules.head import look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
@@ -687,10 +687,16 @@ class BasePoseResolution(_Resolution):
                 if touched:
                     blocked.extend(t for t in touched if t not in blocked)
                     continue
-                # and the arm's way from where it is to the pre-grasp pose, as pick-up will move it
+                # and the arm's ways from where it is to the pre-grasp pose, as pick-up will move it, and from the
+                # grasp to the pose it will rest in holding the object (the object itself not counted)
+                rest = rest_pose(robot, arm, holding=True)
                 with body.joints_kept(list(pre.joint_positions)):
                     try:
                         move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose")
+                        if rest is not None:
+                            body.reset_joints(solution.joint_positions)
+                            move_over(robot, arm, arm_configuration(robot, arm, rest),
+                                      f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False)
                     except ManipulationFailure as failure:
                         blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                         continue
@@ -713,19 +719,31 @@ class BasePoseResolution(_Resolution):
         blocked: list[str] = []
         for arm in arms:
             try:
-                _, _, solution, _, _ = plan_place(robot, arm, obj, tuple(float(v) for v in target))
+                _, _, solution, above, _ = plan_place(robot, arm, obj, tuple(float(v) for v in target))
             except (ManipulationFailure, ReachabilityFailure):
                 continue
             saved = body.get_joint_positions(list(solution.joint_positions))
             body.set_joint_positions(solution.joint_positions)
+            body.move_attached()
             try:
                 touched = touching(robot, self.held, *self._allowed)
             finally:
                 body.set_joint_positions(saved)
+                body.move_attached()
             if touched:
                 blocked.extend(t for t in touched if t not in blocked)
                 continue
-            return arm, None
+            # and the arm's way, with what it holds, from where it is to above the place, as place will move it
+            free = True
+            with body.joints_kept(list(above.joint_positions)):
+                try:
+                    move_over(robot, arm, above.joint_positions, f"the {arm} arm's motion above the place")
+                except ManipulationFailure as failure:
+                    blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    free = False
+            body.move_attached()  # what it holds back with the arm (joints_kept puts only the joints back)
+            if free:
+                return arm, None
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))
         else:
@@ -790,7 +808,6 @@ class SpotResolution(_Resolution):
         spec = self.spec
         surface, obj = spec.on, spec.for_object
         assert surface is not None and obj is not None
-        world = self.robot.world
         lo, hi = surface.box()
         self.top = float(hi[2])
         self.upright = level(obj.get_orientation())

@@ -223,6 +223,20 @@ def back_off(robot: Robot, arm: str, what: str) -> float:
     return 0.0
 
 
+#: the named poses an arm rests in (when its description has them): holding something, and empty
+PARK, CARRY = "park", "carry"
+
+
+def rest_pose(robot: Robot, arm: str, holding: bool | None = None) -> str | None:
+    """The pose an arm rests in: `carry` when it holds something (or will: `holding`) and has one, else `park` (None:
+    it has neither)."""
+    poses = robot.description.arm(arm).poses
+    full = bool(robot.held_objects(arm)) if holding is None else holding
+    if full and CARRY in poses:
+        return CARRY
+    return PARK if PARK in poses else None
+
+
 def move_from_above(robot: Robot, arm: str, solution: IKSolution, what: str) -> None:
     """`move_over` to an IK solution."""
     move_over(robot, arm, solution.joint_positions, what)

@@ -83,6 +83,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
         raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
     best: tuple[float, IKSolution] | None = None
     blocked: list[motion.Hit] = []
+    refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
     gripper = robot.description.arm(arm).gripper
     opened = {joint: gripper.open for joint in gripper.joints}
     for candidate in candidates:
@@ -95,6 +96,17 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             if pre.success:
                 # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object
                 # itself may be touched before: the approach stops there
+                # and the gripper free to open at the pre-grasp pose (where pick-up opens it)
+                with robot.body.joints_kept([*pre.joint_positions, *opened]):
+                    robot.body.reset_joints(pre.joint_positions)
+                    try:
+                        motion.move(robot, opened, f"opening the {arm} gripper")
+                        hits = []
+                    except ManipulationFailure as failure:
+                        hits = [failure]
+                if hits:
+                    refused.append(hits[0])
+                    continue
                 hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
                 if not hits:
                     return candidate, pre, solution
@@ -109,6 +121,9 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     if blocked:
         raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {blocked[0]}",
                                   arm=arm, object=obj.name, colliding=sorted({h.obstacle.name for h in blocked}))
+    if refused:
+        raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {refused[0]}", arm=arm,
+                                  object=obj.name, colliding=sorted({n for f in refused for n in f.details.get("colliding", [])}))
     error = best[0] if best is not None else math.inf
     raise ReachabilityFailure(f"{arm} arm cannot reach {obj.name} with {how}: the tool frame stays "
                               f"{error * 100:.1f} cm away", arm=arm, position_error=error, object=obj.name)
@@ -247,8 +262,8 @@ class PickUp(ProcessModule):
             raise GripperFailure(f"the {arm} gripper already holds {held[0].name}", arm=arm)
         how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
         candidate, pre, solution = plan_grasp(robot, arm, obj, grasp)
-        set_gripper(robot, arm, "open")
         move_from_above(robot, arm, pre, f"the {arm} arm's motion to the pre-grasp pose for {obj.name}")
+        set_gripper(robot, arm, "open")  # there, clear of what stands around the object
         # in until the fingers or the palm touch something, never into it
         motion.advance(robot, solution.joint_positions)
         if not grip(robot, arm, obj, pre.joint_positions):
