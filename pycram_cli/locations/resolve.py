@@ -37,6 +37,8 @@ import numpy as np
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..process_modules import Robot
+from ..process_modules import motion
+from ..process_modules.accessing import drawer_pushes_into
 from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
 from ..process_modules.head import look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
@@ -304,8 +306,6 @@ def _below(obj: Object, index: int, ancestor: int) -> bool:
         index = obj.joints[index].parent_index
     return False
 
-
-#: place: the held object's turns about the vertical tried, in the place process module's order
 
 
 class _Resolution:
@@ -766,8 +766,29 @@ class BasePoseResolution(_Resolution):
                 return  # a position in any orientation: one IK call answers for every grasp
 
     def _follows_handle(self, arm: str, orientation: Any) -> bool:
-        """The arm also reaches the handle half and fully opened."""
-        return all(reach(self.robot, arm, tuple(point), orientation).success for point in self._handle_path[1:])
+        """The arm also reaches the handle half and fully opened, and the drawer then is inside no part of the robot
+        but the hand that pulls it (a robot standing too close would open the drawer into its own arm)."""
+        handle = self.spec.accessing
+        assert handle is not None
+        obj, body = handle.obj, self.robot.body
+        start = obj.get_joint_position(handle.joint)
+        goal = self._goal(start)
+        moving_index = obj.joint(handle.joint).index
+        moving = [(obj, link) for link in range(len(obj.joints)) if _below(obj, link, moving_index)]
+        hand = motion.Motion(self.robot, self.robot.description.arm(arm).joints[-1:]).links
+        names = list(self.robot.description.arm(arm).joints)
+        with obj.joints_kept([handle.joint]), body.joints_kept(names):
+            for point, value in zip(self._handle_path[1:], ((start + goal) / 2.0, goal)):
+                solution = reach(self.robot, arm, tuple(point), orientation)
+                if not solution.success:
+                    return False
+                obj.reset_joints({handle.joint: value})
+                body.reset_joints(solution.joint_positions)
+                try:
+                    drawer_pushes_into(self.robot, obj, moving, hand)
+                except ManipulationFailure:
+                    return False
+        return True
 
     def _view(self, i: int) -> tuple[float, float, float] | None:
         obj = self.spec.visible_for

@@ -70,6 +70,17 @@ def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -
     return (float(p[0]), float(p[1]), float(p[2]))
 
 
+def drawer_pushes_into(robot: Robot, part: Object, moving: list[tuple[Object, int]], hand: list[int]) -> None:
+    """The drawer's moving links may touch the hand that pulls them, nothing else of the robot: ManipulationFailure
+    naming the link the drawer would be inside (a robot standing too close opens the drawer into its own arm)."""
+    links = {link for _, link in moving}
+    for point in robot.world.closest_points(robot.body, part, 0.0):
+        if point.link_b in links and point.link_a not in hand and point.distance < -motion.PENETRATION:
+            raise ManipulationFailure(f"{part.get_link_name(point.link_b)} would be {-point.distance * 1000:.0f} mm "
+                                      f"inside {robot.body.get_link_name(point.link_a)}",
+                                      colliding=[part.name], link=part.get_link_name(point.link_b))
+
+
 @process_module("accessing")
 class Accessing(ProcessModule):
 
@@ -96,6 +107,7 @@ class Accessing(ProcessModule):
         held_at = compose(invert(part.get_link_position_and_orientation(handle)),
                           robot.body.get_link_position_and_orientation(tool_frame))
         riders = contents_of(part, joint.index)
+        hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links  # what holds the handle
         # the hand holds the handle and moves with the drawer: the drawer's moving links are not in its way
         moving = [(part, link) for link in range(len(part.joints)) if _below(part, link, joint.index)]
         for obj in riders:
@@ -109,6 +121,7 @@ class Accessing(ProcessModule):
                 try:
                     solution = solve_tool(robot, arm, tool[0], tool[1], what)
                     motion.move(robot, solution.joint_positions, f"the {arm} arm pulling {what}", ignore_links=moving)
+                    drawer_pushes_into(robot, part, moving, hand)
                 except (ReachabilityFailure, ManipulationFailure) as exc:
                     part.set_joint_position(joint.name, previous)
                     raise ManipulationFailure(
