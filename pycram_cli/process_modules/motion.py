@@ -51,6 +51,8 @@ NEAR = 0.03
 LEVER_REFRESH = 0.1
 #: approaches stop this close to the first contact (m of travel)
 PRECISION = 0.001
+#: an approach that stops at contact lets a contact that exists where it starts get this much deeper (m: numeric noise)
+STILL = 1e-5
 
 
 @dataclass(frozen=True)
@@ -124,6 +126,9 @@ class Motion:
         self._o_lo = np.array([b[2] for b in boxes]).reshape(-1, 3)
         self._o_hi = np.array([b[3] for b in boxes]).reshape(-1, 3)
         self.allowed: dict[tuple[str, int, int], float] = {}
+        #: how much deeper an existing contact may get: PENETRATION along a motion, next to nothing for an approach
+        #: that stops at contact (fingers closing on an object they already touch stop there, not 1 mm further in)
+        self.deepen = PENETRATION
         # each joint's axis in its link's frame (PyBullet gives it in the link's centre-of-mass frame)
         self._joint_axes = np.array([quat_to_matrix(j.inertial_frame[1]) @ np.asarray(j.axis, dtype=float)
                                      / (np.linalg.norm(j.axis) or 1.0) for j in self.joints]).reshape(-1, 3)
@@ -181,7 +186,7 @@ class Motion:
                 continue
             depth = -distance
             key = (self._mover_name(k), obj.id, link)
-            if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + PENETRATION):
+            if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
                 hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
         return clearance, sorted(hits.values(), key=lambda h: -h.depth)
 
@@ -300,6 +305,7 @@ class Motion:
             return 1.0, [], {}
         self._prune(self._levers())
         self.allow_current()
+        self.deepen = STILL if stop_at_contact else PENETRATION
         last_free, hits = self._follow(start, end, stop_at_contact)
         reached = start + last_free * (end - start)
         return (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
