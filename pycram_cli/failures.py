@@ -59,8 +59,10 @@ FAILURES: dict[str, type[Failure]] = {
     for cls in (Failure, PerceptionFailure, ReasoningFailure, NavigationFailure, ReachabilityFailure,
                 GripperFailure, ManipulationFailure, LocationFailure)
 }
-# the design's own names for two of them
+# the design's own names for two of them (in plans, and as Python names: `raise ReasoningError`)
 ALIASES = {"PerceptionError": "PerceptionFailure", "ReasoningError": "ReasoningFailure"}
+PerceptionError = PerceptionFailure
+ReasoningError = ReasoningFailure
 
 
 def failure_class(name: str) -> type[Failure] | None:

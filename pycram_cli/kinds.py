@@ -126,6 +126,10 @@ def _position(value: Any, robots: Robots) -> str | None:
     return None if is_vector(value, 3) else "expected a position [x, y, z]" + _range_hint(value)
 
 
+def _place_position(value: Any, robots: Robots) -> str | None:
+    return None if is_vector(value, 3) or is_vector(value, 2) else "expected a position [x, y] or [x, y, z]"
+
+
 def _quaternion(value: Any, robots: Robots) -> str | None:
     return _quaternion_problem(value)
 
@@ -398,6 +402,9 @@ class Kind:
 
 KINDS: dict[str, Kind] = {k.name: k for k in (
     Kind("position", "[x, y, z] in metres, world frame", _position, _vector_or_name(3), schema=_POSITION),
+    Kind("place-position", "[x, y] or [x, y, z] in metres, world frame (z: the height of the surface)", _place_position,
+         lambda text: parse_vector(text, 3) or parse_vector(text, 2) or text,
+         schema={"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 3}),
     Kind("quaternion", "[x, y, z, w], unit length", _quaternion, _vector_or_name(4), schema=_QUATERNION),
     Kind("object", "an object name (or a $variable bound to an object)", _object, names_object=True, schema=_NAME),
     Kind("target", "an object name or a position [x, y, z]", _target, _vector_or_name(3), names_object=True,

@@ -40,7 +40,7 @@ from ..paths import resources_dir
 from ..plan.context import IDENTIFIER, NAME, REFERENCE
 from ..plan.language import NODE_TYPES
 from ..plan.leaves import CONDITION_FORMS
-from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
+from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SCOPES, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
 from ..reasoning import QUERIES
 from ..scenario import variations as vary
 from ..worldfile import spec as world
@@ -96,6 +96,8 @@ HEAD_VALUES: dict[str, Schema] = {
 #: what the keys beside a head take
 NODE_KEY_VALUES: dict[str, Schema] = {
     "as": _with(ref("name"), "the variable the step binds: its value (for_each: each item); a name, without $"),
+    "scope": _with({"enum": list(SCOPES)}, "where `as` (or `set`) binds inside a branch of par, pursue or try_all: "
+                   "branch (the default: the binding stays in the branch) or plan (seen after the step)"),
     "on": _with({"anyOf": [ref("failure-type"), {"type": "array", "items": ref("failure-type")}]},
                 "the failure types that trigger a retry (default: any failure)"),
     "recover": _with(ref("steps"), "steps run before each new attempt"),
@@ -350,7 +352,7 @@ class Schemas:
         gives = f" Gives: {spec.returns}." if spec.returns else ""
         properties: Schema = {"action": {"const": name, "description": f"{spec.doc}{gives}"},
                               **{s.name: self._slot(s, whole_only=True) for s in spec.slots},
-                              "as": NODE_KEY_VALUES["as"]}
+                              "as": NODE_KEY_VALUES["as"], "scope": NODE_KEY_VALUES["scope"]}
         schema: Schema = {"title": f"action {name}", "type": "object", "description": spec.doc,
                           "properties": properties, "required": ["action"], "additionalProperties": False}
         then: Schema = {}

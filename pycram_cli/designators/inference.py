@@ -8,7 +8,6 @@ from ..failures import GripperFailure, ReachabilityFailure
 from ..process_modules import Robot
 from ..kinds import arm_phrase
 from ..process_modules.arms import reach
-from ..process_modules.manipulation import grasp_orientation
 from ..world import Object
 
 
@@ -30,22 +29,26 @@ def free_arms(robot: Robot, preferred: str | None) -> list[str]:
     return [a for a in arms if preferred or not robot.held_objects(a)]
 
 
-def choose_arm_and_grasp(robot: Robot, position_of: Callable[[str, Any], Sequence[float] | None], arm: str | None,
+Pose = tuple[Sequence[float], Sequence[float]]
+
+
+def choose_arm_and_grasp(robot: Robot, pose_of: Callable[[str, Any], Pose | None], arm: str | None,
                          grasp: Any, what: str) -> tuple[str, Any]:
     """The first arm and grasp (both in the description's order) that can hold it and whose IK succeeds.
 
-    `position_of(arm, grasp)` gives the tool position for a grasp, or None when that arm cannot hold it that way.
+    `pose_of(arm, grasp)` gives the tool pose (position, orientation) for a grasp, or None when that arm cannot hold
+    it that way.
     """
     grasps = [grasp] if grasp is not None else list(robot.description.grasps)
     best: tuple[float, str, Any] | None = None
     holdable = False
     for candidate_arm in free_arms(robot, arm):
         for candidate in grasps:
-            position = position_of(candidate_arm, candidate)
-            if position is None:
+            pose = pose_of(candidate_arm, candidate)
+            if pose is None:
                 continue
             holdable = True
-            solution = reach(robot, candidate_arm, position, grasp_orientation(robot, candidate))
+            solution = reach(robot, candidate_arm, pose[0], pose[1])
             if solution.success:
                 return candidate_arm, candidate
             if best is None or solution.position_error < best[0]:

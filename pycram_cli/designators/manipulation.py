@@ -1,27 +1,22 @@
 """`pick-up`, `place` and `accessing`: the designators that take, put down and pull with an arm."""
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean
 from ..failures import ManipulationFailure
 from ..process_modules import Robot
-from ..process_modules.manipulation import grasp_target
-from ..world import Object
+from ..process_modules.accessing import handle_pose
+from ..process_modules.manipulation import grasp_pose
 from .declaration import Designator, Slot, declare_designator, drives_arm
 from .inference import choose_arm_and_grasp, the_object
-
-
-def _grasp_position(robot: Robot, arm: str, obj: Object, grasp: Any) -> Sequence[float] | None:
-    target = grasp_target(robot, arm, obj, grasp)
-    return None if target is None else target[0]
 
 
 def _pick_up(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
     obj = the_object(robot, slots["object"], "object")
     arm, grasp = slots.get("arm"), slots.get("grasp")
     if arm is None or grasp is None:
-        arm, grasp = choose_arm_and_grasp(robot, lambda a, g: _grasp_position(robot, a, obj, g), arm, grasp, obj.name)
+        arm, grasp = choose_arm_and_grasp(robot, lambda a, g: grasp_pose(robot, a, obj, g), arm, grasp, obj.name)
     return {"object": obj, "arm": arm, "grasp": grasp}
 
 
@@ -42,9 +37,9 @@ def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "place", "Bring a held object to a target position, open the gripper and let go.", (
+    "place", "Stand a held object on the surface under a target position, let go, and let it settle.", (
         Slot("object", "object", True, "the held object"),
-        Slot("target", "position", True, "where the object's origin (its bottom centre) goes"),
+        Slot("target", "place-position", True, "where it stands: x, y (and z, optionally: the height of the surface)"),
         Slot("arm", "arm", False, "the arm holding the object", "the arm that holds it"),
     ), resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
@@ -65,7 +60,7 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
     arm = slots.get("arm")
     if arm is None:
         pull = next(iter(robot.description.grasps), None)
-        arm, _ = choose_arm_and_grasp(robot, lambda a, g: part.get_link_position(handle), None, pull,
+        arm, _ = choose_arm_and_grasp(robot, lambda a, g: handle_pose(robot, a, part, handle), None, pull,
                                       f"the handle {handle}")
     return {"drawer-handle": handle, "drawer-joint": joint_name, "part-of": part, "distance": float(distance), "arm": arm}
 

@@ -34,16 +34,18 @@ from typing import TYPE_CHECKING, Any, Iterator, Sequence
 
 import numpy as np
 
-from ..failures import LocationFailure
+from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..process_modules import Robot
-from ..process_modules.arms import reach
+from ..process_modules import motion
+from ..process_modules.accessing import drawer_pushes_into
+from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
 from ..process_modules.head import look_at
-from ..process_modules.manipulation import grasp_orientation, grasp_target, level
+from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..world import Object
-from ..world.pose import compose, invert, quat_multiply, yaw_quaternion
+from ..world.pose import compose, invert, yaw_quaternion
 from . import floor
 from .spec import LocationSpec
 
@@ -70,7 +72,7 @@ CHUNK = 48
 TOUCH = 0.001
 #: spots on a surface: lattice spacing (m) and the free margin kept around the object (m)
 SPOT_STEP = 0.025
-SPOT_MARGIN = 0.02
+SPOT_MARGIN = 0.06
 
 #: why a candidate was ruled out, in the order the tests run, and how the reasons read
 REASONS = {
@@ -304,9 +306,6 @@ def _below(obj: Object, index: int, ancestor: int) -> bool:
         index = obj.joints[index].parent_index
     return False
 
-
-#: place: the held object's turns about the vertical tried, in the place process module's order
-PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
 
 
 class _Resolution:
@@ -622,6 +621,11 @@ class BasePoseResolution(_Resolution):
         blocked: list[str] = []
         holdable = False
         arms = [self.arm_names[k] for k in self.arm_order[i] if k >= 0] if len(self.arm_order) else self.arm_names
+        target = spec.reachable_for
+        if isinstance(target, Object) and spec.placing is None and spec.accessing is None:
+            return self._grasp(i, arms, target)
+        if spec.placing is not None:
+            return self._place(i, arms, spec.placing, target)
         for arm in arms:
             for grasp, position, orientation in self._reach_targets(arm):
                 if position is None:
@@ -650,6 +654,102 @@ class BasePoseResolution(_Resolution):
             cand.mark(i, "out of reach")
         return None
 
+    def _grasp(self, i: int, arms: list[str], obj: Object) -> tuple[str, Any] | None:
+        """The first arm and grasp with which pick-up itself would take `obj` from here: the test is the pick-up
+        process module's own planning (pre-grasp and grasp reached, the open gripper inside nothing), so a pose found
+        here is one from which the pick-up succeeds; the arm at the grasp then touches nothing but the object and
+        what it stands on."""
+        robot, spec, cand = self.robot, self.spec, self.candidates
+        body = robot.body
+        blocked: list[str] = []
+        holdable = False
+        grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
+        for arm in arms:
+            for grasp in grasps:
+                try:
+                    _, pre, solution = plan_grasp(robot, arm, obj, grasp)
+                except GripperFailure:
+                    continue
+                except ManipulationFailure as failure:
+                    holdable = True
+                    blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    continue
+                except ReachabilityFailure:
+                    holdable = True
+                    continue
+                holdable = True
+                saved = body.get_joint_positions(list(solution.joint_positions))
+                body.set_joint_positions(solution.joint_positions)
+                try:
+                    touched = touching(robot, self.held, *self._allowed)
+                finally:
+                    body.set_joint_positions(saved)
+                if touched:
+                    blocked.extend(t for t in touched if t not in blocked)
+                    continue
+                # and the arm's ways from where it is to the pre-grasp pose, as pick-up will move it, and from the
+                # grasp to the pose it will rest in holding the object (the object itself not counted)
+                rest = rest_pose(robot, arm, holding=True)
+                with body.joints_kept(list(pre.joint_positions)):
+                    try:
+                        move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose")
+                        if rest is not None:
+                            body.reset_joints(solution.joint_positions)
+                            move_over(robot, arm, arm_configuration(robot, arm, rest),
+                                      f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False)
+                    except ManipulationFailure as failure:
+                        blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                        continue
+                return arm, grasp
+        if blocked:
+            cand.mark(i, "blocked", ", ".join(blocked))
+        elif not holdable:
+            cand.mark(i, "cannot hold", obj.name)
+        else:
+            cand.mark(i, "out of reach")
+        return None
+
+    def _place(self, i: int, arms: list[str], obj: Object, target: Any) -> tuple[str, Any] | None:
+        """The arm with which place itself would put `obj` down at `target` from here (the place process module's own
+        planning), the arm there touching nothing but the surface."""
+        robot, cand = self.robot, self.candidates
+        body = robot.body
+        if robot.arm_holding(obj) is None:  # let go since the resolution began (a step after the place failed)
+            raise self._fail(f"no pose for {self.spec.describe()}: the robot no longer holds {obj.name}")
+        blocked: list[str] = []
+        for arm in arms:
+            try:
+                _, _, solution, above, _ = plan_place(robot, arm, obj, tuple(float(v) for v in target))
+            except (ManipulationFailure, ReachabilityFailure):
+                continue
+            saved = body.get_joint_positions(list(solution.joint_positions))
+            body.set_joint_positions(solution.joint_positions)
+            body.move_attached()
+            try:
+                touched = touching(robot, self.held, *self._allowed)
+            finally:
+                body.set_joint_positions(saved)
+                body.move_attached()
+            if touched:
+                blocked.extend(t for t in touched if t not in blocked)
+                continue
+            # and the arm's way, with what it holds, from where it is to above the place, as place will move it
+            free = True
+            with body.joints_kept(list(above.joint_positions)):
+                try:
+                    move_over(robot, arm, above.joint_positions, f"the {arm} arm's motion above the place")
+                except ManipulationFailure as failure:
+                    blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    free = False
+            body.move_attached()  # what it holds back with the arm (joints_kept puts only the joints back)
+            if free:
+                return arm, None
+        if blocked:
+            cand.mark(i, "blocked", ", ".join(blocked))
+        else:
+            cand.mark(i, "out of reach")
+        return None
+
     def _reach_targets(self, arm: str) -> Iterator[tuple[Any, Any, Any]]:
         """(grasp, tool position or None when the gripper cannot hold it so, tool orientation) to try, in order."""
         robot, spec = self.robot, self.spec
@@ -658,29 +758,37 @@ class BasePoseResolution(_Resolution):
             pull = next(iter(robot.description.grasps), None)
             yield pull, tuple(self._handle_path[0]), grasp_orientation(robot, pull) if pull is not None else None
             return
-        if spec.placing is not None:
-            att = robot.body.attachments[spec.placing]
-            in_hand = invert(att.transform)
-            upright = level(spec.placing.get_orientation())
-            for turn in PLACE_TURNS:
-                orientation = quat_multiply(yaw_quaternion(turn), upright)
-                tool = compose((tuple(target), orientation), in_hand)  # type: ignore[arg-type]
-                yield None, tool[0], tool[1]
-            return
         grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
-        for grasp in grasps:
+        for grasp in grasps:  # a position (an object is tested by `_grasp`)
             orientation = grasp_orientation(robot, grasp) if grasp is not None else None
-            if isinstance(target, Object):
-                found = grasp_target(robot, arm, target, grasp)
-                yield grasp, (found[0] if found is not None else None), orientation
-            else:
-                yield grasp, tuple(target), orientation  # type: ignore[arg-type]
-                if spec.grasp is None:
-                    return  # a position in any orientation: one IK call answers for every grasp
+            yield grasp, tuple(target), orientation  # type: ignore[arg-type]
+            if spec.grasp is None:
+                return  # a position in any orientation: one IK call answers for every grasp
 
     def _follows_handle(self, arm: str, orientation: Any) -> bool:
-        """The arm also reaches the handle half and fully opened."""
-        return all(reach(self.robot, arm, tuple(point), orientation).success for point in self._handle_path[1:])
+        """The arm also reaches the handle half and fully opened, and the drawer then is inside no part of the robot
+        but the hand that pulls it (a robot standing too close would open the drawer into its own arm)."""
+        handle = self.spec.accessing
+        assert handle is not None
+        obj, body = handle.obj, self.robot.body
+        start = obj.get_joint_position(handle.joint)
+        goal = self._goal(start)
+        moving_index = obj.joint(handle.joint).index
+        moving = [(obj, link) for link in range(len(obj.joints)) if _below(obj, link, moving_index)]
+        hand = motion.Motion(self.robot, self.robot.description.arm(arm).joints[-1:]).links
+        names = list(self.robot.description.arm(arm).joints)
+        with obj.joints_kept([handle.joint]), body.joints_kept(names):
+            for point, value in zip(self._handle_path[1:], ((start + goal) / 2.0, goal)):
+                solution = reach(self.robot, arm, tuple(point), orientation)
+                if not solution.success:
+                    return False
+                obj.reset_joints({handle.joint: value})
+                body.reset_joints(solution.joint_positions)
+                try:
+                    drawer_pushes_into(self.robot, obj, moving, hand)
+                except ManipulationFailure:
+                    return False
+        return True
 
     def _view(self, i: int) -> tuple[float, float, float] | None:
         obj = self.spec.visible_for
@@ -721,7 +829,6 @@ class SpotResolution(_Resolution):
         spec = self.spec
         surface, obj = spec.on, spec.for_object
         assert surface is not None and obj is not None
-        world = self.robot.world
         lo, hi = surface.box()
         self.top = float(hi[2])
         self.upright = level(obj.get_orientation())

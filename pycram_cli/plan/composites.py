@@ -17,13 +17,16 @@ only runs the branches and asks.
 """
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 from ..failures import Failure
 from ..limits import MAX_BRANCHES
 from ..yamlsource import LMap
 from .runtime import Cancelled, Record, Runtime, close_pending
 from .syntax import Node, Parser, node_type
+
+if TYPE_CHECKING:
+    from .validate import Validator
 
 
 class Composite(Node):
@@ -50,7 +53,14 @@ class Seq(Composite):
 
 
 class Concurrent(Composite):
-    """Steps run at once, each in a thread of its own; the first branch whose end `decides` decides."""
+    """Steps run at once, each in a thread of its own; the first branch whose end `decides` decides.
+
+    Each branch has its own bindings (CPL): it reads what is bound around the step, and what it
+    binds stays in the branch, unless bound with `scope: plan`.
+    """
+
+    def check(self, validator: "Validator") -> None:
+        validator.check_branches(self.steps)
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node:

@@ -7,7 +7,10 @@ literal dollar sign.
 
 Scopes are function scopes, like Python's: plan parameters are global and read-only;
 every call of a subplan (and the plan body) gets its own frame of local variables, into
-which `as:`, `for_each` and `set` bind.
+which `as:`, `for_each` and `set` bind. Each branch of a concurrent step (par, pursue,
+try_all) gets a frame of its own on top (CPL's branches have their own bindings): reads see
+the enclosing frames, writes stay in the branch, unless the step binds with `scope: plan`,
+which writes into the invocation's own frame.
 """
 from __future__ import annotations
 
@@ -89,11 +92,24 @@ class FailureInfo:
 
 
 class Frame:
-    """Variables of one plan invocation; globals (the plan's parameters) behind it."""
+    """Variables of one plan invocation (or of one branch of a concurrent step); what encloses it behind it."""
 
-    def __init__(self, values: Mapping[str, Any] | None = None, parent: "Frame | None" = None) -> None:
+    def __init__(self, values: Mapping[str, Any] | None = None, parent: "Frame | None" = None,
+                 branch: bool = False) -> None:
         self.values: dict[str, Any] = dict(values or {})
         self.parent = parent
+        self.branch = branch  # a branch's own bindings, on top of the invocation's frame
+
+    def plan_frame(self) -> "Frame":
+        """The frame of the plan invocation this frame belongs to (itself, unless it is a branch's)."""
+        frame = self
+        while frame.branch and frame.parent is not None:
+            frame = frame.parent
+        return frame
+
+    def binder(self, scope: str | None) -> "Frame":
+        """Where a step binds: here, or with `scope: plan` in the invocation's frame."""
+        return self.plan_frame() if scope == "plan" else self
 
     def lookup(self, name: str) -> Any:
         frame: Frame | None = self

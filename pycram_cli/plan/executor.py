@@ -210,7 +210,7 @@ class Exec:
         try:
             value = node.execute(self, tn)
             if node.bind:
-                self.frame.bind(node.bind, value)
+                self.frame.binder(node.scope).bind(node.bind, value)
                 tn.info["bound"] = {node.bind: jsonable(value)}
             tn.status = "succeeded"
             if node.LEAF:
@@ -315,7 +315,7 @@ class Exec:
                 return False
             self.run.thread_started(children[i].path)
             waiting.pop(0)
-            branch = self.derive(token=tokens[i], key=keys[i])
+            branch = self.derive(frame=Frame(parent=self.frame, branch=True), token=tokens[i], key=keys[i])  # own bindings
             thread = threading.Thread(target=branch._branch, args=(i, nodes[i], children[i], outcome, ended),
                                       name=f"pycram {children[i].path}", daemon=True)
             try:

@@ -417,7 +417,8 @@ class LogStep(Node):
 @node_type("set")
 class SetStep(Node):
     LEAF = True
-    DOC = "bind variables to values"
+    KEYS = ("scope",)
+    DOC = "bind variables to values (`scope: plan` binds them beyond the branch of a concurrent step)"
 
     def __init__(self, head: str, where: Location, values: LMap) -> None:
         super().__init__(head, where)
@@ -442,8 +443,9 @@ class SetStep(Node):
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         values = {name: ex.evaluate(value) for name, value in self.values.items()}
+        frame = ex.frame.binder(self.scope)
         for name, value in values.items():
-            ex.frame.bind(name, value)
+            frame.bind(name, value)
         tn.info["bound"] = jsonable(values)
         return None
 

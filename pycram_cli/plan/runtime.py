@@ -87,7 +87,8 @@ class Runtime(Protocol):
 
     @property
     def frame(self) -> Frame:
-        """The variables of the current plan invocation (`as`, `set` and `for_each` bind here)."""
+        """The variables of the current plan invocation, or of the branch of a concurrent step this thread runs
+        (`as`, `set` and `for_each` bind here; `frame.binder("plan")` is the invocation's own)."""
         ...
 
     @property

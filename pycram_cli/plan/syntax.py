@@ -43,7 +43,9 @@ PLAN_KEYS = ("description", "world", "params", "plans", "body")
 PLAN_REQUIRED = ("body",)
 SUBPLAN_KEYS = ("description", "params", "body", "returns")
 SUBPLAN_REQUIRED = ("body",)
-COMMON_KEYS = ("as",)
+COMMON_KEYS = ("as", "scope")
+#: where a step's binding goes: its branch's frame (the default) or the plan invocation's (`scope: plan`)
+SCOPES = ("branch", "plan")
 
 
 class Node:
@@ -61,6 +63,7 @@ class Node:
         self.where = where
         self.bind: str | None = None
         self.bind_where: Location = where
+        self.scope: str | None = None  # `scope: plan` binds in the plan invocation's frame, not the branch's
 
     # -- parsing ----------------------------------------------------------------
     @classmethod
@@ -69,7 +72,7 @@ class Node:
 
     @classmethod
     def allowed_keys(cls, head: str) -> tuple[str, ...]:
-        return cls.KEYS + (("as",) if cls.BINDS else ())
+        return cls.KEYS + (("as", "scope") if cls.BINDS else ())
 
     # -- structure ----------------------------------------------------------------
     def label(self) -> str:
@@ -89,6 +92,10 @@ class Node:
     def bindings(self) -> list[tuple[str, Location]]:
         """The variables this node itself binds, with their places (`as:`; subclasses add theirs)."""
         return [(self.bind, self.bind_where)] if self.bind else []
+
+    def plan_bindings(self) -> list[tuple[str, Location]]:
+        """The variables this node binds with `scope: plan` (seen after the branch it runs in)."""
+        return self.bindings() if self.scope == "plan" else []
 
     def resources(self, analysis: "ResourceAnalysis") -> frozenset[str]:
         """The robot's resources this node itself uses, not counting its child steps (see resources.py)."""
@@ -292,7 +299,21 @@ class Parser:
         if "as" in value and cls.BINDS:
             node.bind = self.identifier(value["as"], value.loc("as", True), "as")
             node.bind_where = value.loc("as", True)
+        if "scope" in value and "scope" in allowed:
+            node.scope = self.scope(value, head)
         return node
+
+    def scope(self, step: LMap, head: str) -> str | None:
+        """`scope: plan | branch` of a binding step (it needs something to bind: `as`, or `set`'s names)."""
+        value = step["scope"]
+        if value not in SCOPES:
+            self.error(f"expected scope: plan or scope: branch, got {describe(value)}", step.loc("scope", True),
+                       key="scope", suggestion=did_you_mean(str(value), SCOPES))
+            return None
+        if "as" not in step and head != "set":
+            self.error(f"'scope' says where '{head}' binds its value: it needs 'as'", step.loc("scope"), key="scope")
+            return None
+        return str(value)
 
     def _unknown_head(self, value: LMap) -> None:
         heads = all_heads()

@@ -8,7 +8,8 @@ object names that are not in it.
 
 Scopes are function scopes: the plan's parameters are visible everywhere; a subplan's
 parameters and everything bound in its body (`as`, `set`, `for_each`, `$failure` in
-`catch`) are visible in the steps after the binding, in declaration order.
+`catch`) are visible in the steps after the binding, in declaration order. What a branch of
+par, pursue or try_all binds is visible in that branch only, unless bound with `scope: plan`.
 """
 from __future__ import annotations
 
@@ -93,6 +94,7 @@ class Validator:
         self.later: dict[str, Location] = {}
         self.bound_count: dict[str, int] = {}
         self.known: dict[str, list[Any]] = {}  # locals whose possible values are known (for_each over a literal list)
+        self.in_branch: dict[str, Location] = {}  # bound only inside a branch of a concurrent step
 
     def error(self, message: str, where: Location, key: str | None = None, suggestion: str | None = None) -> None:
         self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
@@ -120,6 +122,7 @@ class Validator:
         self.later = {}
         self.bound_count = {name: 1 for name in params}
         self.known = {}
+        self.in_branch = {}
         for node in steps:
             for step in node.walk():
                 for name, where in step.bindings():
@@ -167,6 +170,24 @@ class Validator:
             found.append(base)
         return found
 
+    def check_branches(self, branches: list[Node]) -> None:
+        """The branches of a concurrent step: each sees what is bound before the step, and what it binds stays
+        in it (CPL), except the bindings with `scope: plan`, which are seen after the step."""
+        before = dict(self.defined)
+        exported: dict[str, Location] = {}
+        for branch in branches:
+            self.defined = dict(before)
+            self.check_steps([branch])
+            for step in branch.walk():
+                for name, where in step.bindings():
+                    if name not in before:
+                        self.in_branch.setdefault(name, where)
+                for name, where in step.plan_bindings():
+                    exported.setdefault(name, where)
+        self.defined = before
+        for name, where in exported.items():
+            self.define(name, where)
+
     # -- references ---------------------------------------------------------------------------
     def refs(self, value: Any, where: Location, key: str | None = None) -> None:
         """Every `$name` inside `value` must be bound by now (located at the innermost value)."""
@@ -181,7 +202,12 @@ class Validator:
         for ref in references(value):
             if ref.name in self.defined or ref.name in self.globals or ref.name in self.plan.lost_names:
                 continue
-            if ref.name in self.later:
+            if ref.name in self.in_branch:
+                bound = self.in_branch[ref.name]
+                self.error(f"variable ${ref.name} is bound inside a branch of a concurrent step (at line {bound.line}), "
+                           "and a branch's bindings stay in that branch", where, key=key,
+                           suggestion="add 'scope: plan' beside its 'as' to use it after the step")
+            elif ref.name in self.later:
                 bound = self.later[ref.name]
                 self.error(f"variable ${ref.name} is used before it is bound (at line {bound.line})", where, key=key)
             else:

@@ -1,16 +1,31 @@
-"""Accessing: grasp a drawer handle and pull the drawer open, the gripper following the handle."""
+"""Accessing: grasp a drawer handle and pull the drawer open, the gripper following the handle.
+
+The handle is grasped like an object (`grasping.py`), from its link's box: the tool approaches
+the way the description's first grasp points (the one `accessing` pulls handles with), the
+fingers close across the handle's thin side (a bar along y is taken across its height). The
+tool comes in from `APPROACH` back until it touches, the fingers close until they touch the
+handle, and the drawer is pulled in steps, the arm following the handle; every arm motion is
+collision-checked (`motion.py`). What rests in the drawer rides along.
+"""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
-from ..failures import ManipulationFailure, ReachabilityFailure
+import numpy as np
+
+from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..world import Object
-from .arms import move_tool, set_gripper
+from ..world.pose import Quat, Vec3, compose, invert
+from . import motion
+from .arms import back_off, close_on, move_from_above, set_gripper, solve_tool
 from .base import ProcessModule, Robot
-from .manipulation import grasp_orientation
+from .grasping import Grasp, grasps_of_box, holdable
 from .registry import process_module
 
+#: how many steps the drawer is pulled in (the arm's path between two is checked)
 STEPS = 6
+#: the pre-grasp pose is this far back along the approach (m)
+APPROACH = 0.10
 
 
 def contents_of(part: Object, link: int) -> list[Object]:
@@ -26,6 +41,46 @@ def contents_of(part: Object, link: int) -> list[Object]:
     return inside
 
 
+def handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> Grasp | None:
+    """How the arm holds a handle (a link of `part`) with the description's first grasp, or None if it cannot."""
+    pull = next(iter(robot.description.grasps), None)
+    if pull is None:
+        return None
+    lo, hi = (np.asarray(v, dtype=float) for v in part.get_link_local_aabb(handle))
+    pose = part.get_link_position_and_orientation(handle)
+    return next((g for g in grasps_of_box(robot, arm, pose, lo, hi, pull) if holdable(robot, arm, g) is None), None)
+
+
+def handle_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, Quat] | None:
+    grasp = handle_grasp(robot, arm, part, handle)
+    return None if grasp is None else (grasp.position, grasp.orientation)
+
+
+def _below(part: Object, link: int, joint_index: int) -> bool:
+    """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
+    while link != -1:
+        if link == joint_index:
+            return True
+        link = part.joints[link].parent_index
+    return False
+
+
+def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:
+    p = np.asarray(position, dtype=float) + direction * distance
+    return (float(p[0]), float(p[1]), float(p[2]))
+
+
+def drawer_pushes_into(robot: Robot, part: Object, moving: list[tuple[Object, int]], hand: list[int]) -> None:
+    """The drawer's moving links may touch the hand that pulls them, nothing else of the robot: ManipulationFailure
+    naming the link the drawer would be inside (a robot standing too close opens the drawer into its own arm)."""
+    links = {link for _, link in moving}
+    for point in robot.world.closest_points(robot.body, part, 0.0):
+        if point.link_b in links and point.link_a not in hand and point.distance < -motion.PENETRATION:
+            raise ManipulationFailure(f"{part.get_link_name(point.link_b)} would be {-point.distance * 1000:.0f} mm "
+                                      f"inside {robot.body.get_link_name(point.link_a)}",
+                                      colliding=[part.name], link=part.get_link_name(point.link_b))
+
+
 @process_module("accessing")
 class Accessing(ProcessModule):
 
@@ -36,24 +91,45 @@ class Accessing(ProcessModule):
         arm = slots["arm"]
         start = part.get_joint_position(joint.name)
         goal = min(joint.upper, joint.lower + float(slots["distance"])) if joint.limited else start + float(slots["distance"])
-        orientation = grasp_orientation(robot, next(iter(robot.description.grasps)))  # the first grasp pulls handles
+        grasp = handle_grasp(robot, arm, part, handle)
+        if grasp is None:
+            raise GripperFailure(f"the {arm} gripper cannot hold the handle {handle}", arm=arm)
+        what = f"the handle {handle}"
         set_gripper(robot, arm, "open")
-        move_tool(robot, arm, part.get_link_position(handle), orientation, f"the handle {handle}")
-        set_gripper(robot, arm, "closed")
+        pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
+                         f"the pre-grasp pose for {what}", near=True)
+        at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
+        move_from_above(robot, arm, pre, f"the {arm} arm's motion to {what}")
+        motion.advance(robot, at.joint_positions)
+        close_on(robot, arm)
+        tool_frame = robot.description.arm(arm).tool_frame
+        # where the tool holds the handle, in the handle's frame: it follows the handle as the drawer moves
+        held_at = compose(invert(part.get_link_position_and_orientation(handle)),
+                          robot.body.get_link_position_and_orientation(tool_frame))
         riders = contents_of(part, joint.index)
+        hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links  # what holds the handle
+        # the hand holds the handle and moves with the drawer: the drawer's moving links are not in its way
+        moving = [(part, link) for link in range(len(part.joints)) if _below(part, link, joint.index)]
         for obj in riders:
             part.attach(obj, parent_link=part.get_link_name(joint.index))
         try:
             for k in range(1, STEPS + 1):
                 value = start + (goal - start) * k / STEPS
+                previous = part.get_joint_position(joint.name)
                 part.set_joint_position(joint.name, value)
+                tool = compose(part.get_link_position_and_orientation(handle), held_at)
                 try:
-                    move_tool(robot, arm, part.get_link_position(handle), orientation, f"the handle {handle}")
-                except ReachabilityFailure as exc:
+                    solution = solve_tool(robot, arm, tool[0], tool[1], what)
+                    motion.move(robot, solution.joint_positions, f"the {arm} arm pulling {what}", ignore_links=moving)
+                    drawer_pushes_into(robot, part, moving, hand)
+                except (ReachabilityFailure, ManipulationFailure) as exc:
+                    part.set_joint_position(joint.name, previous)
                     raise ManipulationFailure(
-                        f"the {arm} arm cannot follow {handle} beyond {value - start:.2f} m "
+                        f"the {arm} arm cannot follow {handle} beyond {previous - start:.2f} m "
                         f"(asked to open {joint.name} to {goal:.2f} m): {exc}", arm=arm, joint=joint.name) from None
         finally:
             for obj in riders:
                 part.detach(obj)
             set_gripper(robot, arm, "open")
+        back_off(robot, arm, what)
+

@@ -1,38 +1,263 @@
-"""Arm motion: inverse kinematics for the tool frame, joint poses, grippers."""
+"""Arm motion: inverse kinematics for the tool frame, joint poses, grippers; every motion collision-checked
+along its path (`motion.py`)."""
 from __future__ import annotations
 
 import math
 from typing import Any, Mapping, Sequence
 
+import numpy as np
+
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..reasoning.ik import IKSolution, solve
 from ..world import JointLimitError
+from ..world.pose import quat_to_matrix
+from . import motion
 from .base import ProcessModule, Robot
+from .grasping import tool_axes
 from .registry import process_module
+
+
+#: how close the arm must bring its tool to a pose it moves to: 1 cm, and 2° of the orientation (grasps are aligned
+#: with objects' sides: a looser angle would hold a square carton askew)
+REACH = 0.01
+REACH_ANGLE = math.radians(2.0)
+
 
 def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
     tool = robot.description.arm(arm).tool_frame
-    return solve(robot.body, tool, position, orientation)
+    return solve(robot.body, tool, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE)
 
 
-def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
-              what: str) -> IKSolution:
-    """Bring the arm's tool frame to a pose, or raise ReachabilityFailure saying how far off it stays."""
+#: an IK solution that turns some joint of the arm farther than this from where it is (rad) is compared with one
+#: solved from the middle of the arm's joint ranges, and the one nearer the arm's current configuration is taken
+FAR = 1.5
+
+
+def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
+    """`reach`, preferring a solution near the arm's current configuration: inverse kinematics starts from where the arm
+    is, but may settle on a twisted solution far from it (an arm that would then have to sweep through everything in
+    front of the robot to get there); then it is also solved from the middle of the joints' ranges (an arm held out in
+    front, elbow out), and the solution that moves the arm least is taken."""
     solution = reach(robot, arm, position, orientation)
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    current = body.get_joint_positions(names)
+
+    def spread(s: IKSolution) -> float:
+        return max((abs(s.joint_positions[n] - current[n]) for n in names if n in s.joint_positions), default=0.0)
+
+    if solution.success and spread(solution) <= FAR:
+        return solution
+    other = _from_middle(robot, arm, position, orientation)
+    if other.success and (not solution.success or sum(abs(other.joint_positions[n] - current[n]) for n in names)
+                          < sum(abs(solution.joint_positions[n] - current[n]) for n in names)):
+        return other
+    return solution
+
+
+def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
+    """`reach` solved from the middle of the arm's joint ranges (an arm held out in front, elbow out)."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    current = body.get_joint_positions(names)
+    middle = {}
+    for name in names:
+        joint = body.joint(name)
+        middle[name] = (joint.lower + joint.upper) / 2.0 if joint.limited else current[name]
+    return reach_from(robot, arm, middle, position, orientation)
+
+
+def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
+               orientation: Sequence[float] | None) -> IKSolution:
+    """`reach`, starting from the arm configuration `joints` (the pose before a short straight move: the solution is
+    then on the same branch, and the joint-space path between the two stays close to the straight line)."""
+    body = robot.body
+    with body.joints_kept(joints):
+        body.reset_joints(joints)
+        return reach(robot, arm, position, orientation)
+
+
+def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
+               what: str, near: bool = False, start: Mapping[str, float] | None = None) -> IKSolution:
+    """Joint values that bring the arm's tool frame to a pose, or raise ReachabilityFailure saying how far off it stays.
+    `near`: prefer a solution near the arm's configuration (`reach_near`); `start`: solved from that configuration
+    (`reach_from`, for a short straight move from it)."""
+    if start is not None:
+        solution = reach_from(robot, arm, start, position, orientation)
+    elif near:
+        solution = reach_near(robot, arm, position, orientation)
+    else:
+        solution = reach(robot, arm, position, orientation)
     if not solution.success:
         angle = "" if solution.orientation_error is None else f", {math.degrees(solution.orientation_error):.0f}° off in orientation"
         raise ReachabilityFailure(
             f"{arm} arm cannot reach {what}: the tool frame stays {solution.position_error * 100:.1f} cm away{angle}",
             arm=arm, position_error=solution.position_error)
-    robot.body.set_joint_positions(solution.joint_positions)
     return solution
 
 
+def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
+              what: str) -> IKSolution:
+    """Bring the arm's tool frame to a pose along a collision-free path (straight in joint space, else around what is
+    in the way: `move_over`): ReachabilityFailure when no arm configuration gets there, ManipulationFailure naming
+    what the arm (or what it holds) would hit on the straight way when no way is free."""
+    solution = solve_tool(robot, arm, position, orientation, what)
+    if motion.hits_at(robot, solution.joint_positions):  # a configuration there inside nothing, if there is one
+        other = _from_middle(robot, arm, position, orientation)
+        if other.success and not motion.hits_at(robot, other.joint_positions):
+            solution = other
+    move_over(robot, arm, solution.joint_positions, f"the {arm} arm's motion to {what}")
+    return solution
+
+
+#: when the straight path (in joint space) is blocked, the arm tries to go around what is in the way: up from where
+#: it is (these heights, m), back towards the robot's base (BACK, m) and up, and down onto its goal from above it
+VIA_HEIGHTS = (0.1, 0.2, 0.3)
+BACK = 0.15
+
+
+def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: float,
+             back: float = 0.0) -> dict[str, float] | None:
+    """Joint values that put the arm's tool `up` higher and `back` nearer the robot's base (horizontally) than `joints`
+    put it, same orientation (None: out of reach); solved from `joints`, so that they are close to them."""
+    if joints is None:
+        return None
+    body = robot.body
+    with body.joints_kept(joints):
+        body.reset_joints(joints)
+        position, orientation = body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
+        toward = np.subtract(body.get_position(), position)[:2]
+        toward = toward / (np.linalg.norm(toward) or 1.0) * back
+        target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
+        solution = reach(robot, arm, target, orientation)
+        if not solution.success:  # inverse kinematics may stall from a folded arm: from the middle of its ranges
+            solution = _from_middle(robot, arm, target, orientation)
+    return solution.joint_positions if solution.success else None
+
+
+def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True) -> None:
+    """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
+    what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
+    or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
+    arm's named poses (the description's park, carry, ...), and, for a goal that is
+    a tool pose, down onto the goal from above it; last, a search through the arm's joint space
+    (`motion.search_path`). Each leg is checked. Raises the straight path's ManipulationFailure when no way is
+    free; then nothing has moved."""
+    try:
+        motion.move(robot, goal, what)
+        return
+    except ManipulationFailure as exc:
+        first = exc
+    body = robot.body
+    start = body.get_joint_positions(list(goal))
+    departures: list[list[dict[str, float] | None]] = [[]]
+    for h in VIA_HEIGHTS:
+        departures.append([_shifted(robot, arm, start, h)])
+    back = _shifted(robot, arm, start, 0.0, BACK)
+    departures.append([back])
+    for h in VIA_HEIGHTS:
+        departures.append([back, _shifted(robot, arm, back, h)])
+    for h in VIA_HEIGHTS:  # up and back at once (where the arm cannot draw back at its height)
+        departures.append([_shifted(robot, arm, start, h, BACK)])
+    # or joint by joint: the arm's outer half first (folding it in, out of the way), or its inner half first
+    names = [n for n in robot.description.arm(arm).joints if n in goal]
+    half = len(names) // 2
+    outer_first = {n: (goal[n] if i >= half else start[n]) for i, n in enumerate(names)}
+    inner_first = {n: (goal[n] if i < half else start[n]) for i, n in enumerate(names)}
+    departures += [[outer_first], [_shifted(robot, arm, start, VIA_HEIGHTS[0]), outer_first], [inner_first]]
+    # or through one of the arm's named poses (its description's park, carry, ...): folded in, away from things
+    for pose in robot.description.arm(arm).poses:
+        via = arm_configuration(robot, arm, pose)
+        if any(abs(via[n] - goal[n]) > 1e-9 for n in via if n in goal):
+            departures.append([via])
+    arrivals: list[list[dict[str, float] | None]] = [[]]
+    if down_onto_goal:
+        arrivals += [[_shifted(robot, arm, goal, h)] for h in VIA_HEIGHTS]
+    for arrival in arrivals:
+        for departure in departures:
+            way = departure + arrival
+            if not way or any(leg is None for leg in way):
+                continue
+            try:
+                for leg in way:
+                    motion.move(robot, leg, what)  # type: ignore[arg-type]
+                motion.move(robot, goal, what)
+                return
+            except ManipulationFailure:
+                body.reset_joints(start)  # back where it was, along legs that were free
+                body.move_attached()
+    way = motion.search_path(robot, goal)  # last: a search through the arm's joint space
+    if way:
+        try:
+            for leg in way:
+                motion.move(robot, leg, what)
+            return
+        except ManipulationFailure:
+            body.reset_joints(start)
+            body.move_attached()
+    raise first
+
+
+#: after letting go, the tool backs off along its approach this far, or, when the arm cannot, the shorter of these (m)
+BACK_OFF = (0.08, 0.05, 0.03)
+
+
+def back_off(robot: Robot, arm: str, what: str) -> float:
+    """Back the (open) tool straight out along its approach after letting go of something: `BACK_OFF[0]`, or the
+    longest of the shorter distances the arm reaches and the way to which is free. The distance backed off (0 when
+    none: the hand stays where it let go, and the next motion starts from there)."""
+    tool_frame = robot.description.arm(arm).tool_frame
+    position, orientation = robot.body.get_link_position_and_orientation(tool_frame)
+    approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
+    for distance in BACK_OFF:
+        target = tuple(float(v) for v in np.asarray(position) - approach * distance)
+        solution = reach(robot, arm, target, orientation)
+        if not solution.success:
+            continue
+        try:
+            motion.move(robot, solution.joint_positions, f"the {arm} arm's retreat from {what}")
+        except ManipulationFailure:
+            continue
+        return distance
+    return 0.0
+
+
+#: the named poses an arm rests in (when its description has them): holding something, and empty
+PARK, CARRY = "park", "carry"
+
+
+def rest_pose(robot: Robot, arm: str, holding: bool | None = None) -> str | None:
+    """The pose an arm rests in: `carry` when it holds something (or will: `holding`) and has one, else `park` (None:
+    it has neither)."""
+    poses = robot.description.arm(arm).poses
+    full = bool(robot.held_objects(arm)) if holding is None else holding
+    if full and CARRY in poses:
+        return CARRY
+    return PARK if PARK in poses else None
+
+
+def move_from_above(robot: Robot, arm: str, solution: IKSolution, what: str) -> None:
+    """`move_over` to an IK solution."""
+    move_over(robot, arm, solution.joint_positions, what)
+
+
 def set_gripper(robot: Robot, arm: str, opening: str) -> None:
+    """Open the gripper fully (the fingers' path checked), or close it until the fingers touch something."""
     gripper = robot.description.arm(arm).gripper
-    value = gripper.open if opening == "open" else gripper.closed
-    robot.body.set_joint_positions({joint: value for joint in gripper.joints})
+    if not gripper.joints:
+        return
+    if opening == "open":
+        motion.move(robot, {joint: gripper.open for joint in gripper.joints}, f"opening the {arm} gripper")
+    else:
+        close_on(robot, arm)
+
+
+def close_on(robot: Robot, arm: str) -> float:
+    """Close the arm's gripper until its fingers touch something (never inside it); the joint value reached."""
+    gripper = robot.description.arm(arm).gripper
+    motion.advance(robot, {joint: gripper.closed for joint in gripper.joints})
+    return robot.body.get_joint_position(gripper.joints[0])
 
 
 def arm_configuration(robot: Robot, arm: str, config: Any) -> dict[str, float]:
@@ -75,10 +300,22 @@ class MoveArmJoints(ProcessModule):
                 raise ManipulationFailure(f"robot '{robot.description.name}' has no arm '{arm}' "
                                           f"(arms: {', '.join(robot.description.arms)})")
             values.update(arm_configuration(robot, arm, config))
+        for name, value in values.items():  # limits first: a pose out of range is said as such, not as a collision
+            joint = robot.body.joint(name)
+            if joint.limited and not (joint.lower - 1e-9 <= value <= joint.upper + 1e-9):
+                raise ManipulationFailure(f"joint '{name}' of '{robot.body.name}': {value:g} is outside its limits "
+                                          f"[{joint.lower:g}, {joint.upper:g}]")
+        arms = list(arm_configs(slots))
+        what = f"moving the {', '.join(arms)} arm{'s' if len(arms) > 1 else ''}"
         try:
-            robot.body.set_joint_positions(values)
+            motion.move(robot, values, what)
         except JointLimitError as exc:
             raise ManipulationFailure(str(exc)) from None
+        except ManipulationFailure:
+            # one arm after the other, each up and over what is in its way if need be
+            for arm in arms:
+                goal = {name: values[name] for name in robot.description.arm(arm).joints if name in values}
+                move_over(robot, arm, goal, what, down_onto_goal=False)
 
 
 @process_module("tcp")

@@ -1,70 +1,247 @@
-"""Pick-up and place: grasp with inverse kinematics, attach to the tool frame, put down, let go."""
+"""Pick-up and place, with physics where it matters and every arm motion collision-checked (`motion.py`).
+
+Pick-up: the grasp comes from the object's own frame (`grasping.py`); the gripper opens, the tool
+goes to a pre-grasp pose `APPROACH` back along its approach, moves in until the fingers or the palm
+touch something (never inside it: the object, the drawer's bottom), the fingers close until they
+touch the object, the object is attached to the tool frame and lifted `LIFT` straight up.
+
+Place: the object is stood upright (as held, turned about the vertical if the arm needs it) on the
+surface under the target — its lowest point on the highest surface found below it, whatever its
+mesh's origin — lowered onto it from `LIFT` above, let go; the tool backs off along its
+approach, and physics settles the object (at most `SETTLE` seconds, less once it has come to
+rest), so that what `stable` checks afterwards is the pose it really rests in.
+"""
 from __future__ import annotations
 
+import contextlib
 import math
-from typing import Any, Mapping, Sequence
+from dataclasses import replace
+from typing import Any, Iterator, Mapping, Sequence
+
+import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..reasoning.ik import IKSolution
 from ..world import Object
-from ..robots.objects import grasp_points, special_grasps
-from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
-from .arms import move_tool, reach, set_gripper
+from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
+from . import motion
+from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, set_gripper
 from .base import ProcessModule, Robot
+from .grasping import Grasp, holdable_grasps, wanted_orientation
 from .registry import process_module
 
+#: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
+APPROACH = 0.10
+#: a picked-up object is lifted this far off its support first, then pulled back RETREAT towards the robot, then
+#: lifted to LIFT, clear of what stands around it (m)
+CLEAR = 0.02
+LIFT = 0.10
+#: a placed object is lowered from this far above its place (or from half that, when the arm cannot reach so high) (m)
+LOWER = 0.05
+#: after placing, the tool backs off this far along its approach (m)
+RETREAT = 0.08
+#: the longest a placed object is left to settle (s); it is checked every SETTLE_WINDOW
+SETTLE = 1.0
+SETTLE_WINDOW = 0.05
+CALM = 2
+#: a placed object moving less than this per window has settled (m, rad)
+SETTLED = (1e-4, math.radians(0.05))
+#: when closing fingers stop on something else, the tool backs off this far (m), at most GRIP_TRIES - 1 times
+GRIP_BACKOFF = 0.005
+GRIP_TRIES = 7
+#: a place target's z names the surface at that height: the highest one from SURFACE above it to SURFACE_BELOW below
+#: it (the design's targets give the height of the object's origin, up to half a tall object above its surface) (m)
+SURFACE = 0.05
+SURFACE_BELOW = 0.15
+#: a placed object is lowered to this gap above its support before it is let go (m)
+DROP = 0.0005
+#: a grasp whose open gripper would be inside something is tried this much (m) short of that, see `_short_of`
+SHORT_MARGIN = 0.002
+#: a placed object keeps its heading, or is turned about the vertical by these (rad, in this order) if the arm needs it
+PLACE_TURNS = (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4)
 
-def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> tuple[float, float, float, float]:
-    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())  # type: ignore[arg-type]
+
+def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
+    """The tool orientation a grasp names relative to the robot base (for move-tcp's orientation slot)."""
+    return wanted_orientation(robot, grasp)
 
 
-def _generic_point(obj: Object, grasp: str | Sequence[float]) -> tuple[float, float, float]:
-    """The middle of the object's box, or just below its top for a top grasp."""
-    lo, hi = obj.get_aabb()
-    centre = [(a + b) / 2 for a, b in zip(lo, hi)]
-    if grasp == "top":
-        centre[2] = hi[2] - min(0.03, (hi[2] - lo[2]) / 2)
-    return (centre[0], centre[1], centre[2])
+def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:
+    p = np.asarray(position, dtype=float) + direction * distance
+    return (float(p[0]), float(p[1]), float(p[2]))
 
 
-def grip_width(robot: Robot, obj: Object, grasp: str | Sequence[float]) -> float:
-    """How wide `obj` is between the fingers for a grasp: its box measured along the tool frame's y axis."""
-    closing = quat_to_matrix(grasp_orientation(robot, grasp))[:, 1]
-    lo, hi = obj.get_aabb()
-    return float(sum(abs(closing[k]) * (hi[k] - lo[k]) for k in range(3)))
-
-
-def grasp_candidates(robot: Robot, obj: Object, grasp: str | Sequence[float]) -> list[tuple[tuple[float, float, float], float]]:
-    """(tool position, width between the fingers) for each way to hold `obj` with `grasp`, nearest first."""
-    if special_grasps(obj.type):
-        points = grasp_points(obj.type, grasp) if isinstance(grasp, str) else ()
-        pose = obj.get_pose()
-        found = [(compose(pose, (point.offset, (0.0, 0.0, 0.0, 1.0)))[0], point.width) for point in points]
-        base = robot.body.get_position()
-        return sorted(found, key=lambda c: (c[0][0] - base[0]) ** 2 + (c[0][1] - base[1]) ** 2)
-    return [(_generic_point(obj, grasp), grip_width(robot, obj, grasp))]
-
-
-def grasp_target(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[tuple[float, float, float], float] | None:
-    """Where the tool frame goes to hold `obj` with `grasp` and the width held, or None if the gripper cannot.
-
-    A side grasp (the fingers closing horizontally) needs the object to be as tall as the finger pads;
-    a spoon lying flat is taken from the top.
-    """
+def plan_grasp(robot: Robot, arm: str, obj: Object,
+               grasp: str | Sequence[float]) -> tuple[Grasp, IKSolution, IKSolution]:
+    """The first way to hold `obj` with `grasp` whose pre-grasp pose and grasp pose the arm reaches, the arm with its
+    gripper open at the grasp pose inside nothing, with both IK solutions (pre-grasp, grasp); GripperFailure when the
+    gripper cannot hold it so, ReachabilityFailure when the arm reaches none, ManipulationFailure when every way
+    would be inside something."""
+    candidates, why = holdable_grasps(robot, arm, obj, grasp)
+    how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
+    if not candidates:
+        raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
+    best: tuple[float, IKSolution] | None = None
+    blocked: list[motion.Hit] = []
+    refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
     gripper = robot.description.arm(arm).gripper
-    if grasp != "top" and not special_grasps(obj.type):
-        lo, hi = obj.get_aabb()
-        if hi[2] - lo[2] < gripper.finger_height:
+    opened = {joint: gripper.open for joint in gripper.joints}
+    for candidate in candidates:
+        # the pre-grasp pose near where the arm is, the grasp from there (so that the approach is a short straight move)
+        pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -(candidate.depth + APPROACH)),
+                         candidate.orientation)
+        solution = reach_from(robot, arm, pre.joint_positions, candidate.position, candidate.orientation) \
+            if pre.success else pre
+        if solution.success:
+            if pre.success:
+                # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object
+                # itself may be touched before: the approach stops there
+                # and the gripper free to open at the pre-grasp pose (where pick-up opens it)
+                with robot.body.joints_kept([*pre.joint_positions, *opened]):
+                    robot.body.reset_joints(pre.joint_positions)
+                    try:
+                        motion.move(robot, opened, f"opening the {arm} gripper")
+                        hits = []
+                    except ManipulationFailure as failure:
+                        hits = [failure]
+                if hits:
+                    refused.append(hits[0])
+                    continue
+                hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
+                if not hits:
+                    return candidate, pre, solution
+                shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
+                if shifted is not None:
+                    return shifted
+                blocked += hits
+                continue
+            solution = pre
+        if best is None or solution.position_error < best[0]:
+            best = (solution.position_error, solution)
+    if blocked:
+        raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {blocked[0]}",
+                                  arm=arm, object=obj.name, colliding=sorted({h.obstacle.name for h in blocked}))
+    if refused:
+        raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {refused[0]}", arm=arm,
+                                  object=obj.name, colliding=sorted({n for f in refused for n in f.details.get("colliding", [])}))
+    error = best[0] if best is not None else math.inf
+    raise ReachabilityFailure(f"{arm} arm cannot reach {obj.name} with {how}: the tool frame stays "
+                              f"{error * 100:.1f} cm away", arm=arm, position_error=error, object=obj.name)
+
+
+def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolution, hits: list[motion.Hit],
+              opened: Mapping[str, float]) -> tuple[Grasp, IKSolution, IKSolution] | None:
+    """The grasp stopped short by as far as the open gripper would be inside something (the bottom of a drawer under a
+    flat spoon: the approach stops there anyway), if the gripper there is inside nothing and its closing fingers still
+    meet the object; else None."""
+    back = max(h.depth for h in hits) + SHORT_MARGIN
+    position = _offset(candidate.position, candidate.approach, -back)
+    solution = reach_from(robot, arm, pre.joint_positions, position, candidate.orientation)
+    if not solution.success or motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj]):
+        return None
+    gripper = robot.description.arm(arm).gripper
+    with robot.body.joints_kept([*solution.joint_positions, *gripper.joints]):  # as pick-up will: in from the
+        robot.body.reset_joints({**pre.joint_positions, **opened})              # pre-grasp pose until a touch, close
+        motion.advance(robot, solution.joint_positions)
+        close_on(robot, arm)
+        if not touches(robot, arm, obj):
             return None
-    return next((c for c in grasp_candidates(robot, obj, grasp) if c[1] <= gripper.max_width), None)
+    return replace(candidate, position=position), pre, solution
 
 
-def level(orientation: Sequence[float]) -> tuple[float, float, float, float]:
-    """The object's orientation stood upright: its own z axis up, heading kept.
+def grasp_pose(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[Vec3, Quat] | None:
+    """Where the tool frame goes to hold `obj` with `grasp` (the first holdable way), or None if the gripper cannot."""
+    candidates, _ = holdable_grasps(robot, arm, obj, grasp)
+    return (candidates[0].position, candidates[0].orientation) if candidates else None
 
-    Objects rest on their bottom (their origin is the bottom centre), so a placed object
-    stands on it whatever the arm did to it on the way; its heading is that of its x axis
-    (of its y axis when x points up or down).
-    """
+
+def finger_links(robot: Robot, arm: str) -> list[int]:
+    """The links the arm's gripper joints move (the fingers)."""
+    return motion.Motion(robot, robot.description.arm(arm).gripper.joints).links
+
+
+def retreat(robot: Robot, arm: str, obj: Object) -> None:
+    """Take a picked-up object away from where it stood: off its support (CLEAR up, a must), then clear of its
+    neighbours (up to `LIFT`); when something overhangs it (a counter over an open drawer), out from under it first
+    (`RETREAT` back towards the robot) and then up."""
+    tool_frame = robot.description.arm(arm).tool_frame
+    up = np.array([0.0, 0.0, 1.0])
+    tool = robot.body.get_link_position_and_orientation(tool_frame)
+    toward = np.subtract(robot.body.get_position(), tool[0])
+    toward[2] = 0.0
+    back = toward / (np.linalg.norm(toward) or 1.0)
+
+    def leg(direction: np.ndarray, distance: float) -> bool:
+        tool = robot.body.get_link_position_and_orientation(tool_frame)
+        solution = reach(robot, arm, _offset(tool[0], direction, distance), tool[1])
+        if not solution.success:
+            raise ReachabilityFailure(f"{arm} arm cannot lift {obj.name}: the tool frame stays "
+                                      f"{solution.position_error * 100:.1f} cm away", arm=arm, object=obj.name)
+        motion.move(robot, solution.joint_positions, f"lifting {obj.name}")
+        return True
+
+    leg(up, CLEAR)
+    for way in ([(up, LIFT - CLEAR)], [(back, RETREAT), (up, LIFT - CLEAR)]):
+        try:
+            for direction, distance in way:
+                leg(direction, distance)
+            return
+        except (ManipulationFailure, ReachabilityFailure):
+            continue
+
+
+def touches(robot: Robot, arm: str, obj: Object) -> bool:
+    """Whether a finger of the arm's gripper touches `obj` (within twice the penetration tolerance)."""
+    world = robot.world
+    return any(world.distance(robot.body, obj, 2 * motion.PENETRATION, link_a=link) < math.inf
+               for link in finger_links(robot, arm))
+
+
+def grip(robot: Robot, arm: str, obj: Object, back: Mapping[str, float]) -> bool:
+    """Close the gripper until the fingers touch; when they stop on something else first (closing fingers that swing
+    forward meet the drawer's bottom under a spoon), open again, back off towards the `back` configuration in
+    GRIP_BACKOFF steps and try again. Whether the fingers hold `obj`; if not, the gripper is left open."""
+    gripper = robot.description.arm(arm).gripper
+    body = robot.body
+    if not gripper.joints:
+        return True
+    start = body.get_joint_positions(list(back))
+    length = math.dist(body.get_link_position(robot.description.arm(arm).tool_frame),
+                       _tool_at(robot, arm, back))
+    for attempt in range(GRIP_TRIES):
+        close_on(robot, arm)
+        if touches(robot, arm, obj):
+            return True
+        set_gripper(robot, arm, "open")
+        if length <= 0:
+            break
+        fraction = min(1.0, GRIP_BACKOFF * (attempt + 1) / length)
+        goal = {name: start[name] + _turn(body, name, start[name], back[name]) * fraction for name in back}
+        try:
+            motion.move(robot, goal, f"the {arm} arm backing off from {obj.name}")
+        except ManipulationFailure:
+            break
+    return False
+
+
+def _turn(body: Object, joint: str, start: float, end: float) -> float:
+    """How far a joint moves from `start` to `end`: a continuous joint the short way round (after a path of several
+    legs it may stand a whole turn from where the goal's numbers say)."""
+    if body.joint(joint).type == "continuous":
+        return math.remainder(end - start, 2 * math.pi)
+    return end - start
+
+
+def _tool_at(robot: Robot, arm: str, joints: Mapping[str, float]) -> Vec3:
+    tool = robot.description.arm(arm).tool_frame
+    with robot.body.joints_kept(joints):
+        robot.body.reset_joints(joints)
+        return robot.body.get_link_position(tool)
+
+
+def level(orientation: Sequence[float]) -> Quat:
+    """The object's orientation stood upright: its own z axis up, heading kept (that of its x axis, or of its
+    y axis when x points up or down)."""
     rotation = quat_to_matrix(orientation)
     axis = rotation[:, 0] if math.hypot(rotation[0, 0], rotation[1, 0]) > 0.2 else rotation[:, 1]
     heading = math.atan2(axis[1], axis[0]) - (0.0 if axis is rotation[:, 0] else math.pi / 2)
@@ -83,26 +260,141 @@ class PickUp(ProcessModule):
         held = robot.held_objects(arm)
         if held:
             raise GripperFailure(f"the {arm} gripper already holds {held[0].name}", arm=arm)
-        gripper = robot.description.arm(arm).gripper
         how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
-        target = grasp_target(robot, arm, obj, grasp)
-        if target is None:
-            widths = [w for _, w in grasp_candidates(robot, obj, grasp)]
-            lo, hi = obj.get_aabb()
-            if widths and min(widths) <= gripper.max_width:
-                why = f"it is {(hi[2] - lo[2]) * 100:.1f} cm tall, lower than the fingers ({gripper.finger_height * 100:.0f} cm)"
-            elif widths:
-                why = (f"it is {min(widths) * 100:.1f} cm wide between the fingers; the gripper opens "
-                       f"{gripper.max_width * 100:.1f} cm")
-            else:
-                why = f"{obj.type} objects are not held that way"
-            raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
-        position, width = target
-        set_gripper(robot, arm, "open")
-        move_tool(robot, arm, position, grasp_orientation(robot, grasp), f"{obj.name} with {how}")
-        # close until the fingers touch the object
-        robot.body.set_joint_positions({joint: gripper.angle_for_width(width) for joint in gripper.joints})
+        candidate, pre, solution = plan_grasp(robot, arm, obj, grasp)
+        move_from_above(robot, arm, pre, f"the {arm} arm's motion to the pre-grasp pose for {obj.name}")
+        set_gripper(robot, arm, "open")  # there, clear of what stands around the object
+        # in until the fingers or the palm touch something, never into it
+        motion.advance(robot, solution.joint_positions)
+        if not grip(robot, arm, obj, pre.joint_positions):
+            raise GripperFailure(f"the {arm} gripper closed on nothing: {obj.name} did not come between its fingers "
+                                 f"with {how}", arm=arm, object=obj.name)
         robot.body.attach(obj, parent_link=robot.description.arm(arm).tool_frame)
+        try:
+            retreat(robot, arm, obj)
+        except (ManipulationFailure, ReachabilityFailure):
+            robot.body.detach(obj)
+            raise
+
+
+def support_height(robot: Robot, obj: Object, orientation: Quat, xy: Sequence[float], top: float,
+                   depth: float = 3.0) -> tuple[float, Object | None]:
+    """The height of the highest surface under the object's footprint (stood at `xy` with `orientation`) between `top`
+    and `depth` below it: rays straight down from the footprint's middle and corners, through the robot and what it
+    holds."""
+    lo, hi = (np.asarray(v) for v in obj.get_local_aabb())
+    rotation = quat_to_matrix(orientation)
+    footprint = [(0.0, 0.0)] + [(sx * 0.8, sy * 0.8) for sx in (-1, 1) for sy in (-1, 1)]
+    centre, half = (lo + hi) / 2.0, (hi - lo) / 2.0
+    starts, ends = [], []
+    for fx, fy in footprint:
+        local = centre + np.array([fx * half[0], fy * half[1], 0.0])
+        p = rotation @ local
+        starts.append((xy[0] + p[0], xy[1] + p[1], top))
+        ends.append((xy[0] + p[0], xy[1] + p[1], top - depth))
+    ignore = [robot.body, *motion.followers(robot.body)]
+    hits = [h for h in robot.world.cast_rays(starts, ends, ignore) if h is not None]
+    if not hits:
+        return -math.inf, None
+    best = max(hits, key=lambda h: h.position[2])
+    return best.position[2], best.object
+
+
+def rest_pose(robot: Robot, obj: Object, orientation: Quat, target: Sequence[float], arm: str) -> tuple[Vec3, Object]:
+    """Where `obj` rests, stood with `orientation` at the target's x, y on the surface under it: its lowest point on the
+    support, DROP above (measured with closest points, so whatever the mesh's origin and the shapes' margins)."""
+    lo, _ = obj.get_local_aabb()
+    if len(target) > 2:  # the surface at the target's height: from SURFACE above it to SURFACE_BELOW below it
+        height, support = support_height(robot, obj, orientation, target, float(target[2]) + SURFACE,
+                                         SURFACE + SURFACE_BELOW)
+    else:  # the highest surface under it that the arm can come down on: below the arm's first joint
+        top = robot.body.get_link_position(robot.body.joint(robot.description.arm(arm).joints[0]).index)[2]
+        height, support = support_height(robot, obj, orientation, target, top)
+    if support is None:
+        where = ", ".join(f"{v:.3f}" for v in target)
+        raise ManipulationFailure(f"there is nothing to place {obj.name} on at ({where})"
+                                  + (f" (no surface from {SURFACE * 100:.0f} cm above to {SURFACE_BELOW * 100:.0f} cm "
+                                     "below that height)" if len(target) > 2 else ""), object=obj.name)
+    # stood upright (a turn about z), its lowest point is its box's bottom: 2 mm above the surface the rays met,
+    # then lowered by the gap closest points measure (shapes, margins and all)
+    position = (float(target[0]), float(target[1]), height - lo[2] + 0.002)
+    with _trial_pose(obj):
+        obj.set_position_and_orientation(position, orientation)
+        gap = robot.world.distance(obj, support, 0.02)
+    if math.isfinite(gap):
+        position = (position[0], position[1], position[2] - gap + DROP)
+    return position, support
+
+
+@contextlib.contextmanager
+def _trial_pose(obj: Object) -> Iterator[None]:
+    """`with _trial_pose(obj):` move a (held) object to try a pose; afterwards it is back, held as it was."""
+    pose = obj.get_pose()
+    attachments = dict(obj.attachments)
+    try:
+        yield
+    finally:
+        obj.set_position_and_orientation(*pose)
+        for other, att in attachments.items():  # the offsets to what holds it, exactly as they were
+            obj.attachments[other] = att
+            other.attachments[obj] = att
+
+
+def settle(obj: Object) -> float:
+    """Let physics run until `obj` has come to rest — CALM consecutive windows in which it moves less than SETTLED (a
+    rocking object is still at the turn of each rock) — or SETTLE seconds; the seconds simulated."""
+    world = obj.world
+    world.wake_free_objects()
+    simulated, calm = 0.0, 0
+    while simulated < SETTLE - 1e-9:
+        before = obj.get_pose()
+        world.simulate(SETTLE_WINDOW)
+        simulated += SETTLE_WINDOW
+        after = obj.get_pose()
+        still = math.dist(before[0], after[0]) < SETTLED[0] and angle_between(before[1], after[1]) < SETTLED[1]
+        calm = calm + 1 if still else 0
+        if calm >= CALM:
+            break
+    return simulated
+
+
+def plan_place(robot: Robot, arm: str, obj: Object,
+               target: Sequence[float]) -> tuple[Vec3, Quat, IKSolution, IKSolution, Object]:
+    """How the held `obj` is put down at `target`: where it will rest and how it stands (upright, its heading kept or
+    turned about the vertical if that is what the arm needs), the arm's configuration there and above it (a short
+    move down on one IK branch), and what it will rest on. ReachabilityFailure when the arm reaches no way,
+    ManipulationFailure when there is nothing to put it on or the arm does not hold it."""
+    if robot.arm_holding(obj) != arm:
+        raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
+    att = robot.body.attachments[obj]
+    held = invert(att.transform)  # the tool frame seen from the object
+    upright = level(obj.get_orientation())
+    where = f"({', '.join(f'{v:.3f}' for v in target)})"
+    best: tuple[float, Any] | None = None
+    chosen = None
+    for turn in PLACE_TURNS:
+        orientation = quat_multiply(yaw_quaternion(turn), upright)
+        position, support = rest_pose(robot, obj, orientation, target, arm)
+        tool = compose((position, orientation), held)
+        solution = reach_near(robot, arm, tool[0], tool[1])
+        if solution.success:
+            for height in (LOWER, LOWER / 2):  # above the place, from there down onto it: one branch
+                above = reach_near(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
+                if above.success:
+                    down = reach_from(robot, arm, above.joint_positions, tool[0], tool[1])
+                    if down.success:
+                        chosen = (position, orientation, down, above, support)
+                        break
+            if chosen is not None:
+                break
+            solution = above
+        if best is None or solution.position_error < best[0]:
+            best = (solution.position_error, solution)
+    if chosen is None:
+        error = best[0] if best is not None else math.inf
+        raise ReachabilityFailure(f"{arm} arm cannot place {obj.name} at {where}: the tool frame stays "
+                                  f"{error * 100:.1f} cm away", arm=arm, object=obj.name)
+    return chosen
 
 
 @process_module("place")
@@ -112,30 +404,17 @@ class Place(ProcessModule):
         obj: Object = slots["object"]
         arm: str = slots["arm"]
         target = tuple(float(v) for v in slots["target"])
-        if robot.arm_holding(obj) != arm:
-            raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
-        att = robot.body.attachments[obj]
-        held = invert(att.transform)  # the tool frame seen from the object
-        upright = level(obj.get_orientation())
-        best = None
-        # keep the object's current orientation, turned about the vertical if that is what it takes
-        for turn in (0.0, math.pi / 2, -math.pi / 2, math.pi, math.pi / 4, -math.pi / 4, 3 * math.pi / 4, -3 * math.pi / 4):
-            orientation = quat_multiply(yaw_quaternion(turn), upright)
-            tool = compose((target, orientation), held)
-            solution = reach(robot, arm, tool[0], tool[1])
-            if solution.success:
-                best = (tool[0], tool[1], orientation)
-                break
-            if best is None or solution.position_error < best[2]:
-                best = (tool[0], tool[1], solution.position_error)
-        if best is None or not isinstance(best[2], tuple):
-            error = best[2] if best is not None else math.inf
-            raise ReachabilityFailure(
-                f"{arm} arm cannot place {obj.name} at ({', '.join(f'{v:.3f}' for v in target)}): "
-                f"the tool frame stays {error * 100:.1f} cm away", arm=arm, object=obj.name)
-        move_tool(robot, arm, best[0], best[1], f"the place pose for {obj.name}")
+        position, orientation, solution, above, support = plan_place(robot, arm, obj, target)
+        move_from_above(robot, arm, above, f"the {arm} arm's motion above the place for {obj.name}")
+        motion.advance(robot, solution.joint_positions)  # down until it touches the surface
         robot.body.detach(obj)
         set_gripper(robot, arm, "open")
-        # let go: the object settles exactly at the target, upright as it was held (the arm's
-        # inverse kinematics is only accurate to its tolerance)
-        obj.set_position_and_orientation(target, best[2])
+        back_off(robot, arm, obj.name)
+        tool = robot.body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
+        up = reach(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
+        if up.success:  # and up, clear of what stands there, if the way is free
+            try:
+                motion.move(robot, up.joint_positions, f"the {arm} arm's retreat from {obj.name}")
+            except ManipulationFailure:
+                pass
+        settle(obj)

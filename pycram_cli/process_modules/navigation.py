@@ -1,4 +1,4 @@
-"""Navigation: teleport the base; fail (and stay put) if the robot would collide."""
+"""Navigation: teleport the base; fail (and stay put) if the robot, or what it holds, would collide."""
 from __future__ import annotations
 
 from typing import Any, Mapping
@@ -6,6 +6,7 @@ from typing import Any, Mapping
 from ..failures import NavigationFailure
 from .base import ProcessModule, Robot
 from .collisions import collisions
+from .motion import followers
 from .registry import process_module
 
 
@@ -17,7 +18,7 @@ class Navigation(ProcessModule):
         before = body.get_pose()
         target = (float(slots["target"][0]), float(slots["target"][1]), before[0][2])
         body.set_position_and_orientation(target, slots["orientation"])
-        hits = collisions(body, ignore=set(robot.held_objects()))
+        hits = collisions(body, held=followers(body))
         if hits:
             body.set_position_and_orientation(*before)
             what = "; ".join(f"{o.name} ({', '.join(f'{a}↔{b}' for a, b in pairs[:3])})" for o, pairs in hits.items())

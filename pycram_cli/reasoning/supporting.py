@@ -4,6 +4,12 @@ The design compared z coordinates and asked `contact`; comparing origins fails f
 whose origin is not where they rest (a kitchen's origin is on the floor, a shelf's anywhere),
 so here the contact itself decides: at least one contact point between them whose normal
 is within ~45° of vertical, with b's centre above that point.
+
+"Contact" here is real contact: the collision shapes are at most 1 mm apart (`TOLERANCE`). An
+object at rest sits about 1e-5 m from its support (often slightly inside it), and objects are
+spawned and placed within PyBullet's 1 mm collision margin of their support, so 1 mm tells resting
+from hovering: a milk carton 2 mm above the counter is not carried by it. (`contact` keeps its
+looser 5 mm, the design's "touching".)
 """
 from __future__ import annotations
 
@@ -16,7 +22,8 @@ if TYPE_CHECKING:
 
 #: |n_z| of the contact normal: above this the contact is "roughly horizontal" (about 45°)
 MIN_NORMAL_Z = 0.7
-TOLERANCE = 0.005
+#: how far apart b may be from a and still rest on it (m): real contact, not the 5 mm of `contact`
+TOLERANCE = 0.001
 
 
 def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> list[tuple[str, tuple[float, float, float]]]:

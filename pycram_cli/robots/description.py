@@ -130,6 +130,10 @@ class RobotDescription:
             return quat_multiply(base_orientation, self.grasps[grasp])
         return check_quaternion(grasp, "grasp")
 
+    def default_joints(self) -> dict[str, float]:
+        """Joint values the robot takes when its world file sets none: the torso at `torso.default`."""
+        return {self.torso_joint: self.torso_default} if self.torso_joint else {}
+
     def arm_of_link(self, link: str) -> str | None:
         for arm in self.arms.values():
             if arm.owns_link(link):

@@ -3,11 +3,11 @@ from ..quiet import silenced
 
 with silenced():  # PyBullet prints its build banner from C when first imported
     import pybullet  # noqa: F401
-from .bullet_world import BulletWorld, ClosestPoint, WorldError, current_world
+from .bullet_world import BulletWorld, ClosestPoint, RayHit, WorldError, current_world
 from .events import Event
 from .display import NoDisplayError
 from .object import Attachment, JointLimitError, MissingMeshWarning, Object, VisualShape
 from .state import StateError, WorldState
 
-__all__ = ["BulletWorld", "ClosestPoint", "Object", "Attachment", "Event", "WorldState", "WorldError", "StateError",
+__all__ = ["BulletWorld", "ClosestPoint", "RayHit", "Object", "Attachment", "Event", "WorldState", "WorldError", "StateError",
            "JointLimitError", "MissingMeshWarning", "NoDisplayError", "VisualShape", "current_world"]

@@ -29,6 +29,8 @@ if TYPE_CHECKING:
     from .prospection import Prospection
 
 STEP_HZ = 240
+#: how many shapes along one ray `cast_rays` looks at (it sees through the ignored ones)
+_RAY_HITS = 16
 
 
 class WorldError(RuntimeError):
@@ -51,16 +53,39 @@ class ClosestPoint:
     distance: float
 
 
+@dataclass(frozen=True)
+class RayHit:
+    """Where a ray first meets a collision shape: the object and link (-1: the base) hit, how far along the ray
+    (0 at its start, 1 at its end), the point and the surface normal there (world frame)."""
+
+    object: "Object | None"
+    link: int
+    fraction: float
+    position: Vec3
+    normal: Vec3
+
+
 class BulletWorld:
-    """A simulated world. `BulletWorld.current_world` is the newest one that has not exited."""
+    """A simulated world. `BulletWorld.current_world` is the newest one that has not exited (the design's name for it,
+    `current_bullet_world`, is kept equal).
+
+    `BulletWorld("DIRECT")`, `BulletWorld(type="GUI")`: the design's spelling of the mode is accepted too.
+    """
 
     current_world: "BulletWorld | None" = None
+    current_bullet_world: "BulletWorld | None" = None  # the design's name for current_world
+    #: the design's scripts set `BulletWorld.robot = robot` and read it back; each world's own robot is `world.robot`
+    robot: "Object | None" = None
     _live: list["BulletWorld"] = []
     _gui_world: "BulletWorld | None" = None
     _registry_lock = threading.Lock()
 
-    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81), _hidden: bool = False) -> None:
-        """`_hidden`: a world's private copy (see prospection.py), never the current world."""
+    def __init__(self, mode: str = "direct", gravity: Sequence[float] = (0.0, 0.0, -9.81), _hidden: bool = False,
+                 type: str | None = None) -> None:
+        """`type`: the design's keyword for `mode` (`BulletWorld(type="DIRECT")`); case does not matter.
+        `_hidden`: a world's private copy (see prospection.py), never the current world."""
+        mode = type if type is not None else mode
+        mode = mode.lower() if isinstance(mode, str) else mode
         if mode not in ("direct", "gui") or (_hidden and mode != "direct"):
             raise ValueError(f"mode must be 'direct' or 'gui', got {mode!r}")
         with BulletWorld._registry_lock:
@@ -89,7 +114,7 @@ class BulletWorld:
                     time.sleep(0.2)
             if not _hidden:
                 BulletWorld._live.append(self)
-                BulletWorld.current_world = self
+                BulletWorld.current_world = BulletWorld.current_bullet_world = self
         self.objects: list[Object] = []
         self._by_id: dict[int, Object] = {}
         self.robot: Object | None = None
@@ -150,6 +175,7 @@ class BulletWorld:
                 BulletWorld._gui_world = None
             if not self._hidden:
                 BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
+                BulletWorld.current_bullet_world = BulletWorld.current_world
 
     def __enter__(self) -> "BulletWorld":
         return self
@@ -160,6 +186,19 @@ class BulletWorld:
     def _check_alive(self) -> None:
         if self._exited:
             raise WorldError("this world has exited")
+
+    # -- events (the design's getters) ---------------------------------------------
+    def get_attachment_event(self) -> Event:
+        """The event fired with (parent, child) when two objects are attached (also `attachment_event`)."""
+        return self.attachment_event
+
+    def get_detachment_event(self) -> Event:
+        """The event fired with (parent, child) when two objects are detached (also `detachment_event`)."""
+        return self.detachment_event
+
+    def get_manipulation_event(self) -> Event:
+        """The event fired with (object, joint, old, new) when a joint of the environment is moved."""
+        return self.manipulation_event
 
     # -- physics ----------------------------------------------------------------
     def set_gravity(self, vector: Sequence[float]) -> None:
@@ -277,6 +316,29 @@ class BulletWorld:
                 return reached
             done = min(1.0, reached + 1e-3 / length)
         return done
+
+    def cast_rays(self, starts: Sequence[Sequence[float]], ends: Sequence[Sequence[float]],
+                  ignore: Sequence["Object"] = ()) -> list["RayHit | None"]:
+        """Where each ray from `starts[k]` to `ends[k]` first hits a collision shape, or None; objects in `ignore`
+        are seen through. Read as the shapes are now (no simulation step), like `closest_points`."""
+        self._check_alive()
+        skip = {obj.id for obj in ignore}
+        froms = [tuple(float(v) for v in s) for s in starts]
+        tos = [tuple(float(v) for v in e) for e in ends]
+        hits: list[RayHit | None] = [None] * len(froms)
+        for number in range(_RAY_HITS):  # the n-th shape along each ray, until a shape that counts or none is left
+            rows = p.rayTestBatch(froms, tos, reportHitNumber=number, physicsClientId=self.client_id)
+            more = False
+            for k, (body, link, fraction, position, normal) in enumerate(rows):
+                if body < 0:
+                    continue
+                more = True
+                if body in skip or (hits[k] is not None and hits[k].fraction <= fraction):  # type: ignore[union-attr]
+                    continue
+                hits[k] = RayHit(self._by_id.get(body), link, float(fraction), tuple(position), tuple(normal))  # type: ignore[arg-type]
+            if not more:
+                break
+        return hits
 
     # -- rendering --------------------------------------------------------------
     def segmentation(self, width: int, height: int, view: Sequence[float],

@@ -22,8 +22,8 @@ import pybullet_data
 
 from ..files import read_bytes, write_atomic
 from ..limits import MAX_MODEL_BYTES
-from ..paths import cache_dir
-from .meshes import inertial_for, is_binary_stl, read_mesh, write_binary_stl
+from ..paths import cache_dir, resources_dir
+from .meshes import PIECES_VERSION, inertial_for, is_binary_stl, obj_objects, read_mesh, write_binary_stl, write_pieces_obj
 
 MESH_SUFFIXES = {".stl", ".obj"}
 
@@ -31,6 +31,22 @@ MESH_SUFFIXES = {".stl", ".obj"}
 def simulator_models_dir() -> Path:
     """PyBullet's bundled models folder (plane.urdf, ...), a last place to look for model files."""
     return Path(pybullet_data.getDataPath())
+
+
+def find_model_file(path: str | Path) -> Path:
+    """The model file a name stands for, searched like a world file's `file:` — as given (relative to the current
+    folder), then in pycram's bundled resources, then in PyBullet's models — so `Object(..., "plane.urdf")` finds
+    PyBullet's plane as the design's scripts expect. FileNotFoundError naming the places looked in otherwise."""
+    given = Path(os.path.expanduser(str(path)))
+    if given.exists() or given.is_absolute():
+        if not given.exists():
+            raise FileNotFoundError(f"file not found: {given}")
+        return given
+    places = [resources_dir(), simulator_models_dir()]
+    for folder in places:
+        if (folder / given).is_file():
+            return (folder / given).resolve()
+    raise FileNotFoundError(f"file not found: {given} (looked in the current folder, {', '.join(str(p) for p in places)})")
 
 
 def _digest(*parts: object) -> str:
@@ -41,23 +57,34 @@ def _digest(*parts: object) -> str:
 
 
 def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, mass: float | None = None) -> Path:
-    """A one-link URDF wrapping `mesh_path`, cached by the mesh's content and the colour."""
+    """A one-link URDF wrapping `mesh_path`, cached by the mesh's content and the colour.
+
+    PyBullet collides a mesh of a body with mass as its convex hull, which fills a bowl or a cup;
+    a hollow mesh (`Mesh.is_hollow`) given as one piece therefore collides as convex pieces of its
+    surface instead (`Mesh.convex_pieces`, written beside the URDF in the cache), so that its
+    inside stays empty. An OBJ of several objects is already pieces (PyBullet takes each one's hull).
+    """
     mesh_path = mesh_path.resolve()
     rgba = tuple(color) if color is not None else (0.8, 0.8, 0.8, 1.0)
     stat = mesh_path.stat()
-    key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 2)
+    key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 3, PIECES_VERSION)
     target = cache_dir() / "meshes" / f"{mesh_path.stem}-{key}.urdf"
     if target.exists():
         return target
     mesh = read_mesh(mesh_path)
     inertial = inertial_for(mesh, mass=mass)
     name = mesh_path.stem
+    collision_path = mesh_path
     if mesh_path.suffix.lower() == ".stl" and not is_binary_stl(mesh_path):
         # PyBullet reads binary STL only: hand it a binary copy of an ASCII file
         binary = target.with_suffix(".stl")
         target.parent.mkdir(parents=True, exist_ok=True)
         write_binary_stl(mesh, binary)
-        mesh_path = binary
+        mesh_path = collision_path = binary
+    if mesh.is_hollow() and obj_objects(mesh_path) <= 1:
+        collision_path = target.with_suffix(".pieces.obj")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        write_pieces_obj(mesh.convex_pieces(), collision_path)
     text = f"""<?xml version="1.0"?>
 <robot name="{name}">
   <link name="{name}">
@@ -76,7 +103,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     </visual>
     <collision>
       <geometry>
-        <mesh filename="{mesh_path}" scale="1 1 1"/>
+        <mesh filename="{collision_path}" scale="1 1 1"/>
       </geometry>
     </collision>
   </link>

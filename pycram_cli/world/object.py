@@ -12,7 +12,8 @@ import pybullet as p
 
 from ..errors import did_you_mean
 from .bullet_world import BulletWorld, WorldError
-from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, mesh_urdf, prepare_urdf
+from .meshes import read_mesh
+from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, find_model_file, mesh_urdf, prepare_urdf
 from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
 from ..quiet import silenced
 
@@ -125,11 +126,12 @@ class Object:
         self.name = name
         self.type = type
         self.world = world
-        self.path = Path(path)
+        try:  # a bare name is searched for as world files do: here, the bundled resources, PyBullet's models
+            self.path = find_model_file(path)
+        except FileNotFoundError as exc:
+            raise FileNotFoundError(f"object '{name}': {exc}") from None
         self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
         self._color, self._mass = rgba, mass  # as given: a copy of the object is loaded alike
-        if not self.path.exists():
-            raise FileNotFoundError(f"object '{name}': file not found: {self.path}")
         if self.path.suffix.lower() in MESH_SUFFIXES:
             load_path = mesh_urdf(self.path, rgba, mass)
         else:
@@ -156,6 +158,7 @@ class Object:
             self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # type: ignore[assignment]
         self._reset_base(position, orientation)
         self.attachments: dict[Object, Attachment] = {}
+        self._local_box: tuple[Vec3, Vec3] | None = None  # a mesh's box in its own frame, read once
         self._index_model(describe_urdf(load_path).joints if load_path.suffix.lower() == ".urdf" else {})
         if rgba is not None and self.path.suffix.lower() not in MESH_SUFFIXES:
             for link in [-1, *range(len(self.joints))]:
@@ -323,6 +326,24 @@ class Object:
         hi = tuple(max(b[1][k] for b in boxes) for k in range(3))
         return lo, hi  # type: ignore[return-value]
 
+    def get_local_aabb(self) -> tuple[Vec3, Vec3]:
+        """The box of the object's collision shapes in its own frame (min corner, max corner): for a mesh, its
+        vertices' bounds (no collision margin); otherwise every link's box, turned into the object's frame (exact
+        for links whose boxes are aligned with the object)."""
+        if self._local_box is None:
+            if self.path.suffix.lower() in MESH_SUFFIXES:
+                lo, hi = read_mesh(self.path).bounds
+                self._local_box = (tuple(float(v) for v in lo), tuple(float(v) for v in hi))  # type: ignore[assignment]
+            else:
+                return _box_in_frame(self.get_pose(), [self.get_aabb(link) for link in [-1, *range(len(self.joints))]])
+        return self._local_box  # type: ignore[return-value]
+
+    def get_link_local_aabb(self, link: str | int) -> tuple[Vec3, Vec3]:
+        """The box of a link's collision shapes in the link's own frame (its world box turned into the link frame:
+        exact for a link whose shapes are aligned with its frame, as a handle bar or a drawer usually is)."""
+        index = link if isinstance(link, int) else self.get_link_id(link)
+        return _box_in_frame(self.get_link_position_and_orientation(index), [self.get_aabb(index)])
+
     # -- joints -----------------------------------------------------------------
     def get_joint_position(self, name: str) -> float:
         return float(p.getJointState(self.id, self.get_joint_id(name), physicsClientId=self.world.client_id)[0])
@@ -366,9 +387,12 @@ class Object:
 
         For putting joints back (drift, trial configurations); `set_joint_positions` is the checked way.
         """
-        cid = self.world.client_id
-        for name, value in positions.items():
-            p.resetJointState(self.id, self.get_joint_id(name), value, 0.0, physicsClientId=cid)
+        if not positions:
+            return
+        ids = [self.get_joint_id(name) for name in positions]
+        # one call for all of them (what collision-checked motions do at every step of a path)
+        p.resetJointStatesMultiDof(self.id, ids, [[float(v)] for v in positions.values()], [[0.0]] * len(ids),
+                                   physicsClientId=self.world.client_id)
 
     @contextlib.contextmanager
     def joints_kept(self, names: Iterable[str]) -> Iterator[None]:
@@ -457,6 +481,17 @@ class Object:
         return f"Object({self.name!r}, type={self.type!r}, id={self.id})"
 
     __hash__ = object.__hash__
+
+
+def _box_in_frame(frame: tuple[Sequence[float], Sequence[float]],
+                  boxes: Sequence[tuple[Sequence[float], Sequence[float]]]) -> tuple[Vec3, Vec3]:
+    """The box, in `frame`, around the corners of world-aligned boxes."""
+    inverse = invert(frame)
+    corners = [compose(inverse, ((x, y, z), (0.0, 0.0, 0.0, 1.0)))[0]
+               for lo, hi in boxes for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+    lo = tuple(min(c[k] for c in corners) for k in range(3))
+    hi = tuple(max(c[k] for c in corners) for k in range(3))
+    return lo, hi  # type: ignore[return-value]
 
 
 def _relative(a: tuple[Sequence[float], Sequence[float]], b: tuple[Sequence[float], Sequence[float]]) -> tuple[Vec3, Quat]:

@@ -45,6 +45,10 @@ def _load_objects(world: BulletWorld, spec: WorldSpec) -> None:
                 objects[item.name].set_joint_positions(item.joints)
             if item is spec.robot:
                 assign_description(objects[item.name], spec.robot_description)
+                if spec.robot_description is not None:  # its defaults (torso height) where the world sets none
+                    defaults = {joint: value for joint, value in spec.robot_description.default_joints().items()
+                                if joint not in item.joints}
+                    objects[item.name].set_joint_positions(defaults)
     for item in spec.objects:
         for att in item.attach:
             with _reported_at(item.where):

@@ -39,7 +39,7 @@ def pr2() -> Robots:
 
 
 def test_a_missing_required_slot_is_named():
-    assert messages("place", {"object": "milk"}) == [("'place' needs slot 'target' (where the object's origin (its bottom centre) goes)", "target", None)]
+    assert messages("place", {"object": "milk"}) == [("'place' needs slot 'target' (where it stands: x, y (and z, optionally: the height of the surface))", "target", None)]
 
 
 def test_an_unknown_slot_gets_the_closest_valid_name():

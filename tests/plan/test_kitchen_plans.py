@@ -37,8 +37,10 @@ PAR_PLAN = """
       - par:
           - detecting: {object-type: milk}
             as: milk
+            scope: plan                            # seen after the par (a branch's bindings stay in it)
           - blocking: {target: bowl, arm: left, exclude-type: [environment]}
             as: blockers
+            scope: plan
       - log: "milk $milk, blockers of the bowl: $blockers"
 """
 

@@ -63,7 +63,8 @@ def test_set_table_moves_the_blocking_cereal_first_by_calling_itself(set_table):
 
 
 def test_set_table_fails_with_a_reasoning_failure_when_a_placed_object_is_not_stable():
-    jobs = [{"type": "milk", "target": [-0.8, 1.0, 0.95], "arm": "left", "look": [1.3, 0.8, 0.95]}]  # 9 cm up in the air
+    # its middle 1.7 cm beyond the island's edge (x -0.667): let go there, it tips over
+    jobs = [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]
     world, result = run("set_table", {"jobs": jobs})
     try:
         assert result.status == "failed"

@@ -57,3 +57,15 @@ def test_an_unknown_link_is_an_error_not_a_no(scene):
 
     with pytest.raises(KeyError, match="did you mean 'sink_area_surface'"):
         supporting(scene.get_object_by_name("kitchen"), scene.get_object_by_name("milk"), link="sink_area_surfac")
+
+
+def test_a_milk_hovering_a_few_millimetres_above_the_counter_is_not_supported(scene):
+    """Real contact (1 mm), not contact's 5 mm: 2-4 mm of air is not resting."""
+    kitchen, milk = scene.get_object_by_name("kitchen"), scene.get_object_by_name("milk")
+    x, y, z = milk.get_position()
+    assert supporting(kitchen, milk)
+    for gap in (0.002, 0.003, 0.004):
+        milk.set_position([x, y, z + gap])
+        assert not supporting(kitchen, milk), gap
+    from pycram_cli.reasoning import contact
+    assert contact(kitchen, milk)  # still "touching" for contact's documented 5 mm

@@ -126,3 +126,21 @@ def test_all_problems_are_reported_together_in_file_order(tmp_path):
 
 def test_a_world_file_that_is_not_a_mapping(tmp_path):
     assert "a world file must be a mapping" in problems(write(tmp_path, "- just\n- a list\n"))[0]
+
+
+def test_the_robot_descriptions_defaults_apply_where_the_world_sets_no_value(tmp_path):
+    """The PR2's description says torso 0.3 (as the design's listing 5.1 gets it); a world that sets no torso
+    height gets it, a world that sets one keeps its own."""
+    def torso(joints: str) -> float:
+        path = write(tmp_path, f"""\
+            objects:
+              - {{name: pr2, type: robot, file: robots/pr2/pr2.urdf{joints}}}
+            """)
+        world = load_world(path)
+        try:
+            return world.robot.get_joint_position("torso_lift_joint")
+        finally:
+            world.exit()
+
+    assert torso("") == pytest.approx(0.3)
+    assert torso(", joints: {torso_lift_joint: 0.1}") == pytest.approx(0.1)

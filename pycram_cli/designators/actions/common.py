@@ -8,6 +8,7 @@ from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure
 from ...kinds import KINDS, Robots, location_goals
 from ...process_modules import Robot
+from ...process_modules.arms import CARRY, PARK, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...world import Object
 from ..declaration import SlotProblem
 from .actor import Actor, Finder, as_failure
@@ -15,7 +16,6 @@ from .actor import Actor, Finder, as_failure
 #: how many poses (or spots) an action tries before it gives up
 CHOICES = 3
 #: the arm poses actions rest the arms in (robot descriptions name them): an empty arm parks, a full one carries
-PARK, CARRY = "park", "carry"
 
 
 def object_of(actor: Actor, value: Any, slot: str) -> Object:
@@ -28,14 +28,6 @@ def object_of(actor: Actor, value: Any, slot: str) -> Object:
         raise as_failure(InputError(f"no object '{value}'", Location(f"slot {slot}"), key=slot,
                                     suggestion=did_you_mean(str(value), names)), slot)
     return found
-
-
-def rest_pose(robot: Robot, arm: str) -> str | None:
-    """The pose an arm rests in: `carry` when it holds something and has one, else `park` (None: it has neither)."""
-    poses = robot.description.arm(arm).poses
-    if robot.held_objects(arm) and CARRY in poses:
-        return CARRY
-    return PARK if PARK in poses else None
 
 
 def resting(robot: Robot, arms: list[str] | None = None) -> dict[str, str]:

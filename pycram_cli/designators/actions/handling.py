@@ -36,10 +36,17 @@ def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
     def take(a: Actor, pose: Any) -> Any:
         go(a, pose)
+        was = list(obj.get_position())
         a.motion("pick-up", {"object": obj, "arm": pose.arm, "grasp": pose.grasp})
         lift = rest_pose(a.robot, pose.arm)
         if lift is not None:
-            a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
+            try:
+                a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
+            except ManipulationFailure:
+                # the arm cannot draw it in from here: put it back where it was, so that the next place to stand
+                # starts as this one did
+                a.motion("place", {"object": obj, "target": was, "arm": pose.arm})
+                raise
         return obj
 
     return try_choices(actor, Finder(location, here=True), take, f"pick up {obj.name}")

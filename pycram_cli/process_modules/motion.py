@@ -1,0 +1,517 @@
+"""Collision-checked motions of a robot's joints: an arm, its gripper, several arms at once.
+
+A motion goes from the joints' current values to goal values along a straight line in joint space
+(continuous joints the short way round). Before anything is applied, the path is checked against
+everything in the world but the robot itself and what it holds: the moving part is every link
+downstream of a moving joint, with the objects those links hold; a part more than 1 mm inside
+anything (`PENETRATION`; resting contact sits at about 1e-5 m) fails the motion with a
+ManipulationFailure that names the link or held object and what it would be inside (what the robot
+holds elsewhere, in its other hand, counts as an obstacle like anything else). Contacts that
+already exist where the motion starts may stay (a hand on a handle, a carton on the counter
+while it is lifted off), as long as they get no deeper.
+
+How densely the path is checked — conservative advancement, with a floor. For joint changes Δq,
+no point of the moving part moves farther than Σᵢ rᵢ·|Δqᵢ|, where rᵢ bounds how far the part
+reaches from joint i: the distance from the deepest moving joint above a link to the corners of
+the link's box (or the held object's), plus the (rigid) distances between the moving joints'
+origins up to joint i; measured once at the start, it holds all along the path. Checks are then
+placed so that between two of them no point moves farther than the gap between the moving
+part's boxes and every obstacle's box (nothing can be hit there), and never farther than
+`SPACING`, 1 cm, where something is closer than that. A collision can then only be missed where a
+link passes wholly through an obstacle within 1 cm of travel, i.e. where link and obstacle
+together are thinner than 1.1 cm along the motion. Nothing the robots and worlds here move or
+hit is that thin: the PR2's finger links are 1.5–2 cm across, the bundled kitchen's thinnest
+boxes (drawer bottom and walls) 1.2 cm, the real IAI kitchen's drawer walls 1.8 cm; a link and an
+obstacle are also never both at their thinnest along the direction of travel. In free space the
+checks are far apart (a park motion takes a handful), near the kitchen 1 cm apart.
+
+Robot-specific knowledge (which joints an arm or a gripper has) comes from the description; the
+geometry comes from the world (`closest_points`, boxes); nothing here calls PyBullet.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Iterable, Mapping, Sequence
+
+import numpy as np
+
+from ..failures import ManipulationFailure
+from ..world import Object
+from ..world.pose import quat_to_matrix
+from .base import Robot
+
+#: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
+PENETRATION = 0.001
+#: the farthest any point of the moving part travels between two checks near obstacles (m)
+SPACING = 0.01
+#: boxes closer than this are measured exactly (closest points), to step farther near big boxes (m)
+NEAR = 0.03
+#: the levers (see `walk`) are measured afresh after this much travel (m)
+LEVER_REFRESH = 0.1
+#: approaches stop this close to the first contact (m of travel)
+PRECISION = 0.001
+#: an approach that stops at contact lets a contact that exists where it starts get this much deeper (m: numeric noise)
+STILL = 1e-5
+
+
+@dataclass(frozen=True)
+class Hit:
+    """A part of the robot (a link, or an object it holds) inside something."""
+
+    mover: str  # "l_forearm_link", or "the held milk"
+    obstacle: Object
+    link: str  # the obstacle's link
+    depth: float  # how far inside (m)
+
+    def __str__(self) -> str:
+        where = f"{self.obstacle.name}" + (f" ({self.link})" if self.link != self.obstacle.name else "")
+        return f"{self.mover} would be {self.depth * 1000:.0f} mm inside {where}"
+
+
+def _downstream(body: Object, joint_indices: set[int]) -> set[int]:
+    """The links below any of the given joints (each joint's own child link included)."""
+    found: set[int] = set()
+    for joint in body.joints:
+        index = joint.index
+        while index != -1:
+            if index in joint_indices:
+                found.add(joint.index)
+                break
+            index = body.joints[index].parent_index
+    return found
+
+
+def followers(body: Object) -> list[Object]:
+    """Everything that follows the robot (attached to it, and what is attached to that)."""
+    found: list[Object] = []
+    frontier = [body]
+    while frontier:
+        parent = frontier.pop()
+        for child, att in parent.attachments.items():
+            if att.parent is parent and child is not body and child not in found:
+                found.append(child)
+                frontier.append(child)
+    return found
+
+
+#: the 8 corners of a box from its (lo, hi) pair: which of the two each coordinate comes from
+_CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+_AXES = np.arange(3)[None, :]
+
+
+def _corners(lo: Sequence[float], hi: Sequence[float]) -> np.ndarray:
+    return np.array([(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+
+
+class Motion:
+    """The moving part of a robot for some joints (their links and what those hold) and the obstacles around it."""
+
+    def __init__(self, robot: Robot, joints: Iterable[str], ignore: Iterable[Object] = (),
+                 ignore_links: Iterable[tuple[Object, int]] = ()) -> None:
+        self.robot = robot
+        body = self.body = robot.body
+        self.world = body.world
+        self.joints = [body.joint(name) for name in joints if body.joint(name).movable]
+        self.links = sorted(_downstream(body, {j.index for j in self.joints}))
+        # what the moving links hold moves with them; what the robot holds elsewhere (in the other hand, or in
+        # this gripper's palm while its fingers move) is something to avoid like anything else
+        self.held = [obj for obj in followers(body) if self._holder(obj) in self.links]
+        skip = {body, *self.held, *ignore}
+        self.obstacles = [obj for obj in self.world.objects if obj not in skip]
+        skip_links = set((obj.id, link) for obj, link in ignore_links)
+        boxes = [(obj, link, *obj.get_aabb(link)) for obj in self.obstacles for link in [-1, *range(len(obj.joints))]
+                 if (obj.id, link) not in skip_links]
+        self._obstacle_boxes = boxes
+        self._o_lo = np.array([b[2] for b in boxes]).reshape(-1, 3)
+        self._o_hi = np.array([b[3] for b in boxes]).reshape(-1, 3)
+        self.allowed: dict[tuple[str, int, int], float] = {}
+        #: how much deeper an existing contact may get: PENETRATION along a motion, next to nothing for an approach
+        #: that stops at contact (fingers closing on an object they already touch stop there, not 1 mm further in)
+        self.deepen = PENETRATION
+        # each joint's axis in its link's frame (PyBullet gives it in the link's centre-of-mass frame)
+        self._joint_axes = np.array([quat_to_matrix(j.inertial_frame[1]) @ np.asarray(j.axis, dtype=float)
+                                     / (np.linalg.norm(j.axis) or 1.0) for j in self.joints]).reshape(-1, 3)
+        self._prismatic = np.array([j.type == "prismatic" for j in self.joints], dtype=bool)
+
+    def _holder(self, obj: Object) -> int | None:
+        """The robot link `obj` hangs from (through other held objects, if need be)."""
+        seen = set()
+        while obj not in seen:
+            seen.add(obj)
+            for parent, att in obj.attachments.items():
+                if att.child is obj:
+                    if parent is self.body:
+                        return att.parent_link
+                    obj = parent
+                    break
+            else:
+                return None
+        return None
+
+    # -- where the moving part is -----------------------------------------------------------------
+    def _mover_boxes(self) -> tuple[np.ndarray, np.ndarray]:
+        boxes = [self.body.get_aabb(link) for link in self.links] + [obj.get_aabb() for obj in self.held]
+        lo = np.array([b[0] for b in boxes]).reshape(-1, 3)
+        hi = np.array([b[1] for b in boxes]).reshape(-1, 3)
+        return lo, hi
+
+    def _mover_name(self, k: int) -> str:
+        if k < len(self.links):
+            return self.body.get_link_name(self.links[k])
+        return f"the held {self.held[k - len(self.links)].name}"
+
+    def scan(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, list[Hit]]:
+        """At the current configuration: a lower bound of the gap between the moving part and the obstacles (only
+        meaningful above SPACING), and what the moving part is inside of (beyond PENETRATION and the allowed)."""
+        if not self.links and not self.held:
+            return math.inf, []
+        m_lo, m_hi = boxes if boxes is not None else self._mover_boxes()
+        if not len(self._o_lo):
+            return math.inf, []
+        gap = np.maximum(0.0, np.maximum(self._o_lo[None, :, :] - m_hi[:, None, :], m_lo[:, None, :] - self._o_hi[None, :, :]))
+        gaps = np.sqrt(np.sum(gap * gap, axis=2))  # (movers, obstacle links)
+        near = np.argwhere(gaps < NEAR)
+        far = gaps[gaps >= NEAR]
+        clearance = float(far.min()) if far.size else math.inf
+        hits: dict[tuple[int, int, int], Hit] = {}
+        for k, o in near:
+            obj, link = self._obstacle_boxes[o][0], self._obstacle_boxes[o][1]
+            if k < len(self.links):
+                distance = self.world.distance(self.body, obj, NEAR, link_a=self.links[k], link_b=link)
+            else:
+                distance = self.world.distance(self.held[k - len(self.links)], obj, NEAR, link_b=link)
+            clearance = min(clearance, max(distance, 0.0) if distance < NEAR else NEAR)
+            if distance >= 0.0:
+                continue
+            depth = -distance
+            key = (self._mover_name(k), obj.id, link)
+            if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
+                hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
+        return clearance, sorted(hits.values(), key=lambda h: -h.depth)
+
+    def allow_current(self) -> None:
+        """Contacts as they are now may stay (no deeper) along the motion."""
+        self.allowed = {}
+        if not len(self._o_lo) or (not self.links and not self.held):
+            return
+        m_lo, m_hi = self._mover_boxes()
+        overlap = np.all((m_lo[:, None, :] <= self._o_hi[None, :, :] + PENETRATION)
+                         & (self._o_lo[None, :, :] <= m_hi[:, None, :] + PENETRATION), axis=2)
+        for k, o in np.argwhere(overlap):
+            obj, link = self._obstacle_boxes[o][0], self._obstacle_boxes[o][1]
+            if k < len(self.links):
+                distance = self.world.distance(self.body, obj, 0.0, link_a=self.links[k], link_b=link)
+            else:
+                distance = self.world.distance(self.held[k - len(self.links)], obj, 0.0, link_b=link)
+            if distance < 0.0:
+                self.allowed[(self._mover_name(k), obj.id, link)] = -distance
+
+    # -- paths --------------------------------------------------------------------------------------
+    def _parts(self) -> list[tuple[int, ...]]:
+        """For each mover (links, then held objects): the indices of the moving joints above it, outermost first."""
+        body = self.body
+        index_of = {j.index: i for i, j in enumerate(self.joints)}
+        found = []
+        for link in [*self.links, *(self._holder(obj) or -1 for obj in self.held)]:
+            ancestors = []
+            index = link
+            while index != -1:
+                if index in index_of:
+                    ancestors.append(index_of[index])
+                index = body.joints[index].parent_index
+            found.append(tuple(reversed(ancestors)))
+        return found
+
+    def _local_levers(self, m_lo: np.ndarray, m_hi: np.ndarray, below: np.ndarray) -> np.ndarray:
+        """rᵢ now: the farthest corner of the boxes of the movers below joint i from its axis (1 for a prismatic joint).
+
+        The farthest point of a box from a line is one of its corners, so this bounds every point of the moving part;
+        `below[i, k]` says whether mover k hangs below joint i.
+        """
+        corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
+        frames = [self.body.get_link_position_and_orientation(j.index) for j in self.joints]
+        origins = np.array([f[0] for f in frames])
+        axes = np.einsum("nij,nj->ni", np.array([quat_to_matrix(f[1]) for f in frames]), self._joint_axes)
+        rel = corners[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
+        along = np.einsum("nmcd,nd->nmc", rel, axes)
+        perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
+        levers = np.where(below, perpendicular, 0.0).max(axis=1)
+        return np.where(self._prismatic, 1.0, levers)
+
+    def _levers(self) -> np.ndarray:
+        """rᵢ for each moving joint: how far a point of the moving part can be from joint i (1 for a prismatic joint)."""
+        body = self.body
+        index_of = {j.index: i for i, j in enumerate(self.joints)}
+        origins = [np.asarray(body.get_link_position(j.index)) for j in self.joints]
+        levers = np.zeros(len(self.joints))
+        parts: list[tuple[int, np.ndarray]] = [(link, _corners(*body.get_aabb(link))) for link in self.links]
+        parts += [(self._holder(obj) or -1, _corners(*obj.get_aabb())) for obj in self.held]
+        for link, corners in parts:
+            ancestors = []  # the moving joints above this link, deepest last
+            index = link
+            while index != -1:
+                if index in index_of:
+                    ancestors.append(index_of[index])
+                index = body.joints[index].parent_index
+            ancestors.reverse()
+            if not ancestors:
+                continue
+            reach = float(np.max(np.linalg.norm(corners - origins[ancestors[-1]], axis=1)))
+            for position in range(len(ancestors) - 1, -1, -1):
+                i = ancestors[position]
+                if position < len(ancestors) - 1:
+                    reach += float(np.linalg.norm(origins[ancestors[position + 1]] - origins[i]))
+                levers[i] = max(levers[i], 1.0 if self.joints[i].type == "prismatic" else reach)
+        return levers
+
+    def _prune(self, levers: np.ndarray) -> None:
+        """Forget obstacle boxes the moving part cannot come near: farther from each outermost moving joint than the
+        part reaches from it."""
+        if not len(self._o_lo) or not self.joints:
+            return
+        roots = {ancestors[0] for ancestors in self._parts() if ancestors}
+        keep = np.zeros(len(self._o_lo), dtype=bool)
+        for i in roots:
+            centre = np.asarray(self.body.get_link_position(self.joints[i].index))
+            gap = np.maximum(0.0, np.maximum(self._o_lo - centre, centre - self._o_hi))
+            keep |= np.sqrt(np.sum(gap * gap, axis=1)) <= levers[i] + SPACING
+        self._obstacle_boxes = [b for b, k in zip(self._obstacle_boxes, keep) if k]
+        self._o_lo, self._o_hi = self._o_lo[keep], self._o_hi[keep]
+
+    def _endpoints(self, goal: Mapping[str, float]) -> tuple[np.ndarray, np.ndarray]:
+        names = [j.name for j in self.joints]
+        current = self.body.get_joint_positions(names)
+        start = np.array([current[n] for n in names])
+        end = np.array([float(goal.get(n, current[n])) for n in names])
+        for i, joint in enumerate(self.joints):  # continuous joints turn the short way
+            if joint.type == "continuous":
+                end[i] = start[i] + math.remainder(end[i] - start[i], 2 * math.pi)
+        return start, end
+
+    def _put(self, values: np.ndarray) -> None:
+        self.body.reset_joints({j.name: float(v) for j, v in zip(self.joints, values)})
+        self.body.move_attached()
+
+    def walk(self, goal: Mapping[str, float], stop_at_contact: bool = False) -> tuple[float, list[Hit], dict[str, float]]:
+        """Follow the path from the current values to `goal`, checking as described above, and put the joints back.
+
+        Returns the fraction of the path that is free (1.0: all of it), the hits where it ends otherwise, and the
+        joint values at its free end (with `stop_at_contact`, found within PRECISION of the first hit).
+        """
+        start, end = self._endpoints(goal)
+        names = [j.name for j in self.joints]
+        if not len(start):
+            return 1.0, [], {}
+        self._prune(self._levers())
+        self.allow_current()
+        self.deepen = STILL if stop_at_contact else PENETRATION
+        last_free, hits = self._follow(start, end, stop_at_contact)
+        reached = start + last_free * (end - start)
+        return (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
+
+    def _follow(self, start: np.ndarray, end: np.ndarray, stop_at_contact: bool = False) -> tuple[float, list[Hit]]:
+        """The checks of `walk` along the straight path from `start` to `end` (the joints are put back at `start`):
+        how far it is free (a fraction) and what ends it."""
+        parts = self._parts()
+        below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
+        delta = np.abs(end - start)
+        t, last_free, hits = 0.0, 0.0, []
+        total = 0.0
+        levers, since = None, 0.0
+        try:
+            while True:
+                self._put(start + t * (end - start))
+                boxes = self._mover_boxes()
+                clearance, hits = self.scan(boxes)
+                if hits:
+                    break
+                last_free = t
+                if t >= 1.0:
+                    break
+                # no point moves farther than `travel` before the next check. A point's distance from joint i's
+                # axis changes only as the joints below i move it, so by no more than the travel since the levers
+                # were measured (`since`) plus this step's: they are measured afresh every LEVER_REFRESH of travel
+                if levers is None or since > LEVER_REFRESH:
+                    levers, since = self._local_levers(*boxes, below), 0.0
+                travel = max(min(clearance, 1.0), SPACING)
+                rate = float(np.sum((levers + since + travel) * delta))
+                total = max(total, rate)
+                t = min(1.0, t + (travel / rate if rate > 0 else 1.0))
+                since += travel
+            if hits and stop_at_contact:
+                low, high = last_free, t
+                while (high - low) * total > PRECISION:
+                    mid = (low + high) / 2.0
+                    self._put(start + mid * (end - start))
+                    if self.scan()[1]:
+                        high = mid
+                    else:
+                        low = mid
+                last_free = low
+        finally:
+            self._put(start)
+        return last_free, hits
+
+
+def joints_of(robot: Robot, arms: Iterable[str], gripper: bool = False) -> list[str]:
+    """The joints of some arms (or of their grippers) as the description names them."""
+    names: list[str] = []
+    for arm in arms:
+        desc = robot.description.arm(arm)
+        names += list(desc.gripper.joints if gripper else desc.joints)
+    return names
+
+
+def _moving(robot: Robot, goal: Mapping[str, float]) -> list[str]:
+    """The joints of `goal` that are not already there (an arm that stays put is no part of the motion)."""
+    current = robot.body.get_joint_positions(list(goal))
+    return [name for name, value in goal.items() if abs(math.remainder(value - current[name], 2 * math.pi)
+                                                         if robot.body.joint(name).type == "continuous"
+                                                         else value - current[name]) > 1e-12]
+
+
+def hits_at(robot: Robot, joints: Mapping[str, float], ignore: Iterable[Object] = ()) -> list[Hit]:
+    """What the part of the robot below these joints (and what it holds) would be inside with the joints at these
+    values (then put back): a quick check of a goal before the path to it."""
+    motion = Motion(robot, joints, ignore)
+    start, end = motion._endpoints(joints)
+    try:
+        motion._put(end)
+        return motion.scan()[1]
+    finally:
+        motion._put(start)
+
+
+def move(robot: Robot, goal: Mapping[str, float], what: str, ignore: Iterable[Object] = (),
+         ignore_links: Iterable[tuple[Object, int]] = ()) -> None:
+    """Move joints to `goal` if the path is free (held objects follow); else raise a ManipulationFailure naming the
+    first thing in the way, and leave everything where it was. `ignore`/`ignore_links`: what the motion may touch
+    (a drawer's moving part while the hand pulls it)."""
+    motion = Motion(robot, _moving(robot, goal), ignore, ignore_links)
+    fraction, hits, reached = motion.walk(goal)
+    if hits:
+        raise collision_failure(what, hits, fraction)
+    robot.body.set_joint_positions({**goal, **reached})  # continuous joints as turned (the short way)
+
+
+def advance(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> tuple[float, list[Hit]]:
+    """Move joints towards `goal` until just before the first contact (or all the way); returns the fraction of the
+    path travelled and what stopped it."""
+    motion = Motion(robot, _moving(robot, goal), ignore)
+    fraction, hits, reached = motion.walk(goal, stop_at_contact=True)
+    robot.body.set_joint_positions(reached)
+    return fraction, hits
+
+
+def collision_failure(what: str, hits: Sequence[Hit], fraction: float) -> ManipulationFailure:
+    hit = hits[0]
+    others = sorted({h.obstacle.name for h in hits[1:]} - {hit.obstacle.name})
+    also = f" (and {', '.join(others)})" if others else ""
+    return ManipulationFailure(f"{what} would collide: {hit}{also}, {fraction:.0%} of the way",
+                               colliding=[hit.obstacle.name, *others], link=hit.link, part=hit.mover,
+                               depth=round(hit.depth, 4))
+
+
+# -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
+
+#: the longest step of the search (rad, or m for a prismatic joint, per joint), its budget of edges checked, its seed
+SEARCH_STEP = 0.4
+SEARCH_EDGES = 300
+SEARCH_SEED = 20191028
+
+
+def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> list[dict[str, float]] | None:
+    """Joint values to pass through, from the current ones to `goal`, every leg between them free (checked as `move`
+    checks a path), or None when none is found within SEARCH_EDGES checks.
+
+    RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
+    configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
+    other; the way found is then shortened by joining its waypoints directly wherever that is free. The random
+    numbers come from a fixed seed, so the same world gives the same way.
+    """
+    names = [name for name in goal]
+    motion = Motion(robot, names, ignore)
+    start_values, end_values = motion._endpoints(goal)
+    order = [j.name for j in motion.joints]
+    if not order:
+        return []
+    lows, highs = [], []
+    for joint, value in zip(motion.joints, start_values):
+        if joint.limited:
+            lows.append(joint.lower)
+            highs.append(joint.upper)
+        else:
+            lows.append(value - math.pi)
+            highs.append(value + math.pi)
+    low, high = np.array(lows), np.array(highs)
+    rng = np.random.default_rng(SEARCH_SEED)
+    budget = [SEARCH_EDGES]
+
+    motion._prune(motion._levers())
+    motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else
+
+    def free(a: np.ndarray, b: np.ndarray) -> bool:
+        if budget[0] <= 0:
+            return False
+        budget[0] -= 1
+        fraction, hits = motion._follow(a, b)
+        return not hits and fraction >= 1.0
+
+    def toward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        step = np.max(np.abs(b - a))
+        return b if step <= SEARCH_STEP else a + (b - a) * (SEARCH_STEP / step)
+
+    trees: list[list[tuple[np.ndarray, int]]] = [[(start_values, -1)], [(end_values, -1)]]
+    meeting: tuple[int, int] | None = None
+    try:
+        while budget[0] > 0 and meeting is None:
+            grow, other = trees[0], trees[1]
+            # a random configuration, or (one time in five) the other tree's root
+            sample = other[0][0] if rng.random() < 0.2 else low + rng.random(len(low)) * (high - low)
+            near = min(range(len(grow)), key=lambda i: float(np.max(np.abs(grow[i][0] - sample))))
+            new = toward(grow[near][0], sample)
+            if not free(grow[near][0], new):
+                trees.reverse()
+                continue
+            grow.append((new, near))
+            # the other tree reaches for the new node, step by step
+            reach = min(range(len(other)), key=lambda i: float(np.max(np.abs(other[i][0] - new))))
+            while budget[0] > 0:
+                nxt = toward(other[reach][0], new)
+                if not free(other[reach][0], nxt):
+                    break
+                other.append((nxt, reach))
+                reach = len(other) - 1
+                if np.max(np.abs(nxt - new)) < 1e-9:
+                    meeting = (len(grow) - 1, reach) if grow is trees[0] else (reach, len(grow) - 1)
+                    break
+            if meeting is None:
+                trees.reverse()
+        if meeting is None:
+            return None
+        # the trees may have been swapped: the one holding the start comes first
+        if not np.array_equal(trees[0][0][0], start_values):
+            trees.reverse()
+            meeting = (meeting[1], meeting[0])
+
+        def chain(tree: list[tuple[np.ndarray, int]], index: int) -> list[np.ndarray]:
+            found = []
+            while index != -1:
+                found.append(tree[index][0])
+                index = tree[index][1]
+            return found
+
+        path = list(reversed(chain(trees[0], meeting[0]))) + chain(trees[1], meeting[1])[1:]
+        budget[0] = max(budget[0], len(path) * 2)  # shortening gets a few checks of its own
+        short = [path[0]]
+        i = 0
+        while i < len(path) - 1:
+            j = len(path) - 1
+            while j > i + 1 and not free(path[i], path[j]):
+                j -= 1
+            short.append(path[j])
+            i = j
+        return [{n: float(v) for n, v in zip(order, values)} for values in short[1:]]
+    finally:
+        motion._put(start_values)
