@@ -55,7 +55,7 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
         parser.error(f"expected the {what} of '{head}' as a mapping, got {describe(value)}", where, key=head,
                      suggestion=f"e.g. {head}: {{name: value}}")
         return None
-    return value
+    return parser.names_only(value)
 
 
 # -- motion designators -------------------------------------------------------------------------------
@@ -269,6 +269,8 @@ class CallStep(Node):
             parser.error(f"expected the arguments as a list or a mapping, got {describe(args)}", step.loc("args", True),
                          key="args")
             args = None
+        if isinstance(args, LMap):
+            parser.names_only(args)
         return cls(head, step.loc(head), name, args, step.loc("args", True) if "args" in step else step.loc(head))
 
     def label(self) -> str:

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..paths import resources_dir
-from ..schema import check_keys, describe, expect, is_number, number_list, quaternion
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
 from ..world.model_files import ModelInfo, describe_model
 from ..world.pose import check_quaternion, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
@@ -237,7 +237,7 @@ class _Reader:
                        "poses")
             return {}
         poses = {}
-        for name, values in value.items():
+        for name, values in names_only(value, self.errors).items():
             numbers = number_list(values, len(joints), value.loc(name, True), f"poses.{name}", self.errors) \
                 if joints else None
             if numbers is not None:
@@ -292,7 +292,7 @@ class _Reader:
             if not isinstance(raw, LMap):
                 self.error(f"expected a mapping of arm name to arm, got {describe(raw)}", data.loc("arms", True), "arms")
             else:
-                for arm_name in raw:
+                for arm_name in list(names_only(raw, self.errors)):
                     arm = self.arm(raw, arm_name)
                     if arm is not None:
                         arms[arm.name] = arm
@@ -322,7 +322,7 @@ class _Reader:
                 self.error(f"expected a mapping of grasp name to quaternion, got {describe(raw_grasps)}",
                            data.loc("grasps", True), "grasps")
             else:
-                for grasp, value in raw_grasps.items():
+                for grasp, value in names_only(raw_grasps, self.errors).items():
                     q = quaternion(value, raw_grasps.loc(grasp, True), f"grasps.{grasp}", self.errors)
                     if q is not None:
                         grasps[str(grasp)] = (q[0], q[1], q[2], q[3])
@@ -341,7 +341,7 @@ class _Reader:
             self.error(f"expected a mapping of names, got {describe(value)}", data.loc(key, True), key)
             return {}
         result = {}
-        for k, v in value.items():
+        for k, v in names_only(value, self.errors).items():
             if allowed_keys is not None and k not in allowed_keys:
                 self.error(f"unknown role '{k}' (roles: {', '.join(allowed_keys)})", value.loc(k), f"{key}.{k}",
                            did_you_mean(str(k), allowed_keys))

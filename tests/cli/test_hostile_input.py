@@ -164,7 +164,47 @@ def test_a_null_key_in_an_object_is_reported_at_the_key(tmp_path):
             ~: 3
     """)
     result = run("validate", str(world))
-    assert result.exit_code == 2 and f"{world}:6:5: None: unknown key" in result.stderr and "unknown key" in result.stderr
+    assert result.exit_code == 2 and f"{world}:6:5: null: keys must be names, got null" in result.stderr
+
+
+def test_keys_that_are_not_names_in_slots_and_arguments_are_exit_2_at_the_key(tmp_path):
+    # a null, number or boolean key where a slot, argument or field name belongs crashed the suggestion (exit 3)
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        plans:
+          sub: {params: [a], body: [{log: $a}]}
+        body:
+          - looking: {~: 1, target: [1, 1, 1]}
+          - assert: {stable: {~: milk}}
+          - stable: {1: milk}
+          - if: {visible: {true: milk}}
+            then: [{log: x}]
+          - call: sub
+            args: {~: 1}
+          - action: transport
+            object-type: milk
+            target: {~: x, on: kitchen_island_surface}
+          - try: [{log: a}]
+            catch: {2.5: [{log: b}]}
+          - ~: 1
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2, result.output
+    assert "internal error" not in result.stderr
+    for where, key, what in [("6:15", "null", "null"), ("7:23", "null", "null"), ("8:14", "1", "the number 1"),
+                             ("9:20", "true", "true"), ("12:12", "null", "null"), ("15:14", "null", "null"),
+                             ("17:13", "2.5", "the number 2.5"), ("18:5", "null", "null")]:
+        assert f"{plan}:{where}: {key}: keys must be names, got {what}" in result.stderr, (where, result.stderr)
+    vary = write(tmp_path, "v.vary.yaml", """
+        plan: set_table
+        objects:
+          ~: {noise: [0.1, 0, 0]}
+        params:
+          1: [a, b]
+    """)
+    result = run("validate", str(vary))
+    assert result.exit_code == 2 and "internal error" not in result.stderr
+    assert f"{vary}:4:3: null: keys must be names" in result.stderr and f"{vary}:6:3: 1: keys must be names" in result.stderr
 
 
 def test_a_non_finite_mass_is_refused(tmp_path):
