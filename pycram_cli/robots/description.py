@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Sequence
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..files import probe
 from ..paths import resources_dir
 from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
 from ..world.model_files import ModelInfo, describe_model
@@ -282,9 +283,11 @@ class _Reader:
         urdf = None
         if "urdf" in data and self.name(data, "urdf"):
             urdf = (self.path.parent / data["urdf"]).resolve()
-            if not urdf.is_file():
-                self.error(f"file not found: {data['urdf']} (relative to {self.path.parent})", data.loc("urdf", True),
-                           "urdf")
+            problem = probe(urdf)
+            if problem is not None:
+                message = f"file not found: {data['urdf']} (relative to {self.path.parent})" if problem == "not found" \
+                    else f"cannot read {data['urdf']}: {problem}"
+                self.error(message, data.loc("urdf", True), "urdf")
                 urdf = None
         arms: dict[str, ArmDescription] = {}
         if "arms" in data:

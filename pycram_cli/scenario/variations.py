@@ -44,6 +44,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..files import probe
 from ..jsonable import jsonable
 from ..kinds import Robots
 from ..plan import Plan, WorldFacts
@@ -282,7 +283,7 @@ SUFFIX = ".vary.yaml"
 def beside(plan_path: Path) -> Path | None:
     """The variation file that goes with a plan by name (`set_table.yaml` -> `set_table.vary.yaml`), if any."""
     candidate = plan_path.with_name(plan_path.stem + SUFFIX)
-    return candidate if candidate.is_file() else None
+    return candidate if probe(candidate) is None else None  # no OSError for a name made too long
 
 
 def read_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:

@@ -110,6 +110,30 @@ def test_an_output_path_that_cannot_be_written_is_exit_2_before_the_run(tmp_path
     assert result.exit_code == 2 and "out.json: trace: cannot write: it is a named pipe" in result.stderr
 
 
+def test_operating_system_errors_on_output_paths_are_exit_2_naming_the_path(tmp_path, monkeypatch):
+    # Path.is_dir()/exists() raise OSError (ENAMETOOLONG) for a 300-character name: that was exit 3
+    monkeypatch.chdir(tmp_path)
+    plan = a_plan(tmp_path, "- log: ran\n")
+    long = "x" * 300
+    cases = {
+        ("run", str(plan), "--trace", f"{long}.json"): "cannot write the trace: file name too long",
+        ("run", str(plan), "--render", f"{long}.png"): "cannot write the image: file name too long",
+        ("run", str(plan), "--report", f"{long}.html"): "cannot write the report: file name too long",
+        ("world", "render", str(tmp_path / "w.yaml"), "-o", f"{long}.png"): "cannot write the image: file name too long",
+        ("validate", long): "file name too long",
+        ("validate", f"{long}.yaml"): "file name too long",
+    }
+    for args, message in cases.items():
+        result = run(*args)
+        assert result.exit_code == 2, (args[:3], result.output)
+        assert message in result.stderr and "ran" not in result.stderr, (args[:3], result.stderr)
+    write(tmp_path, "p.vary.yaml", "objects: {box: {noise: [0.1, 0, 0]}}\n")
+    for out, why in (("/proc/pycram", "it cannot be made there"), (long, "file name too long")):
+        result = run("sweep", str(plan), "-n", "1", "--workers", "1", "--out", out)
+        assert result.exit_code == 2, (out[:20], result.output)
+        assert f"--out: cannot use '{out}' as the results folder: {why}" in result.stderr
+
+
 # -- YAML: merge keys work; aliases, nesting and sizes are bounded ------------------------------------------
 
 
