@@ -479,6 +479,11 @@ class WaitStep(Node):
 
     def check(self, v: "Validator") -> None:
         v.refs(self.seconds, self.value_where)
+        if is_reference(self.seconds):  # a plan parameter's value (-p, else its default) is known before the run
+            for value in v.possible(self.seconds) or []:
+                problem = _seconds_problem(value)
+                if problem:
+                    v.error(f"{problem} ({self.seconds})", self.value_where, key=self.head)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)

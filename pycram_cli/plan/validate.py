@@ -261,8 +261,23 @@ class Validator:
         if spec is not None:
             self._names(args, [(p.name, p.kind, p.of) for p in spec.params])
 
+    def known_values(self, slot_name: str, kind: str, value: Any, where: Location) -> None:
+        """A `$variable` in a slot whose values are known before the run (a plan parameter's, a `for_each` over a
+        literal list) is checked like a literal of the slot's kind: what the run would find out later."""
+        if not isinstance(value, str) or not references(value):
+            return  # a literal: checked as one
+        for item in self.possible(value) or []:
+            if isinstance(item, str) and references(item):
+                continue
+            problem = KINDS[kind].check(item, self.robots)
+            if problem:
+                self.error(f"slot '{slot_name}': {problem} ({value})", where, key=str(slot_name))
+
     def _names(self, slots: LMap, kinds: list[tuple[str, str, str | None]]) -> None:
         """Object, link and joint names in slots, also those given by parameters and for_each lists."""
+        for slot_name, kind, _ in kinds:
+            if slot_name in slots:
+                self.known_values(slot_name, kind, slots[slot_name], slots.loc(slot_name, True))
         facts = self.facts
         if facts is None:
             return

@@ -15,9 +15,9 @@ import numpy as np
 import pybullet as p
 from PIL import Image
 
-from ..kinds import parse_vector
-
 from ..files import write_atomic
+from ..kinds import parse_vector
+from ..limits import MAX_MAGNITUDE
 from ..limits import MAX_MAGNITUDE
 
 if TYPE_CHECKING:
@@ -228,11 +228,22 @@ def segmentation(client: int, width: int, height: int, view: Sequence[float],
     return np.asarray(seg, dtype=np.int64).reshape(height, width)
 
 
+def up_for(camera: Camera) -> tuple[float, float, float]:
+    """The camera's up direction, or +y when it looks along it (straight down or up: no image otherwise)."""
+    direction = np.subtract(camera.target, camera.eye)
+    length = float(np.linalg.norm(direction))
+    up = np.asarray(camera.up, dtype=float)
+    if length > 0 and float(np.linalg.norm(np.cross(direction / length, up / np.linalg.norm(up)))) < 1e-6:
+        return (0.0, 1.0, 0.0) if abs(up[1]) < 0.9 else (1.0, 0.0, 0.0)
+    return camera.up
+
+
 def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
     """RGB image (height, width, 3) of the world from `camera`."""
     cid = world.client_id
-    view = p.computeViewMatrix(camera.eye, camera.target, camera.up, physicsClientId=cid)
-    proj = p.computeProjectionMatrixFOV(camera.vertical_fov_deg, width / height, camera.near, camera.far, physicsClientId=cid)
+    view = p.computeViewMatrix(camera.eye, camera.target, up_for(camera), physicsClientId=cid)
+    far = max(camera.far, 1.5 * math.dist(camera.eye, camera.target) + camera.far)  # a far eye still sees its target
+    proj = p.computeProjectionMatrixFOV(camera.vertical_fov_deg, width / height, camera.near, far, physicsClientId=cid)
     _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj, renderer=p.ER_TINY_RENDERER, shadow=1,
                                         lightDirection=[-1.0, -0.6, 2.0], physicsClientId=cid)
     return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]
@@ -262,7 +273,9 @@ def write_png(path: Path | str, rgb: np.ndarray, key: str | None = None) -> None
 def _point(text: str, what: str) -> tuple[float, float, float]:
     values = parse_vector(text, 3)
     if values is None:
-        raise ValueError(f"{what}: expected x,y,z (three numbers), got {text!r}")
+        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
+    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
+        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
     return (values[0], values[1], values[2])
 
 
@@ -272,4 +285,7 @@ def parse_camera(text: str) -> Camera:
     if not sep:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
                          f"got {text!r}")
-    return Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
+        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
+    return camera

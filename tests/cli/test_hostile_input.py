@@ -342,6 +342,56 @@ def test_numbers_beyond_what_the_runtime_can_do_are_input_errors(tmp_path):
     assert run("run", str(plan), "--pace", "nan").exit_code == 2
 
 
+def test_sweep_numbers_are_finite_and_within_their_documented_maxima(tmp_path):
+    from pycram_cli.limits import MAX_SWEEP_RUNS, MAX_WORKERS
+
+    plan = a_plan(tmp_path, "- log: ran\n")
+    write(tmp_path, "p.vary.yaml", "objects: {box: {noise: [0.1, 0, 0]}}\n")
+    cases = {("--timeout", "nan"): "--timeout: expected a number of seconds above 0 and at most 86400",
+             ("--timeout", "inf"): "--timeout: expected a number of seconds",
+             ("--timeout", "1e300"): "--timeout: expected a number of seconds",
+             ("-n", str(MAX_SWEEP_RUNS + 1)): f"-n: at most {MAX_SWEEP_RUNS} scenarios (the limit)",
+             ("--workers", str(MAX_WORKERS + 1)): f"--workers: expected between 1 and {MAX_WORKERS} workers"}
+    for option, message in cases.items():
+        result = run("sweep", str(plan), "--out", str(tmp_path / "out"), *option)
+        assert result.exit_code == 2 and message in result.stderr, (option, result.output)
+        assert not (tmp_path / "out").exists()  # refused before the results folder is made
+
+
+def test_a_camera_out_of_range_or_without_direction_is_refused_and_a_view_straight_down_is_drawn(tmp_path):
+    import numpy as np
+    from PIL import Image
+
+    plan = a_plan(tmp_path, "- log: ran\n")
+    image = str(tmp_path / "x.png")
+    for camera, message in (("1e300,0,0:0,0,0", "camera eye: numbers must be between -1e+06 and 1e+06"),
+                            ("1,1,1:1,1,1", "the camera's eye and target must differ")):
+        for args in (("world", "render", str(tmp_path / "w.yaml"), "-o", image), ("run", str(plan), "--render", image)):
+            result = run(*args, "--size", "32x24", f"--camera={camera}")
+            assert result.exit_code == 2 and f"--camera: {message}" in result.stderr, (args[0], result.output)
+    result = run("world", "render", str(tmp_path / "w.yaml"), "-o", image, "--size", "64x48",
+                 "--camera=0.5,0,3:0.5,0,0")  # looking straight down, along the camera's up: was a blank image
+    assert result.exit_code == 0, result.output
+    assert np.asarray(Image.open(image)).std() > 1.0
+
+
+def test_a_wait_or_a_slot_given_a_known_parameter_value_is_checked_before_the_run(tmp_path):
+    # `wait: $t` with `-p t=1.0e+10` validated and then failed at run time (exit 1)
+    path = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {t: 1, far: [0, 0, 0]}
+        body:
+          - wait: $t
+          - moving: {target: $far}
+    """)
+    result = run("run", str(path), "-p", "t=1.0e+10", "-p", "far=[1.0e+300, 0, 0]")
+    assert result.exit_code == 2, result.output
+    assert f"{path}:5:11: wait: at most 86400 seconds (one day) can be waited for, got 1e+10 ($t)" in result.stderr
+    assert f"{path}:6:22: target: slot 'target': expected a position [x, y, z] (numbers must be between" \
+           in result.stderr and "($far)" in result.stderr
+    assert run("validate", str(path)).exit_code == 0  # the defaults are fine
+
+
 def test_a_nan_wait_is_refused(tmp_path):
     plan = a_plan(tmp_path, "- wait: .nan\n")
     result = run("validate", str(plan))
