@@ -3,6 +3,7 @@ traceback, a hang, a wrong exit code or a memory blow-up. One representative cas
 from __future__ import annotations
 
 import os
+import re
 import textwrap
 import time
 from pathlib import Path
@@ -308,6 +309,49 @@ def test_corrupt_traces_are_input_errors_never_internal_ones(tmp_path):
     assert run("trace", "show", str(out)).exit_code == 2
     out.write_text(json.dumps(data)[:1000])
     assert "not a JSON trace" in run("trace", "show", str(out)).stderr
+
+
+def test_a_corrupt_replay_record_is_an_input_error_naming_the_entry(tmp_path):
+    # `trace show --report` of a trace whose `replay` was corrupted: exit 3, or exit 0 with a wrong report
+    import json
+
+    out, data = saved_trace(tmp_path)
+    del data["final_state"]["attachments"]
+    report = tmp_path / "r.html"
+    broken = {
+        "replay.steps: expected a list of steps": lambda r: r.update(steps=3),
+        "replay.steps[0].changed: expected an object, got a list": lambda r: r["steps"][0].update(changed=[1]),
+        "replay.initial.box.position: expected a position: a list of 3 numbers":
+            lambda r: r["initial"]["box"].update(position=[1, 2]),
+        "replay.initial.box.orientation: expected a quaternion of unit length":
+            lambda r: r["initial"]["box"].update(orientation=[0, 0, 0, 0]),
+        "replay.steps[1].changed.fridge: no object 'fridge' in the trace's final state":
+            lambda r: r["steps"][1]["changed"].update(fridge={"position": [0, 0, 0], "orientation": [0, 0, 0, 1]}),
+        'replay.steps[0].path: no step of the trace has the path "body/9:log"':
+            lambda r: r["steps"][0].update(path="body/9:log"),
+        "replay: the replay record needs 'initial'": lambda r: r.pop("initial"),
+    }
+    for message, change in broken.items():
+        copy = json.loads(json.dumps(data))
+        change(copy["replay"])
+        out.write_text(json.dumps(copy, indent=1))
+        result = run("trace", "show", str(out), "--report", str(report))
+        assert result.exit_code == 2, (message, result.output)
+        assert re.search(rf"{re.escape(str(out))}:\d+:\d+: {re.escape(message)}", result.stderr), (message, result.stderr)
+        assert not report.exists()
+
+
+def test_a_trace_nested_too_deep_is_refused_at_its_line_and_column_with_the_documented_limit(tmp_path):
+    from pycram_cli.plan.trace_schema import MAX_JSON_DEPTH
+
+    out = tmp_path / "t.json"
+    out.write_text('{"format": "pycram-trace",\n "x": ' + "[" * 10_000 + "]" * 10_000 + "}")
+    result = run("trace", "show", str(out))
+    assert result.exit_code == 2
+    assert f"{out}:2:{7 + MAX_JSON_DEPTH - 1}: not a pycram trace: nested deeper than {MAX_JSON_DEPTH} levels" \
+           in result.stderr
+    readme = (REPO / "README.md").read_text()
+    assert f"trace files: {MAX_JSON_DEPTH} levels of JSON" in readme
 
 
 def test_trace_diff_json_never_prints_a_bare_nan_and_refuses_a_nan_tolerance(tmp_path):
