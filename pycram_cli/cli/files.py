@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Iterable
 
+from .. import interrupts
 from ..errors import InputError, Location
 from ..report import REPORT_FORMATS, build_report
 from ..files import reason, write_atomic
@@ -55,6 +56,7 @@ def write_output(path: Path, data: bytes | str, what: str) -> None:
     if not folder_there:
         raise InputError("cannot write the file: its folder does not exist", Location(str(path)))
     write_atomic(path, data)  # a temporary file renamed over it: readers see the old or the new file, never a part
+    interrupts.paid(str(path))
     console.info(f"wrote {path} ({what})")
 
 

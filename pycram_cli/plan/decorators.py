@@ -96,7 +96,7 @@ class Retry(Node):
             old = attempt - RETRY_KEPT
             if old > RETRY_KEPT:
                 for record in groups.pop(old):
-                    tn.summarise(record, "folded attempts")
+                    ex.fold(tn, record, "folded attempts")
             attempt += 1
             tn.info["retries"] = attempt - 1
 

@@ -94,11 +94,11 @@ class TraceNode:
             self.children.append(node)
         return node
 
-    def summarise(self, child: "TraceNode", label: str) -> None:
-        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place."""
+    def summarise(self, child: "TraceNode", label: str) -> "TraceNode | None":
+        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place; the summary."""
         with self._lock:
             if child not in self.children:
-                return
+                return None
             index = self.children.index(child)
             summary = next((c for c in self.children if c.type == "folded" and c.label == label), None)
             if summary is None:
@@ -118,6 +118,7 @@ class TraceNode:
             if text not in failures and len(failures) >= FOLDED_MESSAGES:
                 text = "(other failures)"
             failures[text] = failures.get(text, 0) + 1
+        return summary
 
     @property
     def label(self) -> str:
