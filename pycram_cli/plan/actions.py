@@ -115,6 +115,7 @@ class ActionStep(Node):
             where = self.slots.loc(slot.name, True)
             for key, name, what in names:
                 self._known(v, key or slot.name, name, what, where, objects)
+        v.action_parts(self.slots, [(s.name, s.kind, s.of) for s in spec.slots])
 
     def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str]) -> None:
         facts = v.facts

@@ -303,6 +303,42 @@ class Validator:
                 elif kind in ("link", "joint") and of is not None and of in slots:
                     self._part_names(slots, slot_name, item, kind, of, where, origin)
 
+    def action_parts(self, slots: LMap, kinds: list[tuple[str, str, str | None]]) -> None:
+        """With a world: the links and joints an action's slots name (`open`'s `handle` and `joint`) belong to the
+        object its `of` slot names (`part-of`); without that slot, a joint must be a movable joint of the object
+        that has the handle, else of some object of the world (the robot aside)."""
+        facts = self.facts
+        if facts is None:
+            return
+        for slot_name, kind, of in kinds:
+            if kind not in ("link", "joint") or slot_name not in slots:
+                continue
+            where = slots.loc(slot_name, True)
+            values = self.possible(slots[slot_name]) or []
+            origin = "" if values == [slots[slot_name]] else f" ({slots[slot_name]})"
+            for item in values:
+                if not isinstance(item, str) or references(item):
+                    continue
+                if of is not None and of in slots:
+                    self._part_names(slots, slot_name, item, kind, of, where, origin)
+                elif kind == "joint":
+                    self._joint_somewhere(slots, slot_name, item, where, origin)
+
+    def _joint_somewhere(self, slots: LMap, slot_name: str, joint: str, where: Location, origin: str) -> None:
+        facts = self.facts
+        assert facts is not None
+        owners = [name for name in facts.objects if name != facts.robot]
+        handles = [h for h in self.possible(slots["handle"]) or [] if isinstance(h, str)] if "handle" in slots else []
+        if handles:  # the joint is the one the handle is on: its object's
+            owners = [name for name in owners if any(h in facts.links.get(name, ()) for h in handles)]
+        if any(name not in facts.joints for name in owners):
+            return  # an object whose model is not known: it may have the joint
+        known = [j for name in owners for j in facts.joints[name]]
+        if joint not in known:
+            whose = f"object '{owners[0]}'" if len(owners) == 1 else "the world (the robot aside)"
+            self.error(f"'{slot_name}': {whose} has no movable joint '{joint}'{origin}", where, key=str(slot_name),
+                       suggestion=did_you_mean(joint, known))
+
     def _part_names(self, slots: LMap, slot_name: str, item: str, kind: str, of: str, where: Location,
                     origin: str) -> None:
         """A link or joint named in `slot_name` must belong to the object the slot `of` names."""

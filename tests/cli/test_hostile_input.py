@@ -481,6 +481,40 @@ def test_object_link_and_joint_names_in_every_slot_are_checked_against_the_world
     assert "no object 'fridge' ($thing)" not in result.stderr and result.exit_code == 2
 
 
+def test_the_joint_of_open_and_close_actions_is_checked_against_the_handles_object(tmp_path):
+    # `action: open` with `joint: nojoint` validated, then failed at run time (exit 1)
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {j: sink_area_left_upper_drawer_main_joit}
+        body:
+          - action: open
+            joint: nojoint
+          - action: close
+            joint: $j
+            part-of: kitchen
+          - action: open
+            handle: sink_area_left_upper_drawer_handle
+            joint: nojoint
+          - action: open
+            handle: sink_area_left_upper_drawer_handle
+            part-of: milk
+          - action: open
+            joint: sink_area_left_upper_drawer_main_joint
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    expected = [
+        "6:12: joint: 'joint': the world (the robot aside) has no movable joint 'nojoint'",
+        "8:12: joint: 'joint': object 'kitchen' has no movable joint 'sink_area_left_upper_drawer_main_joit' ($j) "
+        "(did you mean 'sink_area_left_upper_drawer_main_joint'?)",
+        "12:12: joint: 'joint': object 'kitchen' has no movable joint 'nojoint'",
+        "14:13: handle: 'handle': object 'milk' has no link 'sink_area_left_upper_drawer_handle'",
+    ]
+    for line in expected:
+        assert f"{plan}:{line}" in result.stderr, (line, result.stderr)
+    assert result.stderr.count("error:") == len(expected)  # the last step is right
+
+
 def test_attachment_cycles_and_empty_names_in_worlds_are_refused(tmp_path):
     world = write(tmp_path, "w.yaml", """
         objects:
