@@ -108,6 +108,14 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
     if settings.backend not in BACKENDS:
         errors.append(InputError(f"unknown backend '{settings.backend}'", Location("--backend"),
                                  suggestion=f"one of {', '.join(BACKENDS)}"))
+    if settings.address is not None and settings.backend != "ray":
+        errors.append(InputError("joins a Ray cluster: it needs --backend ray", Location("--address"),
+                                 suggestion="add --backend ray, or leave --address out"))
+    elif settings.address is not None:
+        try:
+            ray_backend.reachable(settings.address)  # before the results folder is made
+        except InputError as exc:
+            errors.append(exc)
     if settings.n < 1:
         errors.append(InputError("the number of scenarios must be at least 1", Location("-n")))
     elif settings.n > MAX_SWEEP_RUNS:

@@ -173,6 +173,20 @@ def test_an_alias_bomb_in_a_parameter_is_refused(tmp_path):
     assert result.exit_code == 2 and "-p x" in result.stderr and "aliases" in result.stderr
 
 
+def test_a_plan_with_too_many_values_is_refused_at_once_naming_the_limit(tmp_path):
+    # a plain 40 000-step plan (0.8 MB, no alias) was refused after 14 s, blaming aliases
+    from pycram_cli.limits import MAX_YAML_NODES
+
+    path = tmp_path / "long.yaml"
+    path.write_text("body:\n" + "".join(f"  - log: step {i}\n" for i in range(40_000)))
+    started = time.monotonic()
+    result = run("validate", str(path))
+    assert time.monotonic() - started < 2.0
+    assert result.exit_code == 2
+    assert f"more than {MAX_YAML_NODES} values (lists, mappings and scalars) in one file, the limit" in result.stderr
+    assert "alias" not in result.stderr
+
+
 def test_nesting_deeper_than_the_limit_is_an_input_error(tmp_path):
     path = tmp_path / "deep.yaml"
     path.write_text("body:\n  - log: " + "[" * 10_000 + "]" * 10_000 + "\n")
