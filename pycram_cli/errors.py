@@ -20,10 +20,38 @@ def closest(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | 
     return lowered.get(word.lower())
 
 
-def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
-    """`did you mean 'x'?` or None."""
+def did_you_mean(word: object, candidates: Iterable[str]) -> str | None:
+    """`did you mean 'x'?` or None (None too for a word that is not a string: a YAML key read as null or a number)."""
+    if not isinstance(word, str):
+        return None
     match = closest(word, candidates)
     return f"did you mean '{match}'?" if match is not None and match != word else None
+
+
+def key_text(key: object) -> str:
+    """How a mapping key reads in a message: a name as it is, others as YAML writes them (null, true, 1, 2.5)."""
+    if isinstance(key, str):
+        return key
+    if key is None:
+        return "null"
+    if isinstance(key, bool):
+        return "true" if key else "false"
+    return str(key)
+
+
+def not_a_name(key: object) -> tuple[str, str] | None:
+    """(message, suggestion) when a key of a mapping of names (slots, arguments, objects' fields) is not a name.
+
+    YAML reads `~:` or an empty key as null, `1:` as a number and `yes:`/`true:` as true.
+    """
+    if isinstance(key, str):
+        return None
+    if key is None:
+        return "keys must be names, got null", "a key written ~, null or left empty is null"
+    if isinstance(key, bool):
+        return (f"keys must be names, got {key_text(key)}",
+                "YAML reads yes, no, on, off, true and false as true or false: quote it to mean the name")
+    return f"keys must be names, got the number {key_text(key)}", f"quote it to mean the name: '{key_text(key)}'"
 
 
 @dataclass

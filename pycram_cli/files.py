@@ -136,7 +136,8 @@ def check_writable(path: str | Path, key: str | None = None) -> None:
         os.close(fd)
         os.unlink(temporary)
     except OSError as exc:
-        raise InputError(f"cannot write: {reason(exc)}", where, key=key) from None
+        why = f"files cannot be made in folder '{folder}'" if exc.errno == errno.ENOENT else reason(exc)
+        raise InputError(f"cannot write: {why}", where, key=key) from None
 
 
 def write_atomic(path: str | Path, data: str | bytes, key: str | None = None) -> None:

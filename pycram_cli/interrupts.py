@@ -14,7 +14,8 @@ and does the work in ordinary thread context:
 
 The exit code is 128 + the signal's number: 130 for SIGINT, 143 for SIGTERM. A second
 signal ends the process at once, and so does the watcher when the command has not ended
-`DEADLINE` seconds after the first (a step that cannot be interrupted is running).
+`DEADLINE` seconds after the first (a step that cannot be interrupted is running); it then says
+so on stderr, naming the output files the command still owed (`owe`/`paid`), which are not written.
 """
 from __future__ import annotations
 
@@ -47,6 +48,7 @@ _stoppers: list[Callable[[str], None]] = []
 _event = threading.Event()  # set (by the watcher) once a signal has been received
 _pipe: int | None = None
 _deferring = 0  # inside `deferred()`: note the signal, raise when the block ends
+_owed: list[str] = []  # output files the command has still to write (named if the watcher must end it)
 
 
 def received() -> int | None:
@@ -99,7 +101,23 @@ def _watch(read_end: int) -> None:
         with contextlib.suppress(Exception):
             stop(signal.Signals(signum).name)
     time.sleep(DEADLINE)
+    name = signal.Signals(signum).name
+    unwritten = f"; not written: {', '.join(_owed)}" if _owed else ""
+    with contextlib.suppress(OSError):
+        os.write(2, f"error: interrupted by {name}, and the command did not end within {DEADLINE:g} s: "
+                    f"exiting now{unwritten}\n".encode())
     os._exit(128 + signum)  # the command is still not done: leave anyway
+
+
+def owe(description: str) -> None:
+    """The command will write this output file (`the trace run.json`): named if the watcher must end it first."""
+    _owed.append(description)
+
+
+def paid(description: str) -> None:
+    """The output file `owe` named is written (or will not be)."""
+    with contextlib.suppress(ValueError):
+        _owed.remove(description)
 
 
 @contextlib.contextmanager

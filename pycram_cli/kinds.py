@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
-from .errors import did_you_mean
+from .errors import did_you_mean, not_a_name
 from .limits import MAX_MAGNITUDE
 from .schema import is_number, is_vector, number_problem
 
@@ -283,6 +283,8 @@ def _location(value: Any, robots: Robots) -> str | None:
         return ("expected a location mapping such as {reachable-for: milk}, {visible-for: milk}, "
                 "{on: kitchen_island_surface, for: milk} or {accessing: HANDLE_LINK}")
     for key in value:
+        if not isinstance(key, str):
+            return f"{not_a_name(key)[0]} in a location"  # type: ignore[index]
         if key not in LOCATION_KEYS:
             return f"a location has no key '{key}' ({_hint(key, list(LOCATION_KEYS), 'key')})"
     goals = location_goals(value)

@@ -41,6 +41,13 @@ MAX_WAIT = 86_400.0
 #: `retry: N` at most this many more attempts
 MAX_RETRIES = 1_000_000_000
 
+#: runs of one sweep: `-n` scenarios, times the `--compare` alternatives
+MAX_SWEEP_RUNS = 100_000
+#: `sweep --timeout` at most this many seconds per scenario (one day)
+MAX_SCENARIO_TIMEOUT = 86_400.0
+#: `sweep --workers` at most this many worker processes or Ray actors
+MAX_WORKERS = 256
+
 
 def size_text(count: int) -> str:
     """1048576 -> '1 MiB'."""

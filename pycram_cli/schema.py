@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from typing import Any, Iterable
 
-from .errors import InputError, Location, did_you_mean
+from .errors import InputError, Location, did_you_mean, key_text, not_a_name
 from .limits import MAX_MAGNITUDE
 from .yamlsource import LMap, where_of
 
@@ -29,11 +29,33 @@ def describe(value: Any) -> str:
     return repr(value)
 
 
+def key_error(mapping: LMap, key: Any) -> InputError | None:
+    """The problem with a key of a mapping of names (slots, arguments, fields) that is not a name, at the key."""
+    problem = not_a_name(key)
+    if problem is None:
+        return None
+    return InputError(problem[0], mapping.loc(key), key=key_text(key), suggestion=problem[1])
+
+
+def names_only(mapping: LMap, errors: list[InputError]) -> LMap:
+    """Report each key of a mapping of names that is not a name (null, a number, true) and leave it out,
+    so that later checks, which compare and sort names, see names only. Changes `mapping` in place."""
+    for key in [k for k in mapping if not isinstance(k, str)]:
+        error = key_error(mapping, key)
+        if error is not None:
+            errors.append(error)
+        del mapping[key]
+    return mapping
+
+
 def check_keys(mapping: LMap, allowed: Iterable[str], required: Iterable[str], context: str,
                errors: list[InputError]) -> None:
     allowed = list(allowed)
     for key in mapping:
-        if key not in allowed:
+        error = key_error(mapping, key)
+        if error is not None:
+            errors.append(error)
+        elif key not in allowed:
             errors.append(InputError(f"unknown key '{key}' in {context}", mapping.loc(key), key=str(key),
                                      suggestion=did_you_mean(str(key), allowed)
                                      or f"valid keys: {', '.join(allowed)}"))

@@ -64,9 +64,14 @@ def _make_loader(filename: str) -> type[yaml.SafeLoader]:
         """SafeLoader with locations, merge keys, bounded nesting and alias expansion, finite numbers."""
 
         _depth = 0
+        _nodes = 0
 
         def compose_node(self, parent: Any, index: Any) -> Any:
             self._depth += 1
+            if not self.check_event(yaml.AliasEvent):
+                self._nodes += 1  # the values written out (aliases are counted once expanded, by _measure)
+                if self._nodes > MAX_YAML_NODES:
+                    raise InputError(_too_many(), location(self.peek_event().start_mark))
             try:
                 if self._depth > MAX_NESTING:
                     raise InputError(f"nested deeper than {MAX_NESTING} levels (the limit)",
@@ -193,10 +198,34 @@ def _measure(root: yaml.Node, location: Any) -> None:
                 stack.append((child, False))
 
 
+def _count_values(text: str, filename: str) -> None:
+    """Refuse a document with more than MAX_YAML_NODES values of its own (aliases not expanded) at once, with
+    libyaml's parser (a tenth of a second per megabyte; the pure-Python loader takes seconds to get there).
+    Malformed YAML is left to the loader, which says where and what."""
+    if not getattr(yaml, "__with_libyaml__", False):
+        return  # the loader counts as it goes (compose_node)
+    count = 0
+    try:
+        for event in yaml.parse(text, Loader=yaml.CSafeLoader):
+            if isinstance(event, (yaml.ScalarEvent, yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+                count += 1
+                if count > MAX_YAML_NODES:
+                    mark = event.start_mark
+                    raise InputError(_too_many(), Location(filename, mark.line + 1, mark.column + 1))
+    except yaml.YAMLError:
+        return
+
+
+def _too_many() -> str:
+    return (f"more than {MAX_YAML_NODES} values (lists, mappings and scalars) in one file, the limit: "
+            "split it, e.g. move steps into subplans")
+
+
 def load_yaml_text(text: str, filename: str) -> Any:
     """Parse YAML text, turning every problem into an InputError that names the place."""
     if len(text) > MAX_YAML_BYTES:
         raise InputError(f"too large: more than {size_text(MAX_YAML_BYTES)} of YAML", Location(filename))
+    _count_values(text, filename)
     try:
         return yaml.load(text, Loader=_make_loader(filename))  # noqa: S506 - SafeLoader subclass
     except yaml.MarkedYAMLError as exc:

@@ -9,9 +9,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Iterable
 
+from .. import interrupts
 from ..errors import InputError, Location
 from ..report import REPORT_FORMATS, build_report
-from ..files import write_atomic
+from ..files import reason, write_atomic
 from . import console
 
 __all__ = ["REPORT_FORMATS", "check_output", "check_outputs", "write_output", "write_report"]
@@ -22,12 +23,17 @@ def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "f
     never made silently), and (with `kinds`, extension -> format) its extension names a format we write."""
     where = Location(str(path))
     folder = path.parent if str(path.parent) else Path(".")
-    if path.is_dir():
-        raise InputError(f"is a folder, expected a {what} to write", where)
-    if not folder.exists():
-        raise InputError(f"cannot write the {what}: folder '{folder}' does not exist", where)
-    if not folder.is_dir():
-        raise InputError(f"cannot write the {what}: '{folder}' is not a folder", where)
+    try:  # probing a path can fail too: a name too long, a folder on the way that cannot be searched
+        if path.is_dir():
+            raise InputError(f"is a folder, expected a {what} to write", where)
+        if not folder.exists():
+            raise InputError(f"cannot write the {what}: folder '{folder}' does not exist", where)
+        if not folder.is_dir():
+            raise InputError(f"cannot write the {what}: '{folder}' is not a folder", where)
+    except OSError as exc:
+        raise InputError(f"cannot write the {what}: {reason(exc)}", where) from None
+    except ValueError:  # a NUL character in the name
+        raise InputError(f"cannot write the {what}: the file name contains a NUL character", where) from None
     if kinds is not None and path.suffix.lower() not in kinds:
         known = ", ".join(sorted(kinds))
         got = f"'{path.suffix}'" if path.suffix else "no extension"
@@ -43,9 +49,14 @@ def check_outputs(items: Iterable[tuple[Path | None, dict[str, str] | None, str]
 
 def write_output(path: Path, data: bytes | str, what: str) -> None:
     """Write `data` to `path` (its folder must exist) and report it on stderr: `wrote PATH (WHAT)`."""
-    if not Path(path).parent.is_dir():
+    try:
+        folder_there = Path(path).parent.is_dir()
+    except (OSError, ValueError):
+        folder_there = True  # write_atomic says what is wrong
+    if not folder_there:
         raise InputError("cannot write the file: its folder does not exist", Location(str(path)))
     write_atomic(path, data)  # a temporary file renamed over it: readers see the old or the new file, never a part
+    interrupts.paid(str(path))
     console.info(f"wrote {path} ({what})")
 
 

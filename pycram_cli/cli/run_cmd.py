@@ -178,6 +178,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             view = Paced(view, pace)
         observer = GuiView(world, view, follow) if gui else view
         replay = trace_file is not None or report_file is not None
+        for output in (trace_file, render_file, report_file):
+            if output is not None:
+                interrupts.owe(str(output))  # said on stderr if a signal's deadline ends the run before it is written
         try:
             if isinstance(progress, LiveView):
                 with view:

@@ -186,7 +186,7 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
     """Print the trace in FILE as a tree (as the live view of `pycram run` shows it), then the world's final state."""
     if report_file is not None:
         check_output(report_file, REPORT_FORMATS, "report")
-    data = traces.load(file)
+    data = traces.load(file, replay=report_file is not None)
     timing = not no_timing
     status = data.get("status", "?")
     header = f"{data.get('plan')} on {data.get('world')}: {status}"

@@ -25,7 +25,11 @@ from .complete import plan_or_world_names, world_names
 def _resolve(value: str) -> Path:
     """A file path, or the name of a plan or world (the working folder's `plans/`/`worlds/`, then the bundled ones)."""
     path = Path(value)
-    if path.exists() or path.suffix in (".yaml", ".yml") and path.parent != Path("."):
+    try:
+        there = path.exists()
+    except (OSError, ValueError):  # a name too long, a NUL character: reading it says what is wrong
+        return path
+    if there or path.suffix in (".yaml", ".yml") and path.parent != Path("."):
         return path
     try:
         return find_plan(value)

@@ -79,6 +79,8 @@ class ActionStep(Node):
             slot = spec.slot(str(key))
             if slot is not None and slot.kind == "location" and isinstance(value, LMap) and True in value:
                 value = _on_key(value)  # YAML 1.1 reads an unquoted `on` as true
+            if slot is not None and slot.kind == "location" and isinstance(value, LMap):
+                parser.names_only(value)
             slots[key] = value
             slots.key_where[key], slots.value_where[key] = step.loc(key), step.loc(key, True)
         return cls(head, step.loc(head), name, slots)
@@ -113,6 +115,7 @@ class ActionStep(Node):
             where = self.slots.loc(slot.name, True)
             for key, name, what in names:
                 self._known(v, key or slot.name, name, what, where, objects)
+        v.action_parts(self.slots, [(s.name, s.kind, s.of) for s in spec.slots])
 
     def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str]) -> None:
         facts = v.facts

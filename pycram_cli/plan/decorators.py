@@ -96,7 +96,7 @@ class Retry(Node):
             old = attempt - RETRY_KEPT
             if old > RETRY_KEPT:
                 for record in groups.pop(old):
-                    tn.summarise(record, "folded attempts")
+                    ex.fold(tn, record, "folded attempts")
             attempt += 1
             tn.info["retries"] = attempt - 1
 
@@ -129,7 +129,7 @@ class Try(Node):
                              step.loc("catch", True), key="catch",
                              suggestion="e.g. catch: {PerceptionFailure: [{log: not seen}]}")
             else:
-                for name in catch:
+                for name in parser.names_only(catch):
                     handlers.append((str(name), catch.loc(name), parser.steps(catch[name], catch.loc(name, True),
                                                                               str(name))))
         return cls(head, step.loc(head), body, handlers)

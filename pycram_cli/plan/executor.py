@@ -38,6 +38,8 @@ class Observer(Protocol):
 
     def log(self, node: TraceNode, message: str) -> None: ...
 
+    # optional: `folded(summary, child)` when `child` (a repeated attempt) was folded into the summary node
+
 
 class InternalError(Exception):
     """A bug inside a step (not a plan failure); carried out of branch threads and re-raised."""
@@ -103,9 +105,12 @@ class Run:
     def notify(self, event: str, node: TraceNode, *args: Any) -> None:
         if self.observer is None:
             return
+        method = getattr(self.observer, event, None)  # `folded` is optional: live views need not know it
+        if method is None:
+            return
         with self._observer_lock:
             with contextlib.suppress(Exception):
-                getattr(self.observer, event)(node, *args)
+                method(node, *args)
 
     def cancel(self, reason: str = "interrupted") -> None:
         self.token.cancel(reason)
@@ -197,6 +202,11 @@ class Exec:
 
     def log(self, tn: Record, message: str) -> None:
         self.run.notify("log", _own(tn), message)
+
+    def fold(self, tn: Record, child: Record, label: str) -> None:
+        summary = _own(tn).summarise(_own(child), label)
+        if summary is not None:
+            self.run.notify("folded", summary, _own(child))
 
     # -- one step ------------------------------------------------------------------------------
     def step(self, node: Node, tn: Record) -> Any:

@@ -55,7 +55,7 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
         parser.error(f"expected the {what} of '{head}' as a mapping, got {describe(value)}", where, key=head,
                      suggestion=f"e.g. {head}: {{name: value}}")
         return None
-    return value
+    return parser.names_only(value)
 
 
 # -- motion designators -------------------------------------------------------------------------------
@@ -269,6 +269,8 @@ class CallStep(Node):
             parser.error(f"expected the arguments as a list or a mapping, got {describe(args)}", step.loc("args", True),
                          key="args")
             args = None
+        if isinstance(args, LMap):
+            parser.names_only(args)
         return cls(head, step.loc(head), name, args, step.loc("args", True) if "args" in step else step.loc(head))
 
     def label(self) -> str:
@@ -479,6 +481,11 @@ class WaitStep(Node):
 
     def check(self, v: "Validator") -> None:
         v.refs(self.seconds, self.value_where)
+        if is_reference(self.seconds):  # a plan parameter's value (-p, else its default) is known before the run
+            for value in v.possible(self.seconds) or []:
+                problem = _seconds_problem(value)
+                if problem:
+                    v.error(f"{problem} ({self.seconds})", self.value_where, key=self.head)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         seconds = ex.evaluate(self.seconds)

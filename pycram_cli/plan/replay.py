@@ -9,6 +9,13 @@ values) and again whenever a leaf step has finished, and keeps what changed:
      "steps": [{"path": "body/0:for_each/item 0/0:world-state-detecting", "status": "succeeded",
                 "changed": {"pr2": {"joints": {"torso_lift_joint": 0.3}}, "milk": {"position": [...]}}}, ...]}
 
+Bounded like the trace tree: when a `retry` folds an attempt into its `folded attempts` node, the
+steps recorded for that attempt are folded too, into one entry at the place of the last of them
+that stands for all of them: `{"path": ".../folded attempts", "status": "failed", "folded": N,
+"changed": ...}`, whose `changed` holds, for everything the folded steps changed, the value it had
+after the last of them. So the states after it are exact, and a replayed run shows the folded
+attempts as one step.
+
 The trace keeps this under its `replay` key, which `trace.comparable()` leaves out: golden traces
 and `trace diff` compare behaviour, not the replay. The record is still deterministic: a leaf's
 `finished` event comes while its thread holds the scheduler's turn (see scheduler.py), so the
@@ -17,7 +24,7 @@ steps are recorded in the same order, with the same states, however the threads 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterable
+from typing import TYPE_CHECKING, Any, Callable, Iterable
 
 from .trace import DIGITS, TraceNode, canonical_quaternion
 
@@ -95,9 +102,97 @@ class Recorder:
         if self.inner is not None:
             self.inner.log(node, message)
 
+    def folded(self, summary: TraceNode, child: TraceNode) -> None:
+        """`child` (an attempt of a retry, with its subtree) was folded into `summary`: fold its steps here too."""
+        fold_steps(self.steps, self.initial, summary.path, child.path, _earlier_attempts(summary.path, child.path))
+        inner = getattr(self.inner, "folded", None)
+        if inner is not None:
+            inner(summary, child)
+
     def record(self) -> dict[str, Any]:
         """The replay record (see the module docstring), ready for the trace's `replay` key."""
         return {"world_file": self.world_file, "initial": self.initial, "steps": list(self.steps)}
+
+
+def _earlier_attempts(summary_path: str, child_path: str) -> Callable[[str], bool]:
+    """Whether a step's path is in an attempt (or its recovery) of the same retry before the folded one:
+    the steps of the folded attempt all come after such a step (a retry's attempts run one after another)."""
+    parent, _, label = child_path.rpartition("/")
+    kind, _, number = label.partition(" ")
+    if not number.isdigit():
+        return lambda path: False
+    before = int(number)
+
+    def earlier(path: str) -> bool:
+        if not path.startswith(parent + "/"):
+            return False
+        head = path[len(parent) + 1:].split("/", 1)[0]
+        group, _, index = head.partition(" ")
+        return group in ("attempt", "recover") and index.isdigit() and int(index) < before
+
+    return earlier
+
+
+def _keys(changed: State) -> set[tuple[str, str | None]]:
+    """What a step's changes touch: (object, None) for its pose, (object, joint) for each joint."""
+    keys: set[tuple[str, str | None]] = set()
+    for name, delta in changed.items():
+        if "position" in delta:
+            keys.add((name, None))
+        keys.update((name, joint) for joint in delta.get("joints", {}))
+    return keys
+
+
+def fold_steps(steps: list[dict[str, Any]], initial: State, summary_path: str, child_path: str,
+               earlier: Callable[[str], bool] = lambda path: False) -> None:
+    """Fold the recorded steps under `child_path` (and the summary entry `summary_path`, if there is one)
+    into one summary entry, in place, at the place of the last of them (see the module docstring).
+
+    `earlier(path)`: a step that surely comes before every step to fold (the search stops there)."""
+    prefix = child_path + "/"
+    found: list[int] = []
+    for index in range(len(steps) - 1, -1, -1):
+        path = steps[index]["path"]
+        if path == summary_path or path == child_path or path.startswith(prefix):
+            found.append(index)
+            if path == summary_path:
+                break  # an earlier summary comes before everything folded since
+        elif earlier(path):
+            break
+    if not found:
+        return
+    last = found[0]
+    wanted: set[tuple[str, str | None]] = set()
+    count = 0
+    for index in found:
+        wanted |= _keys(steps[index]["changed"])
+        count += steps[index].get("folded", 1)
+    changed: State = {}
+    missing = set(wanted)
+    for index in range(last, -1, -1):  # the value each had after the last folded step: the latest change to it
+        if not missing:
+            break
+        for key in _keys(steps[index]["changed"]) & missing:
+            _put(changed, key, steps[index]["changed"][key[0]])
+            missing.discard(key)
+    for key in missing:  # changed back to where it started
+        _put(changed, key, initial.get(key[0], {}))
+    entry = {"path": summary_path, "status": "failed", "folded": count, "changed": changed}
+    for index in found:  # from the last: indices before it stay valid
+        del steps[index]
+    steps.insert(last - (len(found) - 1), entry)
+
+
+def _put(changed: State, key: tuple[str, str | None], source: dict[str, Any]) -> None:
+    name, joint = key
+    entry = changed.setdefault(name, {})
+    if joint is None:
+        if "position" in source and "orientation" in source:
+            entry["position"], entry["orientation"] = source["position"], source["orientation"]
+    elif joint in source.get("joints", {}):
+        entry.setdefault("joints", {})[joint] = source["joints"][joint]
+    if not entry:
+        del changed[name]
 
 
 # -- what a step works on -------------------------------------------------------------------------

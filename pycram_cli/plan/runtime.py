@@ -57,8 +57,9 @@ class Record(Protocol):
         """A new (pending) entry below this one (raises LimitExceeded beyond the run's limits)."""
         ...
 
-    def summarise(self, child: Record, label: str) -> None:
-        """Fold `child` (a failed attempt, with its subtree) into the summary entry `label`, made at its place.
+    def summarise(self, child: Record, label: str) -> Record | None:
+        """Fold `child` (a failed attempt, with its subtree) into the summary entry `label`, made at its place;
+        the summary entry (None when `child` was not below this one).
 
         Keeps the trace bounded when a step repeats without end (see `retry`)."""
         ...
@@ -128,6 +129,10 @@ class Runtime(Protocol):
 
     def log(self, tn: Record, message: str) -> None:
         """Show a message (the trace has it in `tn.info` already)."""
+        ...
+
+    def fold(self, tn: Record, child: Record, label: str) -> None:
+        """`tn.summarise(child, label)`, and tell the run's observers (the replay record folds the same steps)."""
         ...
 
     def step(self, node: Node, tn: Record) -> Any:

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..kinds import param_kind, param_kind_names
 from ..limits import MAX_PLAN_DEPTH
-from ..schema import check_keys, describe
+from ..schema import check_keys, describe, key_error, names_only
 from ..yamlsource import LList, LMap, load_yaml, where_of
 from .context import IDENTIFIER, references
 from .runtime import Record, Runtime
@@ -227,6 +227,10 @@ class Parser:
     def error(self, message: str, where: Location, key: str | None = None, suggestion: str | None = None) -> None:
         self.errors.append(InputError(message, where, key=key, suggestion=suggestion))
 
+    def names_only(self, mapping: LMap) -> LMap:
+        """Report the keys of a mapping of names (slots, arguments) that are not names, and leave them out."""
+        return names_only(mapping, self.errors)
+
     # -- steps ---------------------------------------------------------------------
     def steps(self, value: Any, where: Location, key: str) -> list[Node]:
         """A list of steps; a single step mapping is accepted as a list of one."""
@@ -281,6 +285,7 @@ class Parser:
             return None
         head, cls = heads[0]
         allowed = cls.allowed_keys(head)
+        self.names_only(value)
         for key in value:
             if key == head or key in allowed:
                 continue
@@ -322,6 +327,9 @@ class Parser:
             self.error("a step needs a node type (e.g. seq, par, moving, log)", value.where)
             return
         key = unknown[0]
+        if (error := key_error(value, key)) is not None:
+            self.errors.append(error)
+            return
         self.error(f"unknown node type '{key}'", value.loc(key), key=str(key),
                    suggestion=did_you_mean(str(key), heads) or "see docs/plans.md for the node types")
 

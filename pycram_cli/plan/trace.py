@@ -94,11 +94,11 @@ class TraceNode:
             self.children.append(node)
         return node
 
-    def summarise(self, child: "TraceNode", label: str) -> None:
-        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place."""
+    def summarise(self, child: "TraceNode", label: str) -> "TraceNode | None":
+        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place; the summary."""
         with self._lock:
             if child not in self.children:
-                return
+                return None
             index = self.children.index(child)
             summary = next((c for c in self.children if c.type == "folded" and c.label == label), None)
             if summary is None:
@@ -118,6 +118,7 @@ class TraceNode:
             if text not in failures and len(failures) >= FOLDED_MESSAGES:
                 text = "(other failures)"
             failures[text] = failures.get(text, 0) + 1
+        return summary
 
     @property
     def label(self) -> str:
@@ -237,9 +238,10 @@ def save(data: dict[str, Any], path: str | Path, timing: bool = True) -> None:
     write_atomic(path, dumps(data if timing else comparable(data)), key="trace")
 
 
-def load(path: str | Path) -> dict[str, Any]:
+def load(path: str | Path, replay: bool = False) -> dict[str, Any]:
     """Read a saved trace, checked against the trace schema of its version (`trace_schema.py`): a file
     `pycram run --trace` wrote, or what `pycram run --json` printed (the trace is its `trace` key).
+    `replay`: it is to be replayed (a report), so its replay record must fit its tree and final state too.
 
     Every problem is an input error at its place in the file: a missing file, malformed JSON,
     another format or version, a field of the wrong kind or missing ("which entry, what is missing").
@@ -259,7 +261,7 @@ def load(path: str | Path) -> dict[str, Any]:
         shown = version if isinstance(version, (int, float, str)) or version is None else "?"
         raise InputError(f"unsupported trace version {shown!r} (this pycram reads version {VERSION})",
                          trace_schema.location(text, str(path), within + ("version",)), key="version")
-    trace_schema.check(data, text, str(path), within)
+    trace_schema.check(data, text, str(path), within, replay)
     return data
 
 

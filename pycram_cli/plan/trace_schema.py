@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from typing import Any, Callable
 
 from ..errors import InputError, InputErrors, Location
-from ..limits import MAX_NESTING, MAX_STEP_DEPTH
+from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_STEP_DEPTH, MAX_TRACE_NODES
 
 Path = tuple[Any, ...]  # keys and indices from the top of the trace
 RUN_STATUSES = ("succeeded", "failed", "cancelled", "interrupted")
@@ -47,9 +48,33 @@ def parse(text: str, filename: str) -> Any:
         return json.loads(text, parse_constant=NonFinite, parse_float=_float)
     except json.JSONDecodeError as exc:
         raise InputError(f"not a JSON trace: {exc.msg}", Location(filename, exc.lineno, exc.colno)) from None
-    except RecursionError:
-        raise InputError(f"not a pycram trace: nested deeper than {MAX_JSON_DEPTH} levels", Location(filename)) \
+    except RecursionError:  # deeper than the JSON decoder goes (about 1000 levels): find where the limit is passed
+        offset = _too_deep(text)
+        where = Location(filename) if offset is None else _place(text, filename, offset)
+        raise InputError(f"not a pycram trace: nested deeper than {MAX_JSON_DEPTH} levels (the limit)", where) \
             from None
+
+
+_TOKENS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]')
+
+
+def _too_deep(text: str) -> int | None:
+    """The offset of the first bracket nested deeper than MAX_JSON_DEPTH (strings skipped), if any."""
+    depth = 0
+    for match in _TOKENS.finditer(text):
+        token = match.group()
+        if token in "[{":
+            depth += 1
+            if depth > MAX_JSON_DEPTH:
+                return match.start()
+        elif token in "]}":
+            depth -= 1
+    return None
+
+
+def _place(text: str, filename: str, offset: int) -> Location:
+    line = text.count("\n", 0, offset) + 1
+    return Location(filename, line, offset - (text.rfind("\n", 0, offset) + 1) + 1)
 
 
 # -- the schema -------------------------------------------------------------------------------------------
@@ -88,6 +113,7 @@ def _is_number(value: Any) -> bool:
 class _Checker:
     def __init__(self) -> None:
         self.problems: list[Problem] = []
+        self.paths: set[str] = set()  # the steps' paths (the replay's steps must be among them)
 
     def add(self, path: Path, message: str) -> None:
         self.problems.append((path, message))
@@ -197,6 +223,8 @@ class _Checker:
         if depth > MAX_STEP_DEPTH + 2:
             self.add(path, f"steps nested deeper than {MAX_STEP_DEPTH} levels")
             return []
+        if isinstance(value.get("path"), str):
+            self.paths.add(value["path"])
         children = value.get("children")
         if children is None:
             return []
@@ -235,6 +263,79 @@ class _Checker:
                         {"parent_link": self.string_or_null, "child_link": self.string_or_null})
 
 
+    # -- the replay record (plan/replay.py): what `--report` draws, so checked as strictly as the rest ----------
+    def replay(self, value: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
+        if value is None:
+            return
+        if not self.fields(value, path, "the replay record", {"initial": self.obj, "steps": self.replay_steps},
+                           {"world_file": self.string_or_null}):
+            return
+        initial = value.get("initial")
+        if isinstance(initial, dict):
+            for name, entry in initial.items():
+                where = path + ("initial", name)
+                if not refs or self.known_object(name, where, objects):
+                    self.body_state(entry, where, f"the initial state of '{name}'", full=True)
+        steps = value.get("steps")
+        if isinstance(steps, list):
+            for index, step in enumerate(steps):
+                if len(self.problems) >= MAX_PROBLEMS:
+                    return
+                self.replay_step(step, path + ("steps", index), objects, refs)
+
+    def replay_steps(self, value: Any, path: Path) -> None:
+        if self.typed(value, path, list, "a list of steps") and len(value) > MAX_TRACE_NODES:
+            self.add(path, f"more than {MAX_TRACE_NODES} steps (a run records at most that many)")
+
+    def replay_step(self, step: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
+        if not self.fields(step, path, "a replayed step", {"path": self.string, "status": self.status(NODE_STATUSES),
+                                                            "changed": self.obj}, {"folded": self.count}):
+            return
+        if refs and isinstance(step.get("path"), str) and step["path"] not in self.paths:
+            self.add(path + ("path",), f"no step of the trace has the path {json.dumps(step['path'])}")
+        changed = step.get("changed")
+        if isinstance(changed, dict):
+            for name, entry in changed.items():
+                where = path + ("changed", name)
+                if not refs or self.known_object(name, where, objects):
+                    self.body_state(entry, where, f"the change of '{name}'", full=False)
+
+    def known_object(self, name: str, path: Path, objects: set[str] | None) -> bool:
+        if objects is not None and name not in objects:
+            self.add(path, f"no object '{name}' in the trace's final state")
+            return False
+        return True
+
+    def body_state(self, entry: Any, path: Path, what: str, full: bool) -> None:
+        """A pose (position and orientation, together) and joint values: all there (`full`) or what changed."""
+        if not self.fields(entry, path, what, {"position": self.place, "orientation": self.rotation} if full else {},
+                           {"position": self.place, "orientation": self.rotation, "joints": self.joint_values}):
+            return
+        if not full and ("position" in entry) != ("orientation" in entry):
+            self.add(path, f"{what} needs 'position' and 'orientation' together")
+
+    def place(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and len(value) == 3 and all(_is_number(v) for v in value)):
+            self.add(path, "expected a position: a list of 3 numbers")
+        elif any(abs(v) > MAX_MAGNITUDE for v in value):
+            self.add(path, f"numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}")
+
+    def rotation(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and len(value) == 4 and all(_is_number(v) for v in value)):
+            self.add(path, "expected an orientation: a quaternion of 4 numbers")
+        elif abs(math.sqrt(sum(v * v for v in value)) - 1.0) > 1e-3:
+            self.add(path, "expected a quaternion of unit length")
+
+    def joint_values(self, value: Any, path: Path) -> None:
+        if not self.typed(value, path, dict, "an object of joint values"):
+            return
+        for joint, position in value.items():
+            if not _is_number(position):
+                self.add(path + (joint,), f"expected a number, got {_kind(position)}")
+            elif abs(position) > MAX_MAGNITUDE:
+                self.add(path + (joint,), f"numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}")
+
+
 def _non_finite_and_depth(data: Any, checker: _Checker) -> None:
     """Every NonFinite number, and nesting beyond the limit, anywhere in the data (no recursion)."""
     stack: list[tuple[Any, Path, int]] = [(data, (), 1)]
@@ -244,14 +345,17 @@ def _non_finite_and_depth(data: Any, checker: _Checker) -> None:
             checker.add(path, f"not a finite number: {value.text}")
         elif isinstance(value, (dict, list)):
             if depth > MAX_JSON_DEPTH:
-                checker.add(path, f"nested deeper than {MAX_JSON_DEPTH} levels")
+                checker.add(path, f"nested deeper than {MAX_JSON_DEPTH} levels (the limit)")
                 continue
             items = value.items() if isinstance(value, dict) else enumerate(value)
             stack.extend((item, path + (key,), depth + 1) for key, item in items)
 
 
-def problems(data: Any) -> list[Problem]:
-    """Every problem of a parsed trace against the schema (empty when it is a well-formed trace)."""
+def problems(data: Any, replay: bool = False) -> list[Problem]:
+    """Every problem of a parsed trace against the schema (empty when it is a well-formed trace).
+
+    The replay record's form is always checked; with `replay` (it is to be replayed: a report) also that
+    its steps are steps of the tree and its objects those of the final state."""
     checker = _Checker()
     _non_finite_and_depth(data, checker)
     if checker.problems:
@@ -266,6 +370,10 @@ def problems(data: Any) -> list[Problem]:
     while pending and len(checker.problems) < MAX_PROBLEMS:
         value, path, depth = pending.pop()
         pending.extend(reversed(checker.node(value, path, depth)))
+    if "replay" in data and not checker.problems:  # its steps are checked against the tree's
+        final = data.get("final_state")
+        objects = final.get("objects") if isinstance(final, dict) else None
+        checker.replay(data["replay"], ("replay",), set(objects) if isinstance(objects, dict) else None, replay)
     return checker.problems[:MAX_PROBLEMS]
 
 
@@ -320,16 +428,13 @@ def _enter(text: str, index: int, part: Any) -> int | None:
 
 
 def location(text: str, filename: str, path: Path) -> Location:
-    offset = offset_of(text, path)
-    line = text.count("\n", 0, offset) + 1
-    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
-    return Location(filename, line, column)
+    return _place(text, filename, offset_of(text, path))
 
 
-def check(data: Any, text: str, filename: str, within: Path = ()) -> None:
+def check(data: Any, text: str, filename: str, within: Path = (), replay: bool = False) -> None:
     """Raise every problem of a parsed trace (InputErrors) at its place in the file; `within`: where in
-    the file's JSON the trace is (`("trace",)` in the output of `pycram run --json`)."""
-    found = problems(data)
+    the file's JSON the trace is (`("trace",)` in the output of `pycram run --json`); `replay`: see `problems`."""
+    found = problems(data, replay)
     errors = [InputError(message, location(text, filename, within + path), key=_name(path) if path else None)
               for path, message in found]
     if len(errors) == 1:

@@ -287,8 +287,23 @@ class Validator:
         if spec is not None:
             self._names(args, [(p.name, p.kind, p.of) for p in spec.params])
 
+    def known_values(self, slot_name: str, kind: str, value: Any, where: Location) -> None:
+        """A `$variable` in a slot whose values are known before the run (a plan parameter's, a `for_each` over a
+        literal list) is checked like a literal of the slot's kind: what the run would find out later."""
+        if not isinstance(value, str) or not references(value):
+            return  # a literal: checked as one
+        for item in self.possible(value) or []:
+            if isinstance(item, str) and references(item):
+                continue
+            problem = KINDS[kind].check(item, self.robots)
+            if problem:
+                self.error(f"slot '{slot_name}': {problem} ({value})", where, key=str(slot_name))
+
     def _names(self, slots: LMap, kinds: list[tuple[str, str, str | None]]) -> None:
         """Object, link and joint names in slots, also those given by parameters and for_each lists."""
+        for slot_name, kind, _ in kinds:
+            if slot_name in slots:
+                self.known_values(slot_name, kind, slots[slot_name], slots.loc(slot_name, True))
         facts = self.facts
         if facts is None:
             return
@@ -313,6 +328,42 @@ class Validator:
                                    key=str(slot_name), suggestion=did_you_mean(item, links))
                 elif kind in ("link", "joint") and of is not None and of in slots:
                     self._part_names(slots, slot_name, item, kind, of, where, origin)
+
+    def action_parts(self, slots: LMap, kinds: list[tuple[str, str, str | None]]) -> None:
+        """With a world: the links and joints an action's slots name (`open`'s `handle` and `joint`) belong to the
+        object its `of` slot names (`part-of`); without that slot, a joint must be a movable joint of the object
+        that has the handle, else of some object of the world (the robot aside)."""
+        facts = self.facts
+        if facts is None:
+            return
+        for slot_name, kind, of in kinds:
+            if kind not in ("link", "joint") or slot_name not in slots:
+                continue
+            where = slots.loc(slot_name, True)
+            values = self.possible(slots[slot_name]) or []
+            origin = "" if values == [slots[slot_name]] else f" ({slots[slot_name]})"
+            for item in values:
+                if not isinstance(item, str) or references(item):
+                    continue
+                if of is not None and of in slots:
+                    self._part_names(slots, slot_name, item, kind, of, where, origin)
+                elif kind == "joint":
+                    self._joint_somewhere(slots, slot_name, item, where, origin)
+
+    def _joint_somewhere(self, slots: LMap, slot_name: str, joint: str, where: Location, origin: str) -> None:
+        facts = self.facts
+        assert facts is not None
+        owners = [name for name in facts.objects if name != facts.robot]
+        handles = [h for h in self.possible(slots["handle"]) or [] if isinstance(h, str)] if "handle" in slots else []
+        if handles:  # the joint is the one the handle is on: its object's
+            owners = [name for name in owners if any(h in facts.links.get(name, ()) for h in handles)]
+        if any(name not in facts.joints for name in owners):
+            return  # an object whose model is not known: it may have the joint
+        known = [j for name in owners for j in facts.joints[name]]
+        if joint not in known:
+            whose = f"object '{owners[0]}'" if len(owners) == 1 else "the world (the robot aside)"
+            self.error(f"'{slot_name}': {whose} has no movable joint '{joint}'{origin}", where, key=str(slot_name),
+                       suggestion=did_you_mean(joint, known))
 
     def _part_names(self, slots: LMap, slot_name: str, item: str, kind: str, of: str, where: Location,
                     origin: str) -> None:

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, Location
+from ..files import probe
 from ..paths import find_world
 from ..plan.trace import REPLAY_KEY
 from ..worldfile.loader import load_world
@@ -40,7 +41,7 @@ def report_world(trace: dict[str, Any], override: str | None = None) -> Path:
     if override is not None:
         return find_world(override)
     recorded = (trace.get(REPLAY_KEY) or {}).get("world_file")
-    if recorded and Path(recorded).is_file():
+    if isinstance(recorded, str) and recorded and probe(recorded) is None:  # a regular file (no OSError)
         return Path(recorded)
     name = trace.get("world")
     try:

@@ -24,8 +24,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Sequence
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..files import probe
 from ..paths import resources_dir
-from ..schema import check_keys, describe, expect, is_number, number_list, quaternion
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
 from ..world.model_files import ModelInfo, describe_model
 from ..world.pose import check_quaternion, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
@@ -241,7 +242,7 @@ class _Reader:
                        "poses")
             return {}
         poses = {}
-        for name, values in value.items():
+        for name, values in names_only(value, self.errors).items():
             numbers = number_list(values, len(joints), value.loc(name, True), f"poses.{name}", self.errors) \
                 if joints else None
             if numbers is not None:
@@ -286,9 +287,11 @@ class _Reader:
         urdf = None
         if "urdf" in data and self.name(data, "urdf"):
             urdf = (self.path.parent / data["urdf"]).resolve()
-            if not urdf.is_file():
-                self.error(f"file not found: {data['urdf']} (relative to {self.path.parent})", data.loc("urdf", True),
-                           "urdf")
+            problem = probe(urdf)
+            if problem is not None:
+                message = f"file not found: {data['urdf']} (relative to {self.path.parent})" if problem == "not found" \
+                    else f"cannot read {data['urdf']}: {problem}"
+                self.error(message, data.loc("urdf", True), "urdf")
                 urdf = None
         arms: dict[str, ArmDescription] = {}
         if "arms" in data:
@@ -296,7 +299,7 @@ class _Reader:
             if not isinstance(raw, LMap):
                 self.error(f"expected a mapping of arm name to arm, got {describe(raw)}", data.loc("arms", True), "arms")
             else:
-                for arm_name in raw:
+                for arm_name in list(names_only(raw, self.errors)):
                     arm = self.arm(raw, arm_name)
                     if arm is not None:
                         arms[arm.name] = arm
@@ -326,7 +329,7 @@ class _Reader:
                 self.error(f"expected a mapping of grasp name to quaternion, got {describe(raw_grasps)}",
                            data.loc("grasps", True), "grasps")
             else:
-                for grasp, value in raw_grasps.items():
+                for grasp, value in names_only(raw_grasps, self.errors).items():
                     q = quaternion(value, raw_grasps.loc(grasp, True), f"grasps.{grasp}", self.errors)
                     if q is not None:
                         grasps[str(grasp)] = (q[0], q[1], q[2], q[3])
@@ -345,7 +348,7 @@ class _Reader:
             self.error(f"expected a mapping of names, got {describe(value)}", data.loc(key, True), key)
             return {}
         result = {}
-        for k, v in value.items():
+        for k, v in names_only(value, self.errors).items():
             if allowed_keys is not None and k not in allowed_keys:
                 self.error(f"unknown role '{k}' (roles: {', '.join(allowed_keys)})", value.loc(k), f"{key}.{k}",
                            did_you_mean(str(k), allowed_keys))

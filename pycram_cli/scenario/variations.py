@@ -44,13 +44,14 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..files import probe
 from ..jsonable import jsonable
 from ..kinds import Robots
 from ..plan import Plan, WorldFacts
 from ..plan.params import type_problem
 from ..world import BulletWorld
 from ..world.pose import quat_multiply, yaw_quaternion
-from ..schema import check_keys, describe, expect, is_number, number_list
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list
 from ..world.model_files import MESH_SUFFIXES, describe_model
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import ObjectSpec, WorldSpec, resolve_file
@@ -282,7 +283,7 @@ SUFFIX = ".vary.yaml"
 def beside(plan_path: Path) -> Path | None:
     """The variation file that goes with a plan by name (`set_table.yaml` -> `set_table.vary.yaml`), if any."""
     candidate = plan_path.with_name(plan_path.stem + SUFFIX)
-    return candidate if candidate.is_file() else None
+    return candidate if probe(candidate) is None else None  # no OSError for a name made too long
 
 
 def read_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:
@@ -325,7 +326,7 @@ def parse_variations(path: str | Path, world: WorldSpec, plan: Plan | None = Non
             errors.append(InputError(f"expected a mapping of object name to its variations, got {describe(objects)}",
                                      data.loc("objects", True), key="objects"))
         else:
-            for name, value in objects.items():
+            for name, value in names_only(objects, errors).items():
                 spec = by_name.get(name)
                 if spec is None:
                     errors.append(InputError(f"the world {world.path.name} has no object '{name}'", objects.loc(name),
@@ -519,7 +520,7 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
         return []
     known = [p.name for p in plan.params] if plan is not None else None
     draws: list[ParamDraw] = []
-    for name, spec in value.items():
+    for name, spec in names_only(value, errors).items():
         at = value.loc(name, True)
         if known is not None and name not in known:
             errors.append(InputError(f"plan '{plan.name}' has no parameter '{name}'", value.loc(name), key=str(name),  # type: ignore[union-attr]

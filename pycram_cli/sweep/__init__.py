@@ -18,6 +18,7 @@ variations, `--compare`, the results folder), then scenario i — drawn from its
 """
 from __future__ import annotations
 
+import math
 import os
 import shlex
 from dataclasses import dataclass, field
@@ -28,6 +29,7 @@ import yaml
 
 from ..errors import InputError, Location, PycramError, as_list, raise_if_any
 from ..jsonable import jsonable
+from ..limits import MAX_SCENARIO_TIMEOUT, MAX_SWEEP_RUNS, MAX_WORKERS
 from ..paths import plans_dir, worlds_dir
 from ..plan import bind_params
 from ..scenario import Scenario, prepare
@@ -106,8 +108,26 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
     if settings.backend not in BACKENDS:
         errors.append(InputError(f"unknown backend '{settings.backend}'", Location("--backend"),
                                  suggestion=f"one of {', '.join(BACKENDS)}"))
+    if settings.address is not None and settings.backend != "ray":
+        errors.append(InputError("joins a Ray cluster: it needs --backend ray", Location("--address"),
+                                 suggestion="add --backend ray, or leave --address out"))
+    elif settings.address is not None:
+        try:
+            ray_backend.reachable(settings.address)  # before the results folder is made
+        except InputError as exc:
+            errors.append(exc)
     if settings.n < 1:
         errors.append(InputError("the number of scenarios must be at least 1", Location("-n")))
+    elif settings.n > MAX_SWEEP_RUNS:
+        errors.append(InputError(f"at most {MAX_SWEEP_RUNS} scenarios (the limit), got {settings.n}", Location("-n"),
+                                 suggestion="sweep in parts: --seed S gives another set of scenarios"))
+    if settings.timeout is not None and not (math.isfinite(settings.timeout)
+                                             and 0 < settings.timeout <= MAX_SCENARIO_TIMEOUT):
+        errors.append(InputError(f"expected a number of seconds above 0 and at most {MAX_SCENARIO_TIMEOUT:g} (one day), "
+                                 f"got {settings.timeout}", Location("--timeout")))
+    if settings.workers is not None and not 1 <= settings.workers <= MAX_WORKERS:
+        errors.append(InputError(f"expected between 1 and {MAX_WORKERS} workers (the limit), got {settings.workers}",
+                                 Location("--workers")))
     scenario = prepare(settings.plan, settings.world)
     vary = Path(settings.vary).resolve() if settings.vary is not None else beside(scenario.plan.path)
     if vary is None:
@@ -125,6 +145,10 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
             param, alternatives = parse_compare(settings.compare, scenario, variations)
         except PycramError as exc:
             errors.extend(as_list(exc))
+    if alternatives and settings.n <= MAX_SWEEP_RUNS and settings.n * len(alternatives) > MAX_SWEEP_RUNS:
+        errors.append(InputError(f"at most {MAX_SWEEP_RUNS} runs (the limit): {settings.n} scenarios x "
+                                 f"{len(alternatives)} alternatives are {settings.n * len(alternatives)}",
+                                 Location("-n"), suggestion="fewer scenarios or fewer alternatives"))
     raise_if_any(errors)
     assert variations is not None
     meta = {"plan": str(scenario.plan.path), "world": str(scenario.world_path), "vary": str(vary),

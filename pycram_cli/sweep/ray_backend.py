@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import importlib
 import os
+import socket
 import time
 from collections import deque
 from typing import Any, Callable, Iterable
@@ -23,6 +24,28 @@ from .worker import SweepJob, Task, Worker, error_record, timeout_record
 
 MISSING = ("the ray backend needs Ray, an optional extra: pip install 'pycram-cli[ray]' "
            "(in a checkout: pip install '.[ray]')")
+
+
+START = ("start one on this machine with `ray start --head` and give --address auto (or the address it prints), "
+         "or leave --address out for a Ray of this sweep's own")
+#: seconds to wait for a cluster's address to answer before Ray is asked to join it (Ray itself retries for minutes)
+CONNECT_TIMEOUT = 5.0
+
+
+def reachable(address: str) -> None:
+    """An input error unless something answers at `address` (`HOST:PORT` or `ray://HOST:PORT`; `auto` is Ray's to
+    find). Ray retries an address that does not answer for minutes before it gives up."""
+    if address == "auto":
+        return
+    host, _, port = address.removeprefix("ray://").rpartition(":")
+    if not host or not port.isdigit() or not 0 < int(port) < 65536:
+        raise InputError(f"expected HOST:PORT (or ray://HOST:PORT, or auto), got '{address}'", Location("--address"),
+                         suggestion=START)
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=CONNECT_TIMEOUT).close()
+    except OSError as exc:
+        raise InputError(f"cannot join a Ray cluster at '{address}': nothing answers there ({exc.strerror or exc})",
+                         Location("--address"), suggestion=START) from None
 
 
 def load_ray() -> Any:
@@ -59,10 +82,15 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
     if started_here:
         options: dict[str, Any] = {"include_dashboard": False, "log_to_driver": False, "logging_level": "ERROR"}
         if address is not None:
+            reachable(address)
             options["address"] = address
         else:
             options["num_cpus"] = workers
-        ray.init(**options)
+        try:
+            ray.init(**options)
+        except (ConnectionError, TimeoutError) as exc:  # `auto` with no cluster running, a cluster gone
+            raise InputError(f"cannot join a Ray cluster at '{address}': {exc}", Location("--address"),
+                             suggestion=START) from None
     actor_class = ray.remote(num_cpus=1, max_restarts=0)(RayWorker)
     try:
         actors = [actor_class.remote(job) for _ in range(min(workers, len(pending)))]

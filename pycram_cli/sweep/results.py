@@ -8,6 +8,7 @@ sweep gives the same file whatever the number of workers, apart from the `timing
 """
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
@@ -15,6 +16,7 @@ from pathlib import Path
 from typing import Any, Iterable
 
 from ..errors import InputError, Location
+from ..files import reason, write_atomic
 
 RESULTS = "results.jsonl"
 META = "sweep.json"
@@ -43,16 +45,25 @@ class ResultsFile:
         self.meta = meta
         self.alternatives = meta.get("compare", {}).get("alternatives") if meta.get("compare") else None
         self.done: dict[tuple[int, int], dict[str, Any]] = {}
-        self.folder.mkdir(parents=True, exist_ok=True)
-        existing = self.path.is_file() and self.path.stat().st_size > 0
-        if existing and not resume:
-            raise InputError(f"{self.path} holds the results of a sweep already", Location("--out"),
-                             suggestion="add --resume to go on with it, or give another --out")
-        if existing:
-            self._check_same_sweep()
-            self._load()
-        _write_atomically(self.meta_path, json.dumps(meta, indent=2) + "\n")
-        self._fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        self._fd = -1
+        try:  # the folder is the user's: any operating-system problem with it is an input error naming --out
+            self.folder.mkdir(parents=True, exist_ok=True)
+            existing = self.path.is_file() and self.path.stat().st_size > 0
+            if existing and not resume:
+                raise InputError(f"{self.path} holds the results of a sweep already", Location("--out"),
+                                 suggestion="add --resume to go on with it, or give another --out")
+            if existing:
+                self._check_same_sweep()
+                self._load()
+            write_atomic(self.meta_path, json.dumps(meta, indent=2) + "\n", key="--out")
+            self._fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        except OSError as exc:
+            why = "it cannot be made there" if exc.errno == errno.ENOENT else reason(exc)
+            raise InputError(f"cannot use '{self.folder}' as the results folder: {why}", Location("--out"),
+                             suggestion="give --out a folder that can be made and written") from None
+        except ValueError:  # a NUL character in the name
+            raise InputError("cannot use the results folder: its name contains a NUL character",
+                             Location("--out")) from None
 
     def _check_same_sweep(self) -> None:
         try:
@@ -79,7 +90,7 @@ class ResultsFile:
             self.done[key_of(record, self.alternatives)] = record
             kept.append(line)
         if "".join(kept) != text:
-            _write_atomically(self.path, "".join(kept))
+            write_atomic(self.path, "".join(kept), key="--out")
 
     def append(self, record: dict[str, Any]) -> None:
         self.done[key_of(record, self.alternatives)] = record
@@ -94,15 +105,10 @@ class ResultsFile:
         if keys is not None and not set(keys) <= set(self.done):
             return
         lines = [json.dumps(r, sort_keys=False, separators=(", ", ": ")) + "\n" for r in self.records()]
-        _write_atomically(self.path, "".join(lines))
+        write_atomic(self.path, "".join(lines), key="--out")  # a temporary file of its own: two sweeps never share it
 
     def close(self) -> None:
         if self._fd >= 0:
             os.close(self._fd)
             self._fd = -1
 
-
-def _write_atomically(path: Path, text: str) -> None:
-    temporary = path.with_name(path.name + ".tmp")
-    temporary.write_text(text)
-    os.replace(temporary, path)

@@ -5,8 +5,13 @@ Images are encoded with Pillow, the format chosen by the file's extension (`IMAG
 """
 from __future__ import annotations
 
+import contextlib
 import io
 import math
+import mmap
+import os
+import signal
+import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterable, Sequence
@@ -15,9 +20,9 @@ import numpy as np
 import pybullet as p
 from PIL import Image
 
-from ..kinds import parse_vector
-
 from ..files import write_atomic
+from ..kinds import parse_vector
+from ..limits import MAX_MAGNITUDE
 from ..limits import MAX_MAGNITUDE
 
 if TYPE_CHECKING:
@@ -228,14 +233,77 @@ def segmentation(client: int, width: int, height: int, view: Sequence[float],
     return np.asarray(seg, dtype=np.int64).reshape(height, width)
 
 
+def up_for(camera: Camera) -> tuple[float, float, float]:
+    """The camera's up direction, or +y when it looks along it (straight down or up: no image otherwise)."""
+    direction = np.subtract(camera.target, camera.eye)
+    length = float(np.linalg.norm(direction))
+    up = np.asarray(camera.up, dtype=float)
+    if length > 0 and float(np.linalg.norm(np.cross(direction / length, up / np.linalg.norm(up)))) < 1e-6:
+        return (0.0, 1.0, 0.0) if abs(up[1]) < 0.9 else (1.0, 0.0, 0.0)
+    return camera.up
+
+
 def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
     """RGB image (height, width, 3) of the world from `camera`."""
     cid = world.client_id
-    view = p.computeViewMatrix(camera.eye, camera.target, camera.up, physicsClientId=cid)
-    proj = p.computeProjectionMatrixFOV(camera.vertical_fov_deg, width / height, camera.near, camera.far, physicsClientId=cid)
+    view = p.computeViewMatrix(camera.eye, camera.target, up_for(camera), physicsClientId=cid)
+    far = max(camera.far, 1.5 * math.dist(camera.eye, camera.target) + camera.far)  # a far eye still sees its target
+    proj = p.computeProjectionMatrixFOV(camera.vertical_fov_deg, width / height, camera.near, far, physicsClientId=cid)
+    if width * height > APART_PIXELS and world.mode != "gui" and hasattr(os, "fork"):
+        rgba = _pixels_apart(cid, width, height, view, proj)
+        if rgba is not None:
+            return rgba[:, :, :3]
+    return _pixels(cid, width, height, view, proj)[:, :, :3]
+
+
+#: images with more pixels are rendered in a child process (about 0.6 s for 800 000 pixels on two cores)
+APART_PIXELS = 800_000
+
+
+def _pixels(cid: int, width: int, height: int, view: Sequence[float], proj: Sequence[float]) -> np.ndarray:
+    """RGBA (height, width, 4) from TinyRenderer with shadows."""
     _, _, rgba, _, _ = p.getCameraImage(width, height, view, proj, renderer=p.ER_TINY_RENDERER, shadow=1,
                                         lightDirection=[-1.0, -0.6, 2.0], physicsClientId=cid)
-    return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]
+    return np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)
+
+
+def _pixels_apart(cid: int, width: int, height: int, view: Sequence[float], proj: Sequence[float]) -> np.ndarray | None:
+    """`_pixels` computed in a forked child (a copy of this process, the world included), or None when no child
+    can be made. TinyRenderer holds the interpreter for the whole image (27 s for 4096x4096) and no signal
+    handler or thread runs meanwhile; waiting for a child does not, so Ctrl-C ends a large render at once
+    (the child is killed). Same pixels as in-process."""
+    size = width * height * 4
+    shared = mmap.mmap(-1, size)  # anonymous and shared: the child's pixels are seen here
+    try:
+        with warnings.catch_warnings():  # the child only renders and leaves: no lock of another thread is needed
+            warnings.simplefilter("ignore", DeprecationWarning)
+            pid = os.fork()
+    except OSError:
+        shared.close()
+        return None
+    if pid == 0:  # the child
+        code = 1
+        try:
+            for signum in (signal.SIGINT, signal.SIGTERM):
+                signal.signal(signum, signal.SIG_DFL)
+            shared[:] = _pixels(cid, width, height, view, proj).tobytes()
+            code = 0
+        finally:
+            os._exit(code)
+    try:
+        _, status = os.waitpid(pid, 0)  # a signal's handler raises here (Interrupted): the child is killed below
+        pid = 0
+    finally:
+        if pid:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+                os.waitpid(pid, 0)
+    try:
+        if os.waitstatus_to_exitcode(status) != 0:
+            return None  # the child failed: render here instead
+        return np.frombuffer(shared, dtype=np.uint8).reshape(height, width, 4).copy()
+    finally:
+        shared.close()
 
 
 def image_format(suffix: str) -> str | None:
@@ -262,7 +330,9 @@ def write_png(path: Path | str, rgb: np.ndarray, key: str | None = None) -> None
 def _point(text: str, what: str) -> tuple[float, float, float]:
     values = parse_vector(text, 3)
     if values is None:
-        raise ValueError(f"{what}: expected x,y,z (three numbers), got {text!r}")
+        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
+    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
+        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
     return (values[0], values[1], values[2])
 
 
@@ -272,4 +342,7 @@ def parse_camera(text: str) -> Camera:
     if not sep:
         raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
                          f"got {text!r}")
-    return Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
+        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
+    return camera

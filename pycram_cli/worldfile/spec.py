@@ -26,7 +26,7 @@ from ..files import probe
 from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
-from ..schema import check_keys, expect, is_number, number_list, quaternion
+from ..schema import check_keys, expect, is_number, names_only, number_list, quaternion
 from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
 from ..yamlsource import LList, LMap, load_yaml
 
@@ -261,7 +261,7 @@ def _parse_joints(value: Any, where: Location, info: ModelInfo | None, errors: l
         errors.append(InputError("expected a mapping of joint name to value", where, key="joints"))
         return {}
     joints: dict[str, float] = {}
-    for joint, position in value.items():
+    for joint, position in names_only(value, errors).items():
         at = value.loc(joint)
         if not is_number(position):
             errors.append(InputError(f"joint '{joint}': expected a number", value.loc(joint, True), key="joints"))

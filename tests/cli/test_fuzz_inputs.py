@@ -3,7 +3,7 @@ never a traceback, another exit code, a hang or a memory blow-up.
 
 A few hundred variants are made from worlds/kitchen.yaml and every plan in plans/ by mutations
 that make a file invalid by construction: a structural key misspelt or removed, a value of the
-wrong type, a number that is not finite, a key given twice, an alias bomb, nesting beyond the
+wrong type, a key that is not a name (null, a number, true), a number that is not finite, a key given twice, an alias bomb, nesting beyond the
 limit, bytes that are not UTF-8, an object name the world does not have, an empty name. They run
 in-process through `pycram validate` (click's CliRunner), all within a time and a memory bound
 (about 7 s and a few MB).
@@ -51,7 +51,8 @@ def head_of(step: dict) -> str:
 
 def sites(data: Any, world: bool) -> dict[str, list[Path_]]:
     """Where each kind of mutation applies (paths into the data), for a world or a plan file."""
-    found: dict[str, list[Path_]] = {k: [] for k in ("key", "required", "type", "number", "name", "scalar")}
+    found: dict[str, list[Path_]] = {k: [] for k in ("key", "required", "type", "number", "name", "scalar",
+                                                     "mapping")}
 
     def walk(value: Any, path: Path_, structural: bool) -> None:
         if isinstance(value, (int, float)) and not isinstance(value, bool):
@@ -64,6 +65,7 @@ def sites(data: Any, world: bool) -> dict[str, list[Path_]]:
             return
         if not isinstance(value, dict):
             return
+        found["mapping"].append(path)  # a mapping whose keys are names (free-form values are not walked)
         if world:
             if path == ():
                 found["key"] += [path + ("objects",)]
@@ -76,6 +78,7 @@ def sites(data: Any, world: bool) -> dict[str, list[Path_]]:
                 found["name"].append(path + ("name",))
         else:
             if path == ():
+                found["mapping"] += [path + (k,) for k in ("params", "plans") if isinstance(value.get(k), dict)]
                 found["key"] += [path + (k,) for k in value if k in ("world", "params", "plans", "body")]
                 found["required"].append(path + ("body",))
                 found["type"].append(path + ("body",))
@@ -188,6 +191,13 @@ def wrong_type(data: Any, path: Path_, rng: random.Random) -> bytes:
     return dump(data)
 
 
+def key_not_a_name(data: Any, path: Path_, rng: random.Random) -> bytes:
+    mapping = get(data, path)
+    value = rng.choice([1, "x", [1, 1, 1], next(iter(mapping.values()), "x")])
+    mapping[rng.choice([None, 1, True, 2.5])] = value
+    return dump(data)
+
+
 def non_finite(data: Any, path: Path_, rng: random.Random) -> bytes:
     put(data, path, MARK)
     return dump(data, rng.choice([".nan", ".inf", "-.inf", "1.0e+400"]))
@@ -234,6 +244,7 @@ MUTATIONS: dict[str, tuple[str, Callable[[Any, Path_, random.Random], bytes]]] =
     "misspelt key": ("key", misspell_key),
     "missing key": ("required", remove_key),
     "wrong type": ("type", wrong_type),
+    "key not a name": ("mapping", key_not_a_name),
     "non-finite number": ("number", non_finite),
     "alias bomb": ("scalar", alias_bomb),
     "nesting too deep": ("scalar", too_deep),

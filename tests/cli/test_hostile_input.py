@@ -3,6 +3,7 @@ traceback, a hang, a wrong exit code or a memory blow-up. One representative cas
 from __future__ import annotations
 
 import os
+import re
 import textwrap
 import time
 from pathlib import Path
@@ -110,6 +111,30 @@ def test_an_output_path_that_cannot_be_written_is_exit_2_before_the_run(tmp_path
     assert result.exit_code == 2 and "out.json: trace: cannot write: it is a named pipe" in result.stderr
 
 
+def test_operating_system_errors_on_output_paths_are_exit_2_naming_the_path(tmp_path, monkeypatch):
+    # Path.is_dir()/exists() raise OSError (ENAMETOOLONG) for a 300-character name: that was exit 3
+    monkeypatch.chdir(tmp_path)
+    plan = a_plan(tmp_path, "- log: ran\n")
+    long = "x" * 300
+    cases = {
+        ("run", str(plan), "--trace", f"{long}.json"): "cannot write the trace: file name too long",
+        ("run", str(plan), "--render", f"{long}.png"): "cannot write the image: file name too long",
+        ("run", str(plan), "--report", f"{long}.html"): "cannot write the report: file name too long",
+        ("world", "render", str(tmp_path / "w.yaml"), "-o", f"{long}.png"): "cannot write the image: file name too long",
+        ("validate", long): "file name too long",
+        ("validate", f"{long}.yaml"): "file name too long",
+    }
+    for args, message in cases.items():
+        result = run(*args)
+        assert result.exit_code == 2, (args[:3], result.output)
+        assert message in result.stderr and "ran" not in result.stderr, (args[:3], result.stderr)
+    write(tmp_path, "p.vary.yaml", "objects: {box: {noise: [0.1, 0, 0]}}\n")
+    for out, why in (("/proc/pycram", "it cannot be made there"), (long, "file name too long")):
+        result = run("sweep", str(plan), "-n", "1", "--workers", "1", "--out", out)
+        assert result.exit_code == 2, (out[:20], result.output)
+        assert f"--out: cannot use '{out}' as the results folder: {why}" in result.stderr
+
+
 # -- YAML: merge keys work; aliases, nesting and sizes are bounded ------------------------------------------
 
 
@@ -148,6 +173,20 @@ def test_an_alias_bomb_in_a_parameter_is_refused(tmp_path):
     assert result.exit_code == 2 and "-p x" in result.stderr and "aliases" in result.stderr
 
 
+def test_a_plan_with_too_many_values_is_refused_at_once_naming_the_limit(tmp_path):
+    # a plain 40 000-step plan (0.8 MB, no alias) was refused after 14 s, blaming aliases
+    from pycram_cli.limits import MAX_YAML_NODES
+
+    path = tmp_path / "long.yaml"
+    path.write_text("body:\n" + "".join(f"  - log: step {i}\n" for i in range(40_000)))
+    started = time.monotonic()
+    result = run("validate", str(path))
+    assert time.monotonic() - started < 2.0
+    assert result.exit_code == 2
+    assert f"more than {MAX_YAML_NODES} values (lists, mappings and scalars) in one file, the limit" in result.stderr
+    assert "alias" not in result.stderr
+
+
 def test_nesting_deeper_than_the_limit_is_an_input_error(tmp_path):
     path = tmp_path / "deep.yaml"
     path.write_text("body:\n  - log: " + "[" * 10_000 + "]" * 10_000 + "\n")
@@ -164,7 +203,47 @@ def test_a_null_key_in_an_object_is_reported_at_the_key(tmp_path):
             ~: 3
     """)
     result = run("validate", str(world))
-    assert result.exit_code == 2 and f"{world}:6:5: None: unknown key" in result.stderr and "unknown key" in result.stderr
+    assert result.exit_code == 2 and f"{world}:6:5: null: keys must be names, got null" in result.stderr
+
+
+def test_keys_that_are_not_names_in_slots_and_arguments_are_exit_2_at_the_key(tmp_path):
+    # a null, number or boolean key where a slot, argument or field name belongs crashed the suggestion (exit 3)
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        plans:
+          sub: {params: [a], body: [{log: $a}]}
+        body:
+          - looking: {~: 1, target: [1, 1, 1]}
+          - assert: {stable: {~: milk}}
+          - stable: {1: milk}
+          - if: {visible: {true: milk}}
+            then: [{log: x}]
+          - call: sub
+            args: {~: 1}
+          - action: transport
+            object-type: milk
+            target: {~: x, on: kitchen_island_surface}
+          - try: [{log: a}]
+            catch: {2.5: [{log: b}]}
+          - ~: 1
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2, result.output
+    assert "internal error" not in result.stderr
+    for where, key, what in [("6:15", "null", "null"), ("7:23", "null", "null"), ("8:14", "1", "the number 1"),
+                             ("9:20", "true", "true"), ("12:12", "null", "null"), ("15:14", "null", "null"),
+                             ("17:13", "2.5", "the number 2.5"), ("18:5", "null", "null")]:
+        assert f"{plan}:{where}: {key}: keys must be names, got {what}" in result.stderr, (where, result.stderr)
+    vary = write(tmp_path, "v.vary.yaml", """
+        plan: set_table
+        objects:
+          ~: {noise: [0.1, 0, 0]}
+        params:
+          1: [a, b]
+    """)
+    result = run("validate", str(vary))
+    assert result.exit_code == 2 and "internal error" not in result.stderr
+    assert f"{vary}:4:3: null: keys must be names" in result.stderr and f"{vary}:6:3: 1: keys must be names" in result.stderr
 
 
 def test_a_non_finite_mass_is_refused(tmp_path):
@@ -246,6 +325,49 @@ def test_corrupt_traces_are_input_errors_never_internal_ones(tmp_path):
     assert "not a JSON trace" in run("trace", "show", str(out)).stderr
 
 
+def test_a_corrupt_replay_record_is_an_input_error_naming_the_entry(tmp_path):
+    # `trace show --report` of a trace whose `replay` was corrupted: exit 3, or exit 0 with a wrong report
+    import json
+
+    out, data = saved_trace(tmp_path)
+    del data["final_state"]["attachments"]
+    report = tmp_path / "r.html"
+    broken = {
+        "replay.steps: expected a list of steps": lambda r: r.update(steps=3),
+        "replay.steps[0].changed: expected an object, got a list": lambda r: r["steps"][0].update(changed=[1]),
+        "replay.initial.box.position: expected a position: a list of 3 numbers":
+            lambda r: r["initial"]["box"].update(position=[1, 2]),
+        "replay.initial.box.orientation: expected a quaternion of unit length":
+            lambda r: r["initial"]["box"].update(orientation=[0, 0, 0, 0]),
+        "replay.steps[1].changed.fridge: no object 'fridge' in the trace's final state":
+            lambda r: r["steps"][1]["changed"].update(fridge={"position": [0, 0, 0], "orientation": [0, 0, 0, 1]}),
+        'replay.steps[0].path: no step of the trace has the path "body/9:log"':
+            lambda r: r["steps"][0].update(path="body/9:log"),
+        "replay: the replay record needs 'initial'": lambda r: r.pop("initial"),
+    }
+    for message, change in broken.items():
+        copy = json.loads(json.dumps(data))
+        change(copy["replay"])
+        out.write_text(json.dumps(copy, indent=1))
+        result = run("trace", "show", str(out), "--report", str(report))
+        assert result.exit_code == 2, (message, result.output)
+        assert re.search(rf"{re.escape(str(out))}:\d+:\d+: {re.escape(message)}", result.stderr), (message, result.stderr)
+        assert not report.exists()
+
+
+def test_a_trace_nested_too_deep_is_refused_at_its_line_and_column_with_the_documented_limit(tmp_path):
+    from pycram_cli.plan.trace_schema import MAX_JSON_DEPTH
+
+    out = tmp_path / "t.json"
+    out.write_text('{"format": "pycram-trace",\n "x": ' + "[" * 10_000 + "]" * 10_000 + "}")
+    result = run("trace", "show", str(out))
+    assert result.exit_code == 2
+    assert f"{out}:2:{7 + MAX_JSON_DEPTH - 1}: not a pycram trace: nested deeper than {MAX_JSON_DEPTH} levels" \
+           in result.stderr
+    readme = (REPO / "README.md").read_text()
+    assert f"trace files: {MAX_JSON_DEPTH} levels of JSON" in readme
+
+
 def test_trace_diff_json_never_prints_a_bare_nan_and_refuses_a_nan_tolerance(tmp_path):
     import json
 
@@ -276,6 +398,56 @@ def test_numbers_beyond_what_the_runtime_can_do_are_input_errors(tmp_path):
     assert f"{plan}:5:12: retry: at most 1000000000 retries" in result.stderr
     assert "numbers must be between -1e+06 and 1e+06" in result.stderr
     assert run("run", str(plan), "--pace", "nan").exit_code == 2
+
+
+def test_sweep_numbers_are_finite_and_within_their_documented_maxima(tmp_path):
+    from pycram_cli.limits import MAX_SWEEP_RUNS, MAX_WORKERS
+
+    plan = a_plan(tmp_path, "- log: ran\n")
+    write(tmp_path, "p.vary.yaml", "objects: {box: {noise: [0.1, 0, 0]}}\n")
+    cases = {("--timeout", "nan"): "--timeout: expected a number of seconds above 0 and at most 86400",
+             ("--timeout", "inf"): "--timeout: expected a number of seconds",
+             ("--timeout", "1e300"): "--timeout: expected a number of seconds",
+             ("-n", str(MAX_SWEEP_RUNS + 1)): f"-n: at most {MAX_SWEEP_RUNS} scenarios (the limit)",
+             ("--workers", str(MAX_WORKERS + 1)): f"--workers: expected between 1 and {MAX_WORKERS} workers"}
+    for option, message in cases.items():
+        result = run("sweep", str(plan), "--out", str(tmp_path / "out"), *option)
+        assert result.exit_code == 2 and message in result.stderr, (option, result.output)
+        assert not (tmp_path / "out").exists()  # refused before the results folder is made
+
+
+def test_a_camera_out_of_range_or_without_direction_is_refused_and_a_view_straight_down_is_drawn(tmp_path):
+    import numpy as np
+    from PIL import Image
+
+    plan = a_plan(tmp_path, "- log: ran\n")
+    image = str(tmp_path / "x.png")
+    for camera, message in (("1e300,0,0:0,0,0", "camera eye: numbers must be between -1e+06 and 1e+06"),
+                            ("1,1,1:1,1,1", "the camera's eye and target must differ")):
+        for args in (("world", "render", str(tmp_path / "w.yaml"), "-o", image), ("run", str(plan), "--render", image)):
+            result = run(*args, "--size", "32x24", f"--camera={camera}")
+            assert result.exit_code == 2 and f"--camera: {message}" in result.stderr, (args[0], result.output)
+    result = run("world", "render", str(tmp_path / "w.yaml"), "-o", image, "--size", "64x48",
+                 "--camera=0.5,0,3:0.5,0,0")  # looking straight down, along the camera's up: was a blank image
+    assert result.exit_code == 0, result.output
+    assert np.asarray(Image.open(image)).std() > 1.0
+
+
+def test_a_wait_or_a_slot_given_a_known_parameter_value_is_checked_before_the_run(tmp_path):
+    # `wait: $t` with `-p t=1.0e+10` validated and then failed at run time (exit 1)
+    path = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {t: 1, far: [0, 0, 0]}
+        body:
+          - wait: $t
+          - moving: {target: $far}
+    """)
+    result = run("run", str(path), "-p", "t=1.0e+10", "-p", "far=[1.0e+300, 0, 0]")
+    assert result.exit_code == 2, result.output
+    assert f"{path}:5:11: wait: at most 86400 seconds (one day) can be waited for, got 1e+10 ($t)" in result.stderr
+    assert f"{path}:6:22: target: slot 'target': expected a position [x, y, z] (numbers must be between" \
+           in result.stderr and "($far)" in result.stderr
+    assert run("validate", str(path)).exit_code == 0  # the defaults are fine
 
 
 def test_a_nan_wait_is_refused(tmp_path):
@@ -321,6 +493,40 @@ def test_object_link_and_joint_names_in_every_slot_are_checked_against_the_world
         assert line in result.stderr, (line, result.stderr)
     result = run("run", str(plan), "-p", "thing=milk")
     assert "no object 'fridge' ($thing)" not in result.stderr and result.exit_code == 2
+
+
+def test_the_joint_of_open_and_close_actions_is_checked_against_the_handles_object(tmp_path):
+    # `action: open` with `joint: nojoint` validated, then failed at run time (exit 1)
+    plan = write(tmp_path, "p.yaml", """
+        world: kitchen
+        params: {j: sink_area_left_upper_drawer_main_joit}
+        body:
+          - action: open
+            joint: nojoint
+          - action: close
+            joint: $j
+            part-of: kitchen
+          - action: open
+            handle: sink_area_left_upper_drawer_handle
+            joint: nojoint
+          - action: open
+            handle: sink_area_left_upper_drawer_handle
+            part-of: milk
+          - action: open
+            joint: sink_area_left_upper_drawer_main_joint
+    """)
+    result = run("validate", str(plan))
+    assert result.exit_code == 2
+    expected = [
+        "6:12: joint: 'joint': the world (the robot aside) has no movable joint 'nojoint'",
+        "8:12: joint: 'joint': object 'kitchen' has no movable joint 'sink_area_left_upper_drawer_main_joit' ($j) "
+        "(did you mean 'sink_area_left_upper_drawer_main_joint'?)",
+        "12:12: joint: 'joint': object 'kitchen' has no movable joint 'nojoint'",
+        "14:13: handle: 'handle': object 'milk' has no link 'sink_area_left_upper_drawer_handle'",
+    ]
+    for line in expected:
+        assert f"{plan}:{line}" in result.stderr, (line, result.stderr)
+    assert result.stderr.count("error:") == len(expected)  # the last step is right
 
 
 def test_attachment_cycles_and_empty_names_in_worlds_are_refused(tmp_path):

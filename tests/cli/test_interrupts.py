@@ -147,3 +147,63 @@ def test_interrupting_a_run_cancels_every_branch_and_marks_the_run(tmp_path, wor
     assert not {"pending", "running"} & set(statuses(outcome.trace))
     assert threading.active_count() == before
     json.dumps(outcome.trace)
+
+
+def test_ctrl_c_during_an_endless_retry_writes_a_small_trace_within_a_second(tmp_path):
+    # the replay record grew one entry per attempt: after a minute the trace could not be written in time
+    plan = plan_files(tmp_path, """
+        - log: retrying
+        - retry: 1000000000
+          body: [{log: again}, {fail: PerceptionFailure}]
+    """)
+    trace = tmp_path / "t.json"
+    process = start(["run", str(plan), "--trace", str(trace), "-q"], tmp_path)
+    wait_for(lambda: process.poll() is not None or _caught(process.pid) & (1 << (signal.SIGTERM - 1)))
+    time.sleep(3.0)  # thousands of attempts
+    took, out, err = signal_and_time(process, signal.SIGINT)
+    assert process.returncode == 130, err
+    assert took < 1.0, f"took {took:.2f} s to end"
+    data = load(trace)
+    assert data["status"] == "interrupted"
+    retry = data["root"]["children"][1]
+    assert retry["retries"] > 100
+    assert len(data["replay"]["steps"]) < 30 and trace.stat().st_size < 100_000
+
+
+def test_the_watchdog_says_which_files_were_not_written_when_it_ends_the_process(tmp_path):
+    script = textwrap.dedent("""
+        import time
+        from pycram_cli import interrupts
+        interrupts.install()
+        interrupts.owe("t.json")
+        with interrupts.on_signal(lambda name: None):  # a run that does not stop
+            print("ready", flush=True)
+            time.sleep(30)
+    """)
+    process = subprocess.Popen([sys.executable, "-c", script], cwd=tmp_path, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    assert process.stdout.readline().strip() == "ready"
+    took, out, err = signal_and_time(process, signal.SIGINT)
+    assert process.returncode == 130
+    assert 2.5 < took < 5.0
+    assert "error: interrupted by SIGINT, and the command did not end within 3 s: exiting now; not written: t.json" \
+           in err
+
+
+def test_ctrl_c_ends_a_large_render_within_a_second(tmp_path):
+    # TinyRenderer held the interpreter for the whole 4096x4096 image (about 27 s): no signal handler ran
+    plan_files(tmp_path, "- log: x\n")
+    process = start(["world", "render", str(tmp_path / "w.yaml"), "-o", str(tmp_path / "big.png"),
+                     "--size", "4096x4096"], tmp_path)
+    children = Path(f"/proc/{process.pid}/task/{process.pid}/children")
+    try:
+        wait_for(lambda: process.poll() is not None or children.read_text().strip(), timeout=30)  # rendering
+        time.sleep(0.5)
+        took, out, err = signal_and_time(process, signal.SIGINT)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert process.returncode == 130, err
+    assert took < 1.0, f"took {took:.2f} s to end"
+    assert "Traceback" not in err and not (tmp_path / "big.png").exists()

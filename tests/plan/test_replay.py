@@ -115,3 +115,70 @@ def test_focus_points_are_the_objects_and_places_a_step_names(set_table):
         assert focus_points(world, {"message": "hi"}) == []
     finally:
         world.exit()
+
+
+def _replay_of_a_retry(tmp_path, retries: int):
+    plan = tmp_path / f"retry{retries}.yaml"
+    plan.write_text(f"""
+world: kitchen
+body:
+  - par:
+      - retry: {retries}
+        body:
+          - moving: {{target: [0.5, 0.7, 0]}}
+          - moving: {{target: [0.6, 0.75, 0]}}
+          - fail: PerceptionFailure
+      - seq: [{{looking: {{target: [1.3, 0.8, 0.9]}}}}, {{looking: {{target: [1.3, 0.6, 0.9]}}}}]
+  - log: done
+""")
+    return prepare(plan).run(replay=True).trace
+
+
+def test_the_replay_of_folded_attempts_is_folded_too_and_stays_exact(tmp_path):
+    # retry: 1000000000 of a failing body grew the replay record by one entry per step of every attempt
+    small, large = _replay_of_a_retry(tmp_path, 20), _replay_of_a_retry(tmp_path, 200)
+    for trace in (small, large):
+        steps = trace[traces.REPLAY_KEY]["steps"]
+        folded = [s for s in steps if s.get("folded")]
+        assert len(folded) == 1 and folded[0]["path"] == "body/0:par/0:retry/folded attempts"
+        tree = {n["path"] for n in _nodes(trace["root"])}
+        assert all(s["path"] in tree for s in steps)  # the report finds every step in the tree
+        _replays_to_the_final_state(trace)
+    assert len(small[traces.REPLAY_KEY]["steps"]) == len(large[traces.REPLAY_KEY]["steps"])  # bounded
+    count = next(s for s in large[traces.REPLAY_KEY]["steps"] if s.get("folded"))["folded"]
+    attempts = next(n for n in _nodes(large["root"]) if n["type"] == "folded")["folded"]["steps"]
+    assert attempts > 190 and count == 3 * attempts  # every step of every folded attempt
+
+
+def _nodes(node):
+    yield node
+    for child in node.get("children") or []:
+        yield from _nodes(child)
+
+
+def _replays_to_the_final_state(trace):
+    replay = trace[traces.REPLAY_KEY]
+    state = json.loads(json.dumps(replay["initial"]))
+    for step in replay["steps"]:
+        for name, change in step["changed"].items():
+            state[name].update({k: v for k, v in change.items() if k != "joints"})
+            state[name].setdefault("joints", {}).update(change.get("joints", {}))
+    for name, entry in trace["final_state"]["objects"].items():
+        assert state[name]["position"] == pytest.approx(entry["position"], abs=1e-6)
+    return state
+
+
+def test_folding_steps_keeps_the_state_after_them_when_other_branches_interleave():
+    from pycram_cli.plan.replay import fold_steps
+
+    pose = lambda x: {"position": [x, 0.0, 0.0], "orientation": [0.0, 0.0, 0.0, 1.0]}  # noqa: E731
+    initial = {"a": pose(0.0), "b": pose(0.0)}
+    steps = [{"path": "r/attempt 4/0:x", "status": "succeeded", "changed": {"a": pose(1.0)}},
+             {"path": "other/0:y", "status": "succeeded", "changed": {"a": pose(2.0), "b": pose(5.0)}},
+             {"path": "r/attempt 4/1:x", "status": "failed", "changed": {"b": pose(3.0)}},
+             {"path": "other/1:y", "status": "succeeded", "changed": {}}]
+    fold_steps(steps, initial, "r/folded attempts", "r/attempt 4")
+    assert [s["path"] for s in steps] == ["other/0:y", "r/folded attempts", "other/1:y"]
+    assert steps[1]["folded"] == 2
+    # after it: a where the other branch put it last (2.0), b where the attempt put it (3.0)
+    assert steps[1]["changed"] == {"a": pose(2.0), "b": pose(3.0)}

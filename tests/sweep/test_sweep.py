@@ -244,6 +244,41 @@ def test_the_ray_backend_says_how_to_install_ray_when_it_is_missing(small, monke
     assert "pip install 'pycram-cli[ray]'" in result.stderr
 
 
+def test_address_needs_the_ray_backend_and_a_cluster_that_answers(small, monkeypatch):
+    result = sweep(small, "out", "-n", "2", "--address", "auto")  # was silently ignored on the local backend
+    assert result.exit_code == 2 and "--address: joins a Ray cluster: it needs --backend ray" in result.stderr
+    for address, message in (("127.0.0.1:1", "cannot join a Ray cluster at '127.0.0.1:1': nothing answers there"),
+                             ("nonsense", "expected HOST:PORT (or ray://HOST:PORT, or auto), got 'nonsense'")):
+        result = sweep(small, "out", "-n", "2", "--backend", "ray", "--address", address)
+        assert result.exit_code == 2 and f"--address: {message}" in result.stderr, result.output
+        assert "ray start --head" in result.stderr and not (small / "out").exists()
+
+    class NoCluster:  # what Ray does for `--address auto` when no cluster runs: a ConnectionError (was exit 3)
+        @staticmethod
+        def is_initialized() -> bool:
+            return False
+
+        @staticmethod
+        def init(**options) -> None:
+            raise ConnectionError("Could not find any running Ray instance.")
+
+    monkeypatch.setattr("pycram_cli.sweep.ray_backend.load_ray", lambda: NoCluster)
+    result = sweep(small, "out", "-n", "2", "--backend", "ray", "--address", "auto")
+    assert result.exit_code == 2, result.output
+    assert "--address: cannot join a Ray cluster at 'auto': Could not find any running Ray instance." in result.stderr
+    assert "ray start --head" in result.stderr
+
+
+def test_results_are_written_through_a_temporary_file_of_their_own(small):
+    # a fixed `sweep.json.tmp` / `results.jsonl.tmp`: two sweeps on the same --out could take each other's
+    (small / "out").mkdir()
+    for name in ("sweep.json.tmp", "results.jsonl.tmp"):
+        (small / "out" / name).mkdir()  # in the way of a fixed temporary name
+    result = sweep(small, "out", "-n", "2", "--workers", "1")
+    assert result.exit_code == 0, result.output
+    assert len(records(small / "out")) == 2 and json.loads((small / "out" / "sweep.json").read_text())["n"] == 2
+
+
 def test_a_sweep_of_the_set_table_demo_and_one_scenario_replayed_alone(tmp_path):
     result = run("sweep", "set_table", "-n", "3", "--workers", "2", "--out", tmp_path / "out", "--json")
     assert result.exit_code == 0, result.output

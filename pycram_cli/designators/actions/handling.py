@@ -154,8 +154,9 @@ def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
     _access(actor, slots, 0.0, "close")
 
 
-_HANDLE = (Slot("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)"),
-           Slot("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)"),
+_HANDLE = (Slot("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)", of="part-of"),
+           Slot("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)",
+                of="part-of"),
            Slot("part-of", "object", False, "the object the joint belongs to", "the object that has the joint"))
 _ARM = Slot("arm", "arm", False, "the arm that pulls", "found with where to stand: a free arm that reaches")
 
