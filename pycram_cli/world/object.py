@@ -125,6 +125,7 @@ class Object:
         self.name = name
         self.type = type
         self.world = world
+        self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
         self.path = Path(path)
         self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
         self._color, self._mass = rgba, mass  # as given: a copy of the object is loaded alike
@@ -225,6 +226,11 @@ class Object:
     def get_orientation(self) -> Quat:
         return self.get_pose()[1]
 
+    @property
+    def version(self) -> int:
+        """Changes whenever this object may have changed (its own changes and every simulation step)."""
+        return self.world.version_of(self)
+
     def get_pose(self) -> tuple[Vec3, Quat]:
         """(position, orientation) of the base link's frame in the world frame."""
         pos, orn = p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
@@ -245,6 +251,7 @@ class Object:
         if self._inertial is not None:
             position, orientation = compose((position, orientation), self._inertial)
         p.resetBasePositionAndOrientation(self.id, position, orientation, physicsClientId=self.world.client_id)
+        self.world.mark_changed(self)
 
     def set_position_and_orientation(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Teleport the object; everything attached to it follows at once."""
@@ -355,6 +362,7 @@ class Object:
             cid = self.world.client_id
             for joint, value in checked:
                 p.resetJointState(self.id, joint.index, value, 0.0, physicsClientId=cid)
+            self.world.mark_changed(self)
             self._after_move()
         if self.type != "robot":
             for joint, value in checked:
@@ -369,6 +377,7 @@ class Object:
         cid = self.world.client_id
         for name, value in positions.items():
             p.resetJointState(self.id, self.get_joint_id(name), value, 0.0, physicsClientId=cid)
+        self.world.mark_changed(self)
 
     @contextlib.contextmanager
     def joints_kept(self, names: Iterable[str]) -> Iterator[None]:
@@ -385,6 +394,7 @@ class Object:
         finally:
             for jid, (position, velocity) in zip(ids, saved):
                 p.resetJointState(self.id, jid, position, velocity, physicsClientId=cid)
+            self.world.mark_changed(self)
 
     # -- attachments -----------------------------------------------------------
     def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
@@ -404,6 +414,8 @@ class Object:
         att = Attachment(self, other, plink, clink, transform)
         self.attachments[other] = att
         other.attachments[self] = att
+        self.world.mark_changed(self)
+        self.world.mark_changed(other)
         self.world.attachment_event(self, other)
 
     def detach(self, other: "Object") -> None:
@@ -411,6 +423,8 @@ class Object:
         if att is None:
             raise ValueError(f"'{self.name}' and '{other.name}' are not attached")
         other.attachments.pop(self, None)
+        self.world.mark_changed(self)
+        self.world.mark_changed(other)
         self.world.detachment_event(att.parent, att.child)
 
     def _after_move(self) -> None:
@@ -422,6 +436,7 @@ class Object:
                 new = Attachment(att.parent, self, att.parent_link, att.child_link, transform)
                 self.attachments[other] = new
                 other.attachments[self] = new
+                self.world.mark_changed(other)  # the parent's record of the attachment changed too
         self.move_attached()
 
     def move_attached(self) -> None:
@@ -442,8 +457,8 @@ class Object:
             if att.child_link != -1:
                 base_to_link = _relative(child.get_pose(), child.get_link_position_and_orientation(att.child_link))
                 target = compose(target, invert(base_to_link))
-            child._reset_base(target[0], target[1])
             p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
+            child._reset_base(target[0], target[1])  # (marks the child changed)
             child._move_attached(visited)
 
     def remove(self) -> None:
