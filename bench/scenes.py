@@ -34,6 +34,7 @@ AREAS = [((1.30, 1.78, 0.23, 1.28, 0.851), 3),  # the counter beside the sink (m
          ((-0.6, 1.1, -0.9, -0.15, 0.0), 4),  # the floor before the fridge and the sink
          ((-0.6, 1.1, 1.6, 2.9, 0.0), 3)]  # the floor before the oven
 SPACING = 0.07  # m between centres: at least 2 cm between two 5 cm cubes
+CLEARANCE = 0.03  # m from the world's own loose objects (the breakfast)
 
 
 def design_world() -> Any | None:
@@ -86,7 +87,8 @@ def add_small_objects(world: Any, n: int, seed: int = 0) -> list[Any]:
     from pycram_cli import Object
 
     rng = np.random.default_rng(seed)
-    taken = [(o.get_position()[0], o.get_position()[1]) for o in world.objects if not o.fixed]
+    taken: list[tuple[float, float]] = []
+    loose = [o for o in world.objects if not o.fixed]  # kept CLEARANCE away from the cubes
     scenery = [o for o in world.objects if o.fixed]
     turns = [area for area, share in AREAS for _ in range(share)]
     added: list[Any] = []
@@ -99,7 +101,8 @@ def add_small_objects(world: Any, n: int, seed: int = 0) -> list[Any]:
         cube = Object(f"cube{len(added)}", "cube", cube_mesh(size), (x, y, top + 0.01), world=world,
                       color=(0.3, 0.4, 0.8), mass=0.05)
         gaps = sorted(world.distance(cube, other, 0.05) for other in scenery)
-        if not 0.0 < gaps[0] < 0.03 or gaps[1] < 0.02:  # over the surface (not a hole), clear of everything else
+        if (not 0.0 < gaps[0] < 0.03 or gaps[1] < 0.02  # over the surface (not a hole), clear of other scenery
+                or any(world.distance(cube, other, CLEARANCE) < CLEARANCE for other in loose)):
             cube.remove()
             continue
         cube.set_position([x, y, top + 0.01 - gaps[0] + 0.0002])  # let down onto it, touching it

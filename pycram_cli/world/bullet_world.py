@@ -258,9 +258,12 @@ class BulletWorld:
         PyBullet's restoreState does not restore sleep: an object that fell asleep in between
         would otherwise hang where it was put back.
         """
-        for obj in self.objects:
-            if not obj.fixed:
-                p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
+        self.wake([obj for obj in self.objects if not obj.fixed])
+
+    def wake(self, objects: Sequence["Object"]) -> None:
+        """Wake `objects` (sleeping bodies are not simulated; restoreState does not restore sleep)."""
+        for obj in objects:
+            p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
 
     # -- geometry ---------------------------------------------------------------
     def closest_points(self, a: "Object", b: "Object", distance: float,

@@ -17,7 +17,7 @@ from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
 from ..quiet import silenced
 
 KINEMATIC_TYPES = ("robot", "environment")
-_HOLD_FORCE = 1e5
+HOLD_FORCE = 1e5  # N or N·m: what holds a fixed object's joints (see parking.py)
 
 
 class MissingMeshWarning(UserWarning):
@@ -164,7 +164,7 @@ class Object:
         if self.fixed and self.movable_joints:
             ids = [j.index for j in self.movable_joints]
             p.setJointMotorControlArray(body, ids, p.VELOCITY_CONTROL, targetVelocities=[0.0] * len(ids),
-                                        forces=[_HOLD_FORCE] * len(ids), physicsClientId=cid)
+                                        forces=[HOLD_FORCE] * len(ids), physicsClientId=cid)
         world.register(self)
 
     # -- model ------------------------------------------------------------------
@@ -245,6 +245,11 @@ class Object:
         frame PyBullet's joint frames start from. `get_pose` is the base link's URDF frame.
         """
         return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)  # type: ignore[return-value]
+
+    def get_velocity(self) -> tuple[Vec3, Vec3]:
+        """(linear, angular) velocity of the base's centre of mass in the world frame (m/s, rad/s)."""
+        linear, angular = p.getBaseVelocity(self.id, physicsClientId=self.world.client_id)
+        return tuple(linear), tuple(angular)  # type: ignore[return-value]
 
     def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
