@@ -12,7 +12,7 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Sequence
 
 import numpy as np
 import pybullet as p
@@ -22,7 +22,7 @@ from .display import check_display
 from .events import Event
 from ..quiet import silenced
 from .pose import Vec3, check_position, matrix_to_quat
-from .solo import SoloRenderer
+from .view import ViewRenderer
 from .state import StateCache, WorldState
 
 if TYPE_CHECKING:
@@ -103,7 +103,7 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
-        self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
+        self._view: ViewRenderer | None = None  # made on the first segmentation_of
         self._caption: int = -1  # the GUI's caption text item, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
         # change tracking (see `version`): every change takes a fresh number from the clock
@@ -139,10 +139,10 @@ class BulletWorld:
         for hook in self._exit_hooks:
             with contextlib.suppress(Exception):
                 hook()
-        if self._solo is not None:
+        if self._view is not None:
             with contextlib.suppress(Exception):
-                self._solo.close()
-            self._solo = None
+                self._view.close()
+            self._view = None
         if self._prospection is not None:
             with contextlib.suppress(Exception):
                 self._prospection.close()
@@ -341,16 +341,27 @@ class BulletWorld:
 
     def segmentation_alone(self, obj: "Object", width: int, height: int, view: Sequence[float],
                            projection: Sequence[float]) -> np.ndarray:
-        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world.
+        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world."""
+        return self.segmentation_of({obj: None}, width, height, view, projection) == obj.id
 
-        Rendered from a copy of `obj` in this world's private client (see `solo.py`), so nothing
-        here is hidden, moved or recoloured.
+    def segmentation_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+                        view: Sequence[float], projection: Sequence[float]) -> np.ndarray:
+        """(height, width) ids of the objects seen at each pixel (-1: nothing) when only `parts` exist: for each
+        object the links to draw (by index, -1: the base) or None for all of them.
+
+        Rendered from copies in this world's private client (see `view.py`), so nothing here is hidden,
+        moved or recoloured, and the renderer pays only for what is drawn (`segmentation` draws everything).
         """
+        return self.picture_of(parts, width, height, view, projection)[0]
+
+    def picture_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+                   view: Sequence[float], projection: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+        """`segmentation_of` and the picture's depth buffer (0..1, growing with distance; 1 where nothing is)."""
         self._check_alive()
         with self.lock:
-            if self._solo is None:
-                self._solo = SoloRenderer()
-            return self._solo.mask(obj, width, height, view, projection)
+            if self._view is None:
+                self._view = ViewRenderer()
+            return self._view.picture(parts, width, height, view, projection)
 
     # -- the GUI's viewer ---------------------------------------------------------
     @contextlib.contextmanager

@@ -126,6 +126,7 @@ class Object:
         self.type = type
         self.world = world
         self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
+        self._drawn: list[tuple[int, bool]] | None = None  # see drawn_links
         self.path = Path(path)
         self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
         self._color, self._mass = rgba, mass  # as given: a copy of the object is loaded alike
@@ -322,6 +323,15 @@ class Object:
                 fields["scale"] = tuple(float(v) for v in dimensions[:3])
             shapes.append(VisualShape(link, kind, origin, rgba, **fields))  # type: ignore[arg-type]
         return shapes
+
+    def drawn_links(self) -> list[tuple[int, bool]]:
+        """The links a renderer draws (with visual shapes not fully transparent), each with whether it has
+        collision shapes too (whose box then bounds what is drawn, give or take a mesh's finish); read once."""
+        if self._drawn is None:
+            cid = self.world.client_id
+            links = sorted({shape.link for shape in self.visual_shapes() if shape.rgba[3] > 0.0})
+            self._drawn = [(link, bool(p.getCollisionShapeData(self.id, link, physicsClientId=cid))) for link in links]
+        return self._drawn
 
     def get_aabb(self, link: str | int | None = None) -> tuple[Vec3, Vec3]:
         """Axis-aligned bounding box (min corner, max corner) of a link or the whole object."""
