@@ -9,7 +9,7 @@ fast and exact:
   the far plane just behind the object. TinyRenderer's cost is mostly per pixel.
 * Only what can be seen is drawn. TinyRenderer touches every triangle of every body it holds,
   wherever it is (15 ms for the real PR2 in the real kitchen, whatever the window), so both
-  pictures come from the world's private client (`world/view.py`, copies of the objects, the
+  pictures come from the world's private client (`world/view.py`: the prospection copy, the
   world itself never touched: no colours to hide and restore, no bodies to move) with only the
   links whose boxes meet the window's frustum — between the near plane and the far plane just
   behind the object — drawn: the object alone, then the rest without it in the part of the window
@@ -236,7 +236,7 @@ def _seen_parts(world: "BulletWorld", obj: "Object", cam: CameraPose,
     objects, owners, links, boxes, unbounded, counts = _scene_boxes(world)
     inside = _in_frustum(boxes, cam, window) | unbounded
     parts: dict[Object, list[int] | None] = {obj: None}
-    for index in np.unique(owners[inside]):
+    for index in sorted(set(owners[inside].tolist())):
         other = objects[index]
         if other is obj:
             continue

@@ -103,7 +103,7 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
-        self._view: ViewRenderer | None = None  # made on the first segmentation_of
+        self._view: ViewRenderer | None = None  # made on the first picture_of
         self._caption: int = -1  # the GUI's caption text item, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
         # change tracking (see `version`): every change takes a fresh number from the clock
@@ -139,10 +139,7 @@ class BulletWorld:
         for hook in self._exit_hooks:
             with contextlib.suppress(Exception):
                 hook()
-        if self._view is not None:
-            with contextlib.suppress(Exception):
-                self._view.close()
-            self._view = None
+        self._view = None
         if self._prospection is not None:
             with contextlib.suppress(Exception):
                 self._prospection.close()
@@ -349,8 +346,9 @@ class BulletWorld:
         """(height, width) ids of the objects seen at each pixel (-1: nothing) when only `parts` exist: for each
         object the links to draw (by index, -1: the base) or None for all of them.
 
-        Rendered from copies in this world's private client (see `view.py`), so nothing here is hidden,
-        moved or recoloured, and the renderer pays only for what is drawn (`segmentation` draws everything).
+        Rendered from the copies in this world's private prospection client (see `view.py`), so nothing here
+        is hidden, moved or recoloured, and the renderer pays only for what is drawn (`segmentation` draws
+        everything).
         """
         return self.picture_of(parts, width, height, view, projection)[0]
 
@@ -360,7 +358,7 @@ class BulletWorld:
         self._check_alive()
         with self.lock:
             if self._view is None:
-                self._view = ViewRenderer()
+                self._view = ViewRenderer(self)
             return self._view.picture(parts, width, height, view, projection)
 
     # -- the GUI's viewer ---------------------------------------------------------
