@@ -7,9 +7,15 @@ fast and exact:
 * Only a small window is rendered: an off-centre perspective projection whose frustum is
   cropped to the object's bounding box as seen from the camera, about 32×32 pixels, with
   the far plane just behind the object. TinyRenderer's cost is mostly per pixel.
-* The object alone is rendered by the world's private client that holds a copy of just that
-  object (same model file, same pose and joint positions; `world/solo.py`), so the world
-  itself is never touched — no colours to hide and restore, no bodies to move.
+* Only what can be seen is drawn. TinyRenderer touches every triangle of every body it holds,
+  wherever it is (15 ms for the real PR2 in the real kitchen, whatever the window), so both
+  pictures come from the world's private client (`world/view.py`: the prospection copy, the
+  world itself never touched: no colours to hide and restore, no bodies to move) with only the
+  links whose boxes meet the window's frustum — between the near plane and the far plane just
+  behind the object — drawn: the object alone, then the rest without it in the part of the window
+  the object covers, the object showing where it is nearer than the rest (depth buffers), so that
+  it is drawn once. A link's collision box grown by `MARGIN` bounds what is drawn of it; links
+  without collision shapes are always drawn.
 
 Camera: None (the robot's camera frame from its description, with its field of view), a
 link name of the robot (its camera frame: as None; any other link: a position at that link's
@@ -21,6 +27,7 @@ seen: an object outside the view is 0 % visible.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Sequence
 
@@ -44,6 +51,9 @@ DEFAULT_NEAR = 0.05
 POSITION_NEAR = 0.01
 #: half-angle limit of a window when the object reaches behind the camera
 WIDE = math.tan(math.radians(80.0))
+#: a link's collision box grown by this much (m) holds what is drawn of it (checked against full renders of the
+#: real PR2 and kitchen: their visual meshes lie within their collision boxes give or take a few millimetres)
+MARGIN = 0.02
 
 
 @dataclass(frozen=True)
@@ -194,15 +204,104 @@ def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | No
     forward, down = cam.rotation[:, 2], cam.rotation[:, 1]
     view = view_matrix(eye.tolist(), (eye + forward).tolist(), (-down).tolist())
     proj = projection_matrix(near * umin, near * umax, -near * vmax, -near * vmin, near, far)
-    scene = world.segmentation(width, height, view, proj)
-    alone = world.segmentation_alone(obj, width, height, view, proj)
     if cam.fov is not None:
         us = umin + (np.arange(width) + 0.5) / width * (umax - umin)
         vs = vmin + (np.arange(height) + 0.5) / height * (vmax - vmin)
         in_view = (np.abs(vs)[:, None] <= tv) & (np.abs(us)[None, :] <= tu)
     else:
         in_view = np.ones((height, width), dtype=bool)
+    # the object is drawn once: alone (where it covers the window, and how far), then everything else that
+    # may show in front of those pixels, in the smallest part of the window that holds them (same pixel grid);
+    # the scene is the nearer of the two at each pixel
+    ids, depth = world.picture_of({obj: None}, width, height, view, proj)
+    alone = ids == obj.id
+    scene = np.full((height, width), -1, dtype=np.int64)
+    rows, cols = np.nonzero(alone & in_view)
+    if len(rows):
+        r0, r1, c0, c1 = int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1
+        du, dv = (umax - umin) / width, (vmax - vmin) / height
+        crop = (umin + c0 * du, umin + c1 * du, vmin + r0 * dv, vmin + r1 * dv, near, far)
+        cropped = projection_matrix(near * crop[0], near * crop[1], -near * crop[3], -near * crop[2], near, far)
+        others = {o: links for o, links in _seen_parts(world, obj, cam, crop).items() if o is not obj}
+        behind = np.full((height, width), -1, dtype=np.int64)
+        behind_depth = np.ones((height, width))
+        behind[r0:r1, c0:c1], behind_depth[r0:r1, c0:c1] = world.picture_of(others, c1 - c0, r1 - r0, view, cropped)
+        scene = np.where(alone & (depth < behind_depth), obj.id, behind)
     return _Views(scene, alone, in_view)
+
+
+def _seen_parts(world: "BulletWorld", obj: "Object", cam: CameraPose,
+                window: tuple[float, float, float, float, float, float]) -> dict["Object", list[int] | None]:
+    """What may show in the window: for each object the links whose boxes meet the frustum (None: all)."""
+    objects, owners, links, boxes, unbounded, counts = _scene_boxes(world)
+    inside = _in_frustum(boxes, cam, window) | unbounded
+    parts: dict[Object, list[int] | None] = {obj: None}
+    for index in sorted(set(owners[inside].tolist())):
+        other = objects[index]
+        if other is obj:
+            continue
+        chosen = inside & (owners == index)
+        hits = int(chosen.sum())
+        parts[other] = None if hits == counts[index] else [links[i] for i in np.flatnonzero(chosen)]
+    return parts
+
+
+_SCENES: "weakref.WeakKeyDictionary[BulletWorld, tuple]" = weakref.WeakKeyDictionary()
+
+
+def _scene_boxes(world: "BulletWorld") -> tuple[list["Object"], np.ndarray, list[int], np.ndarray, np.ndarray,
+                                                np.ndarray]:
+    """Every drawn link of the world at once: the objects, each link's owner (index into them), link, box and
+    whether it has none; and how many links each object draws. Kept while the world's version stays."""
+    version = world.version
+    cached = _SCENES.get(world)
+    if cached is not None and cached[0] == version and len(cached[1]) == len(world.objects) \
+            and all(a is b for a, b in zip(cached[1], world.objects)):
+        return cached[1:]  # type: ignore[return-value]
+    objects = list(world.objects)
+    drawn = [_drawn_boxes(o) for o in objects]
+    owners = np.concatenate([np.full(len(d[0]), i) for i, d in enumerate(drawn)] or [np.zeros(0)]).astype(int)
+    links = [link for d in drawn for link in d[0]]
+    boxes = np.concatenate([d[1] for d in drawn] or [np.zeros((0, 2, 3))])
+    unbounded = np.concatenate([d[2] for d in drawn] or [np.zeros(0, dtype=bool)])
+    counts = np.array([len(d[0]) for d in drawn])
+    _SCENES[world] = (version, objects, owners, links, boxes, unbounded, counts)
+    return objects, owners, links, boxes, unbounded, counts
+
+
+_BOXES: "weakref.WeakKeyDictionary[Object, tuple[int, list[int], np.ndarray, np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
+def _drawn_boxes(obj: "Object") -> tuple[list[int], np.ndarray, np.ndarray]:
+    """The links `obj` draws, their boxes (n, 2, 3) grown by MARGIN, and which have no box (no collision shape);
+    kept while the object's version stays."""
+    version = obj.version
+    cached = _BOXES.get(obj)
+    if cached is not None and cached[0] == version:
+        return cached[1], cached[2], cached[3]
+    drawn = obj.drawn_links()
+    links = [link for link, _ in drawn]
+    boxes = np.array([obj.get_aabb(link) for link in links], dtype=float).reshape(-1, 2, 3)
+    boxes[:, 0] -= MARGIN
+    boxes[:, 1] += MARGIN
+    unbounded = np.array([not has_collision for _, has_collision in drawn], dtype=bool)
+    _BOXES[obj] = (version, links, boxes, unbounded)
+    return links, boxes, unbounded
+
+
+def _in_frustum(boxes: np.ndarray, cam: CameraPose, window: tuple[float, float, float, float, float, float]) -> np.ndarray:
+    """Which boxes (n, 2, 3) may meet the window's frustum: those not wholly beyond one of its six planes."""
+    umin, umax, vmin, vmax, near, far = window
+    if not len(boxes):
+        return np.zeros(0, dtype=bool)
+    pick = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+    corners = boxes[:, pick, [0, 1, 2]]  # (n, 8, 3)
+    local = (corners - cam.position) @ cam.rotation  # optical frame: x right, y down, z forward
+    x, y, z = local[..., 0], local[..., 1], local[..., 2]
+    outside = ((z < near).all(axis=1) | (z > far).all(axis=1)
+               | (x < umin * z).all(axis=1) | (x > umax * z).all(axis=1)
+               | (y < vmin * z).all(axis=1) | (y > vmax * z).all(axis=1))
+    return ~outside
 
 
 # -- the queries --------------------------------------------------------------------------

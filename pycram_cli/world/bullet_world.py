@@ -6,12 +6,13 @@ by side without seeing each other's changes; at most one of them shows a GUI win
 from __future__ import annotations
 
 import contextlib
+import itertools
 import math
 import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Sequence
 
 import numpy as np
 import pybullet as p
@@ -21,8 +22,8 @@ from .display import check_display
 from .events import Event
 from ..quiet import silenced
 from .pose import Vec3, check_position, matrix_to_quat
-from .solo import SoloRenderer
-from .state import WorldState, capture, release, restore
+from .view import ViewRenderer
+from .state import StateCache, WorldState
 
 if TYPE_CHECKING:
     from .object import Object
@@ -127,9 +128,14 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
-        self._solo: SoloRenderer | None = None  # made on the first segmentation_alone
+        self._view: ViewRenderer | None = None  # made on the first picture_of
         self._caption: int = -1  # the GUI's caption text item, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
+        # change tracking (see `version`): every change takes a fresh number from the clock
+        self._clock = itertools.count(1)
+        self._version = next(self._clock)  # the newest change of anything
+        self._stepped = 0  # the newest simulation step (it may have moved every object)
+        self._states = StateCache(self)
         p.setTimeStep(1.0 / STEP_HZ, physicsClientId=client)
         self.set_gravity(gravity)
 
@@ -158,10 +164,7 @@ class BulletWorld:
         for hook in self._exit_hooks:
             with contextlib.suppress(Exception):
                 hook()
-        if self._solo is not None:
-            with contextlib.suppress(Exception):
-                self._solo.close()
-            self._solo = None
+        self._view = None
         if self._prospection is not None:
             with contextlib.suppress(Exception):
                 self._prospection.close()
@@ -205,11 +208,52 @@ class BulletWorld:
         self._check_alive()
         self.gravity = check_position(vector, "gravity")
         p.setGravity(*self.gravity, physicsClientId=self.client_id)
+        self.mark_changed()
 
     def set_realtime(self, realtime: bool) -> None:
         self._check_alive()
         self._realtime = bool(realtime)
         p.setRealTimeSimulation(1 if realtime else 0, physicsClientId=self.client_id)
+        self.mark_changed()
+
+    # -- change tracking ----------------------------------------------------------
+    @property
+    def tracks_changes(self) -> bool:
+        """Whether `version` sees every change: not while PyBullet steps by itself (real time) or a GUI
+        window lets the user drag bodies; such worlds count as changed whenever they are asked."""
+        return not self._realtime and self.mode != "gui"
+
+    @property
+    def version(self) -> int:
+        """A number that changes whenever the world does, and only then: teleports, joint changes,
+        attachments, simulation steps, gravity, objects added or removed (see `mark_changed`).
+
+        Equal versions mean equal poses, velocities, joints and attachments, so whatever was
+        derived from the world (the prospection copy's sync, a saved state) can be reused while
+        the version stays. Restoring a saved state gives back that state's version.
+        """
+        if not self.tracks_changes:
+            self.mark_changed()
+        return self._version
+
+    def mark_changed(self, obj: "Object | None" = None) -> None:
+        """Record a change of `obj` (None: of anything, e.g. a simulation step, which may move every object).
+
+        The world's own methods and Object's call this; code that changes a world through PyBullet
+        directly (a test, a benchmark's baseline) must call it too, or cached copies go stale.
+        """
+        version = next(self._clock)
+        self._version = version
+        if obj is None:
+            self._stepped = version
+        else:
+            obj._version = version
+
+    def version_of(self, obj: "Object") -> int:
+        """The version of one object: the newest change of it, or of everything (a step), whichever is later."""
+        if not self.tracks_changes:
+            self.mark_changed()
+        return max(obj._version, self._stepped)
 
     def simulate(self, seconds: float) -> None:
         """Step the physics for `seconds` at 240 Hz.
@@ -235,6 +279,7 @@ class BulletWorld:
         """
         self._check_alive()
         p.stepSimulation(physicsClientId=self.client_id)
+        self.mark_changed()
         self._follow_parents()
 
     def _follow_parents(self) -> None:
@@ -249,9 +294,12 @@ class BulletWorld:
         PyBullet's restoreState does not restore sleep: an object that fell asleep in between
         would otherwise hang where it was put back.
         """
-        for obj in self.objects:
-            if not obj.fixed:
-                p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
+        self.wake([obj for obj in self.objects if not obj.fixed])
+
+    def wake(self, objects: Sequence["Object"]) -> None:
+        """Wake `objects` (sleeping bodies are not simulated; restoreState does not restore sleep)."""
+        for obj in objects:
+            p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
 
     # -- geometry ---------------------------------------------------------------
     def closest_points(self, a: "Object", b: "Object", distance: float,
@@ -352,16 +400,28 @@ class BulletWorld:
 
     def segmentation_alone(self, obj: "Object", width: int, height: int, view: Sequence[float],
                            projection: Sequence[float]) -> np.ndarray:
-        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world.
+        """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world."""
+        return self.segmentation_of({obj: None}, width, height, view, projection) == obj.id
 
-        Rendered from a copy of `obj` in this world's private client (see `solo.py`), so nothing
-        here is hidden, moved or recoloured.
+    def segmentation_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+                        view: Sequence[float], projection: Sequence[float]) -> np.ndarray:
+        """(height, width) ids of the objects seen at each pixel (-1: nothing) when only `parts` exist: for each
+        object the links to draw (by index, -1: the base) or None for all of them.
+
+        Rendered from the copies in this world's private prospection client (see `view.py`), so nothing here
+        is hidden, moved or recoloured, and the renderer pays only for what is drawn (`segmentation` draws
+        everything).
         """
+        return self.picture_of(parts, width, height, view, projection)[0]
+
+    def picture_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+                   view: Sequence[float], projection: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+        """`segmentation_of` and the picture's depth buffer (0..1, growing with distance; 1 where nothing is)."""
         self._check_alive()
         with self.lock:
-            if self._solo is None:
-                self._solo = SoloRenderer()
-            return self._solo.mask(obj, width, height, view, projection)
+            if self._view is None:
+                self._view = ViewRenderer(self)
+            return self._view.picture(parts, width, height, view, projection)
 
     # -- the GUI's viewer ---------------------------------------------------------
     @contextlib.contextmanager
@@ -464,6 +524,7 @@ class BulletWorld:
         self._by_id[obj.id] = obj
         if obj.type == "robot" and self.robot is None:
             self.robot = obj
+        self.mark_changed(obj)
 
     def unregister(self, obj: "Object") -> None:
         """Drop a removed object from the world's lists (Object.remove calls this)."""
@@ -471,6 +532,7 @@ class BulletWorld:
         self._by_id.pop(obj.id, None)
         if self.robot is obj:
             self.robot = None
+        self.mark_changed()
 
     def get_objects_by_name(self, name: str) -> list["Object"]:
         return [o for o in self.objects if o.name == name]
@@ -487,17 +549,20 @@ class BulletWorld:
 
     # -- state ------------------------------------------------------------------
     def save_state(self) -> WorldState:
-        """Everything needed to put the world back exactly: poses, joints, velocities, attachments."""
+        """Everything needed to put the world back exactly: poses, joints, velocities, attachments.
+
+        Saved once per change: while the world's version stays, the same state is handed out again
+        (PyBullet's saveState serialises every collision shape, 4-20 ms; see state.py)."""
         self._check_alive()
-        return capture(self)
+        return self._states.save()
 
     def restore_state(self, state: WorldState) -> None:
         self._check_alive()
-        restore(self, state)
+        self._states.restore(state)
 
     def release_state(self, state: WorldState) -> None:
-        """Free the memory PyBullet holds for a saved state."""
-        release(self, state)
+        """Free the memory PyBullet holds for a saved state (once nobody holds it any more)."""
+        self._states.release(state)
 
     @contextlib.contextmanager
     def snapshot(self) -> Iterator[WorldState]:

@@ -243,6 +243,16 @@ def up_for(camera: Camera) -> tuple[float, float, float]:
     return camera.up
 
 
+def segmentation_and_depth(client: int, width: int, height: int, view: Sequence[float],
+                           projection: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+    """`segmentation` and the depth buffer of the same picture ((height, width) each; depth in 0..1, growing
+    with distance, 1 where nothing is drawn)."""
+    _, _, _, depth, seg = p.getCameraImage(width, height, view, projection, shadow=0, renderer=p.ER_TINY_RENDERER,
+                                           physicsClientId=client)
+    return (np.asarray(seg, dtype=np.int64).reshape(height, width),
+            np.asarray(depth, dtype=np.float64).reshape(height, width))
+
+
 def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
     """RGB image (height, width, 3) of the world from `camera`."""
     cid = world.client_id

@@ -18,7 +18,7 @@ from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
 from ..quiet import silenced
 
 KINEMATIC_TYPES = ("robot", "environment")
-_HOLD_FORCE = 1e5
+HOLD_FORCE = 1e5  # N or N·m: what holds a fixed object's joints (see parking.py)
 
 
 class MissingMeshWarning(UserWarning):
@@ -126,6 +126,8 @@ class Object:
         self.name = name
         self.type = type
         self.world = world
+        self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
+        self._drawn: list[tuple[int, bool]] | None = None  # see drawn_links
         try:  # a bare name is searched for as world files do: here, the bundled resources, PyBullet's models
             self.path = find_model_file(path)
         except FileNotFoundError as exc:
@@ -166,7 +168,7 @@ class Object:
         if self.fixed and self.movable_joints:
             ids = [j.index for j in self.movable_joints]
             p.setJointMotorControlArray(body, ids, p.VELOCITY_CONTROL, targetVelocities=[0.0] * len(ids),
-                                        forces=[_HOLD_FORCE] * len(ids), physicsClientId=cid)
+                                        forces=[HOLD_FORCE] * len(ids), physicsClientId=cid)
         world.register(self)
 
     # -- model ------------------------------------------------------------------
@@ -228,6 +230,11 @@ class Object:
     def get_orientation(self) -> Quat:
         return self.get_pose()[1]
 
+    @property
+    def version(self) -> int:
+        """Changes whenever this object may have changed (its own changes and every simulation step)."""
+        return self.world.version_of(self)
+
     def get_pose(self) -> tuple[Vec3, Quat]:
         """(position, orientation) of the base link's frame in the world frame."""
         pos, orn = p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
@@ -243,11 +250,17 @@ class Object:
         """
         return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)  # type: ignore[return-value]
 
+    def get_velocity(self) -> tuple[Vec3, Vec3]:
+        """(linear, angular) velocity of the base's centre of mass in the world frame (m/s, rad/s)."""
+        linear, angular = p.getBaseVelocity(self.id, physicsClientId=self.world.client_id)
+        return tuple(linear), tuple(angular)  # type: ignore[return-value]
+
     def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
         if self._inertial is not None:
             position, orientation = compose((position, orientation), self._inertial)
         p.resetBasePositionAndOrientation(self.id, position, orientation, physicsClientId=self.world.client_id)
+        self.world.mark_changed(self)
 
     def set_position_and_orientation(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Teleport the object; everything attached to it follows at once."""
@@ -314,6 +327,15 @@ class Object:
             shapes.append(VisualShape(link, kind, origin, rgba, **fields))  # type: ignore[arg-type]
         return shapes
 
+    def drawn_links(self) -> list[tuple[int, bool]]:
+        """The links a renderer draws (with visual shapes not fully transparent), each with whether it has
+        collision shapes too (whose box then bounds what is drawn, give or take a mesh's finish); read once."""
+        if self._drawn is None:
+            cid = self.world.client_id
+            links = sorted({shape.link for shape in self.visual_shapes() if shape.rgba[3] > 0.0})
+            self._drawn = [(link, bool(p.getCollisionShapeData(self.id, link, physicsClientId=cid))) for link in links]
+        return self._drawn
+
     def get_aabb(self, link: str | int | None = None) -> tuple[Vec3, Vec3]:
         """Axis-aligned bounding box (min corner, max corner) of a link or the whole object."""
         cid = self.world.client_id
@@ -376,6 +398,7 @@ class Object:
             cid = self.world.client_id
             for joint, value in checked:
                 p.resetJointState(self.id, joint.index, value, 0.0, physicsClientId=cid)
+            self.world.mark_changed(self)
             self._after_move()
         if self.type != "robot":
             for joint, value in checked:
@@ -393,6 +416,7 @@ class Object:
         # one call for all of them (what collision-checked motions do at every step of a path)
         p.resetJointStatesMultiDof(self.id, ids, [[float(v)] for v in positions.values()], [[0.0]] * len(ids),
                                    physicsClientId=self.world.client_id)
+        self.world.mark_changed(self)
 
     @contextlib.contextmanager
     def joints_kept(self, names: Iterable[str]) -> Iterator[None]:
@@ -409,6 +433,7 @@ class Object:
         finally:
             for jid, (position, velocity) in zip(ids, saved):
                 p.resetJointState(self.id, jid, position, velocity, physicsClientId=cid)
+            self.world.mark_changed(self)
 
     # -- attachments -----------------------------------------------------------
     def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
@@ -428,6 +453,8 @@ class Object:
         att = Attachment(self, other, plink, clink, transform)
         self.attachments[other] = att
         other.attachments[self] = att
+        self.world.mark_changed(self)
+        self.world.mark_changed(other)
         self.world.attachment_event(self, other)
 
     def detach(self, other: "Object") -> None:
@@ -435,6 +462,8 @@ class Object:
         if att is None:
             raise ValueError(f"'{self.name}' and '{other.name}' are not attached")
         other.attachments.pop(self, None)
+        self.world.mark_changed(self)
+        self.world.mark_changed(other)
         self.world.detachment_event(att.parent, att.child)
 
     def _after_move(self) -> None:
@@ -446,6 +475,7 @@ class Object:
                 new = Attachment(att.parent, self, att.parent_link, att.child_link, transform)
                 self.attachments[other] = new
                 other.attachments[self] = new
+                self.world.mark_changed(other)  # the parent's record of the attachment changed too
         self.move_attached()
 
     def move_attached(self) -> None:
@@ -466,8 +496,8 @@ class Object:
             if att.child_link != -1:
                 base_to_link = _relative(child.get_pose(), child.get_link_position_and_orientation(att.child_link))
                 target = compose(target, invert(base_to_link))
-            child._reset_base(target[0], target[1])
             p.resetBaseVelocity(child.id, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
+            child._reset_base(target[0], target[1])  # (marks the child changed)
             child._move_attached(visited)
 
     def remove(self) -> None:

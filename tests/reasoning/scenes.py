@@ -72,3 +72,31 @@ def plain_stable(world: Any, obj: Any, seconds: float = 2.0) -> tuple[bool, floa
 
 def tilt_about_x(angle: float) -> tuple[float, float, float, float]:
     return (math.sin(angle / 2.0), 0.0, 0.0, math.cos(angle / 2.0))
+
+
+def box_mesh(folder: Any, size: Sequence[float]) -> Any:
+    """An OBJ box of `size` (x, y, z) standing on its bottom face (origin at the bottom centre), in `folder`."""
+    from pathlib import Path
+
+    hx, hy, height = float(size[0]) / 2.0, float(size[1]) / 2.0, float(size[2])
+    path = Path(folder) / f"box_{size[0]:g}x{size[1]:g}x{size[2]:g}.obj"
+    corners = [(x, y, z) for z in (0.0, height) for x, y in ((-hx, -hy), (hx, -hy), (hx, hy), (-hx, hy))]
+    faces = [(1, 3, 2), (1, 4, 3), (5, 6, 7), (5, 7, 8), (1, 2, 6), (1, 6, 5), (2, 3, 7), (2, 7, 6),
+             (3, 4, 8), (3, 8, 7), (4, 1, 5), (4, 5, 8)]
+    path.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in corners)
+                    + "".join(f"f {a} {b} {c}\n" for a, b, c in faces))
+    return path
+
+
+def add_clutter(world: Any, folder: Any, n: int = 200) -> list:
+    """`n` small cubes (4 cm, 50 g) standing on the floor and the back of the sink-area counter, 8 cm apart:
+    a crowded world whose extra bodies have nothing to do with the objects the stability tests move."""
+    from pycram_cli import Object
+
+    cube = box_mesh(folder, (0.04, 0.04, 0.04))
+    spots = [(1.56 + 0.08 * i, 0.26 + 0.08 * j, 0.851) for i in range(3) for j in range(13)]  # the counter
+    spots += [(-0.6 + 0.08 * i, -0.9 + 0.08 * j, 0.0) for j in range(10) for i in range(22)]  # the floor
+    added = []
+    for index, (x, y, z) in enumerate(spots[:n]):
+        added.append(Object(f"clutter{index}", "cube", cube, (x, y, z + 0.0002), world=world, mass=0.05))
+    return added

@@ -54,6 +54,7 @@ def arrange(world, rng):
         hand = robot.get_link_position("r_gripper_tool_frame")
         held.set_position(hand)
         robot.attach(held, "r_gripper_tool_frame")
+    world.mark_changed()  # joints and velocities were set through PyBullet directly
 
 
 def queries(world, rng):

@@ -1,13 +1,15 @@
 """stable(obj): the object does not move more than 1 mm or 1° while the world is simulated for 2 s.
 
-Every verdict must agree with a plain 2 s simulation of the whole world.
+Every verdict must agree with a plain 2 s simulation of the whole world, and not change when the world
+holds 200 more objects (stable simulates only the object's neighbourhood).
 """
 from __future__ import annotations
 
 import math
 
 import pytest
-from scenes import COUNTER_POSE, ISLAND_TOP, fingerprint, plain_stable, put_on, tilt_about_x
+from scenes import (COUNTER_POSE, ISLAND_TOP, add_clutter, box_mesh, fingerprint, kitchen_world, plain_stable, put_on,
+                    tilt_about_x, wake)
 
 from pycram_cli.reasoning import StableAnswer, stable
 
@@ -124,3 +126,147 @@ def test_something_falling_onto_a_resting_object_makes_it_unstable(scene):
     answer = stable(milk)
     assert not answer and answer.simulated > 0.3
     assert not plain_stable(scene, milk)[0]
+
+
+# -- every case both ways, and in a crowded kitchen (issue 15: stable simulates the object's neighbourhood) ---------
+# Each case arranges the kitchen and names the object asked about and the expected verdict (None: whatever a plain
+# 2 s simulation of the whole world says). The cases where the neighbourhood matters: what leans on the object,
+# what it stands on (a tray), stacks, and objects tipping over an edge beside it or onto it.
+
+def _lean_on_milk(world, folder):
+    """The cereal box (7 cm thin along x) tilted 25° about y, its top resting against the milk on the island."""
+    milk, cereal, kitchen = (world.get_object_by_name(n) for n in ("milk", "cereal", "kitchen"))
+    put_on(milk, kitchen, -1.0, 1.5)
+    tilt = (0.0, math.sin(math.radians(25) / 2), 0.0, math.cos(math.radians(25) / 2))
+    x = -1.2
+    put_on(cereal, kitchen, x, 1.5, tilt)
+    while world.distance(cereal, milk, 0.5) > 0.0005:  # slide it towards the milk until its top touches
+        x += max(world.distance(cereal, milk, 0.5) - 0.0002, 0.0002)
+        put_on(cereal, kitchen, x, 1.5, tilt)
+    return milk, cereal
+
+
+def _tray(world, folder, x):
+    from pycram_cli import Object
+
+    tray = Object("tray", "tray", box_mesh(folder, (0.30, 0.20, 0.012)), (0, 0, 3), world=world, mass=0.4)
+    kitchen, milk = world.get_object_by_name("kitchen"), world.get_object_by_name("milk")
+    put_on(tray, kitchen, x, 1.5)
+    put_on(milk, tray, x + 0.1, 1.5)
+    return milk
+
+
+def _stack(world, folder, offset):
+    from pycram_cli import Object
+
+    cube = box_mesh(folder, (0.1, 0.1, 0.1))
+    kitchen = world.get_object_by_name("kitchen")
+    bottom = Object("bottom", "box", cube, (0, 0, 3), world=world, mass=0.3)
+    top = Object("top", "box", cube, (0, 0, 4), world=world, mass=0.3)
+    put_on(bottom, kitchen, -1.0, 2.2)
+    put_on(top, bottom, -1.0 + offset, 2.2)
+    return bottom, top
+
+
+def _tip_next_to_milk(world, folder):
+    """The cereal centred right on the island's edge (it tips over it, away from the island) 12 cm from the milk."""
+    cereal, milk, kitchen = (world.get_object_by_name(n) for n in ("cereal", "milk", "kitchen"))
+    put_on(cereal, kitchen, -0.67, 1.5)
+    put_on(milk, kitchen, -0.75, 1.5 + 0.095 + 0.04 + 0.12)
+    return milk, cereal
+
+
+def _topple_onto_milk(world, folder):
+    """The cereal on its thin edge, tilted 40° towards the milk standing 4 cm beyond its top: it falls onto it
+    (lying, it reaches 10 cm further)."""
+    cereal, milk, kitchen = (world.get_object_by_name(n) for n in ("cereal", "milk", "kitchen"))
+    tilt = (0.0, math.sin(math.radians(40) / 2), 0.0, math.cos(math.radians(40) / 2))
+    put_on(cereal, kitchen, -1.2, 1.5, tilt)
+    put_on(milk, kitchen, cereal.get_aabb()[1][0] + 0.04 + 0.039, 1.5)
+    return milk
+
+
+def _dropped_onto_milk(world, folder):
+    world.get_object_by_name("bottle").set_position([1.3, 1.0, 2.0])
+    return world.get_object_by_name("milk")
+
+
+CASES = {
+    "the milk as loaded": (lambda w, f: w.get_object_by_name("milk"), True),
+    "the milk in the air": (lambda w, f: _moved_to(w, "milk", [1.5, 0.5, 1.3]), False),
+    "the cereal half over the island's edge": (
+        lambda w, f: _put(w, "cereal", -0.67, 1.5), False),
+    "the cereal 2 cm inside the island's edge": (lambda w, f: _put(w, "cereal", -0.69, 1.5), True),
+    "the cereal on one edge at 20°": (lambda w, f: _put(w, "cereal", -1.0, 1.5, tilt_about_x(math.radians(20))), False),
+    "the cereal slowly tipping over the edge": (lambda w, f: _put(w, "cereal", -0.67 + 0.0005, 1.5), False),
+    "the milk with a bottle dropped onto it": (_dropped_onto_milk, False),
+    "the milk with the cereal leaning on it": (lambda w, f: _lean_on_milk(w, f)[0], None),
+    "the cereal leaning on the milk": (lambda w, f: _lean_on_milk(w, f)[1], None),
+    "the milk on a tray on the island": (lambda w, f: _tray(w, f, -1.1), True),
+    "the milk on a tray overhanging the island's edge": (lambda w, f: _tray(w, f, -0.67 + 0.09), False),
+    "a cube on a cube": (lambda w, f: _stack(w, f, 0.0)[1], True),
+    "a cube 6 cm off a cube": (lambda w, f: _stack(w, f, 0.06)[1], False),
+    "the cube under one that falls off": (lambda w, f: _stack(w, f, 0.06)[0], None),
+    "the milk beside the cereal tipping over the edge": (lambda w, f: _tip_next_to_milk(w, f)[0], True),
+    "the cereal tipping over the edge beside the milk": (lambda w, f: _tip_next_to_milk(w, f)[1], False),
+    "the milk where the cereal topples onto it": (_topple_onto_milk, False),
+}
+
+
+def _moved_to(world, name, position):
+    world.get_object_by_name(name).set_position(position)
+    return world.get_object_by_name(name)
+
+
+def _put(world, name, x, y, orientation=(0, 0, 0, 1)):
+    put_on(world.get_object_by_name(name), world.get_object_by_name("kitchen"), x, y, orientation)
+    return world.get_object_by_name(name)
+
+
+@pytest.fixture(scope="module")
+def crowded(tmp_path_factory):
+    world = kitchen_world()
+    add_clutter(world, tmp_path_factory.mktemp("clutter"), 200)
+    yield world
+    world.exit()
+
+
+def _arranged(world, tmp_path, case):
+    """Arrange `world` for `case`; undone by the caller (objects the case adds are removed by the caller too)."""
+    setup, expected = CASES[case]
+    return setup(world, tmp_path), expected
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_every_case_agrees_with_a_plain_two_second_simulation_with_or_without_200_more_objects(
+        scene, crowded, tmp_path, case):
+    verdicts = []
+    for world in (scene, crowded):
+        state = world.save_state()
+        count = len(world.objects)
+        try:
+            obj, expected = _arranged(world, tmp_path, case)
+            answer = stable(obj)
+            if world is scene:
+                assert answer.stable == plain_stable(world, obj)[0], f"{case}: {answer}"
+                if expected is not None:
+                    assert answer.stable is expected, f"{case}: {answer}"
+            verdicts.append(answer.stable)
+        finally:
+            for extra in world.objects[count:]:
+                extra.remove()
+            world.restore_state(state)
+            world.release_state(state)
+            wake(world)
+    assert verdicts[0] == verdicts[1], f"{case}: 200 more objects changed the answer"
+
+
+def test_the_neighbourhood_is_what_touches_the_object_or_could_come(scene, tmp_path):
+    from pycram_cli.reasoning.neighbourhood import find
+
+    milk, cereal = _lean_on_milk(scene, tmp_path)
+    names = [o.name for o in find(scene, milk, 2.0).members]
+    assert "cereal" in names and "milk" in names  # leaning on it
+    assert "spoon" not in names  # in the closed drawer, at rest
+    hood = find(scene, scene.get_object_by_name("spoon"), 2.0)
+    assert scene.robot in hood.parked  # nothing near the spoon reaches the robot

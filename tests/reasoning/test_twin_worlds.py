@@ -89,3 +89,27 @@ def test_the_prospection_copy_follows_objects_that_come_and_go(world, data_dir):
     assert not stable(other)
     assert [o.name for o in world.prospection().copy.objects] == ["floor", "other"]
     assert floor in world.objects and len(world.objects) == 2
+
+
+@pytest.mark.parametrize("scene", SCENES)
+def test_a_run_of_queries_on_one_world_answers_as_on_fresh_worlds_and_leaves_no_trace(scene):
+    """The prospection copy is synced once and reused while the world does not change (issue 15): each
+    answer must still be the one a fresh world gives, whatever ran before it, and the world untouched."""
+    fresh = {}
+    for name, query in QUERIES.items():
+        world = build(scene)
+        fresh[name] = repr(query(world, world.get_object_by_name))
+        world.exit()
+    twin = build(scene)
+    twin.simulate(1.0)
+    expected = poses(twin)
+    twin.exit()
+    world = build(scene)
+    for round_ in range(2):
+        for name, query in reversed(QUERIES.items()) if round_ else QUERIES.items():
+            assert repr(query(world, world.get_object_by_name)) == fresh[name], f"{name} (round {round_})"
+    world.simulate(1.0)
+    got = poses(world)
+    world.exit()
+    for x, y in zip(got, expected):
+        assert float(np.max(np.abs(x - y))) <= 1e-9

@@ -55,7 +55,7 @@ def test_rendering_changes_nothing_in_the_world(world, data_dir):
 def test_the_private_client_is_closed_with_its_world(world, data_dir):
     cube = Object("cube", "box", data_dir / "cube.obj")
     world.segmentation_alone(cube, SIZE, SIZE, VIEW, PROJECTION)
-    private = world._solo.client  # white-box: the client the world made for rendering alone
+    private = world._prospection.copy.client_id  # white-box: the private client it renders in
     assert p.isConnected(private)
     world.exit()
     assert not p.isConnected(private)
