@@ -2,11 +2,18 @@
 from __future__ import annotations
 
 import os
+import signal
 import tempfile
 from pathlib import Path
 from typing import Iterator
 
 import pytest
+
+# A suite started in the background by a non-interactive shell (`pytest &`, `nohup`) inherits SIGINT ignored,
+# and so would every pycram it starts: pycram rightly keeps an ignored SIGINT, as a background job should, and the
+# interrupt and GUI tests would wait for a Ctrl-C that never arrives. A handler of ours is reset for children.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 os.environ.setdefault("PYCRAM_CACHE_DIR", tempfile.mkdtemp(prefix="pycram-test-cache-"))
 

@@ -44,7 +44,12 @@ def wait_for(predicate, timeout: float = 20.0) -> None:
 def signal_and_time(process: subprocess.Popen, signum: int) -> tuple[float, str, str]:
     sent = time.monotonic()
     process.send_signal(signum)
-    out, err = process.communicate(timeout=10)
+    try:
+        out, err = process.communicate(timeout=10)
+    except subprocess.TimeoutExpired:
+        process.kill()  # not left behind spinning when the signal did not end it
+        out, err = process.communicate()
+        pytest.fail(f"still running 10 s after {signal.Signals(signum).name}:\n{err}")
     return time.monotonic() - sent, out, err
 
 

@@ -116,6 +116,7 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
             run.wait(timeout=30)
         except subprocess.TimeoutExpired:
             run.kill()
+            run.wait()
         server.terminate()
         server.wait(timeout=30)
     for moment, images in shots.items():
