@@ -66,6 +66,11 @@ TRAVEL_WEIGHT = 0.02
 VIEW_WEIGHT = 0.3
 #: candidates that get the expensive tests (inverse kinematics, rendering) before the resolution gives up
 EXPENSIVE_LIMIT = 40
+#: how hard the ways of an arm and grasp are tried (`move_over`'s options), cheapest first: every arm and grasp is
+#: tried straight before any goes around what is in the way, and that before any joint-space search
+STRAIGHT = {"around": False, "search": False}
+AROUND = {"around": True, "search": False}
+SEARCH = {"around": True, "search": True}
 #: the map test runs on this many candidates at a time
 CHUNK = 48
 #: the robot touches an object when their shapes are closer than this (m)
@@ -658,11 +663,13 @@ class BasePoseResolution(_Resolution):
         """The first arm and grasp with which pick-up itself would take `obj` from here: the test is the pick-up
         process module's own planning (pre-grasp and grasp reached, the open gripper inside nothing), so a pose found
         here is one from which the pick-up succeeds; the arm at the grasp then touches nothing but the object and
-        what it stands on."""
+        what it stands on. An arm and grasp whose ways are straight come before one whose ways must go around
+        something (finding that a way round does not exist costs a search: about 0.4 s)."""
         robot, spec, cand = self.robot, self.spec, self.candidates
         body = robot.body
         blocked: list[str] = []
         holdable = False
+        viable: list[tuple[str, Any, Any, Any]] = []
         grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
         for arm in arms:
             for grasp in grasps:
@@ -687,20 +694,13 @@ class BasePoseResolution(_Resolution):
                 if touched:
                     blocked.extend(t for t in touched if t not in blocked)
                     continue
-                # and the arm's ways from where it is to the pre-grasp pose, as pick-up will move it, and from the
-                # grasp to the pose it will rest in holding the object (the object itself not counted)
-                rest = rest_pose(robot, arm, holding=True)
-                with body.joints_kept(list(pre.joint_positions)):
-                    try:
-                        move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose")
-                        if rest is not None:
-                            body.reset_joints(solution.joint_positions)
-                            move_over(robot, arm, arm_configuration(robot, arm, rest),
-                                      f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False)
-                    except ManipulationFailure as failure:
-                        blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
-                        continue
-                return arm, grasp
+                if self._ways_free(obj, arm, pre, solution, STRAIGHT, blocked):
+                    return arm, grasp
+                viable.append((arm, grasp, pre, solution))  # its ways may go around what is in the way
+        for tier in (AROUND, SEARCH):
+            for arm, grasp, pre, solution in viable:
+                if self._ways_free(obj, arm, pre, solution, tier, blocked):
+                    return arm, grasp
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))
         elif not holdable:
@@ -708,6 +708,27 @@ class BasePoseResolution(_Resolution):
         else:
             cand.mark(i, "out of reach")
         return None
+
+    def _ways_free(self, obj: Object, arm: str, pre: Any, solution: Any, tier: dict[str, bool],
+                   blocked: list[str]) -> bool:
+        """Whether the arm's ways are free as pick-up will move it: from where it is to the pre-grasp pose, and from
+        the grasp to the pose it will rest in holding the object (the object itself not counted), tried as `tier`
+        says (`STRAIGHT`, `AROUND`, `SEARCH`: see `move_over`). What they would hit is added to `blocked`."""
+        robot = self.robot
+        body = robot.body
+        rest = rest_pose(robot, arm, holding=True)
+        with body.joints_kept(list(pre.joint_positions)):
+            try:
+                move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose", **tier)
+                if rest is not None:
+                    body.reset_joints(solution.joint_positions)
+                    move_over(robot, arm, arm_configuration(robot, arm, rest),
+                              f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
+                              **tier)
+            except ManipulationFailure as failure:
+                blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                return False
+        return True
 
     def _place(self, i: int, arms: list[str], obj: Object, target: Any) -> tuple[str, Any] | None:
         """The arm with which place itself would put `obj` down at `target` from here (the place process module's own
