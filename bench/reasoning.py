@@ -22,12 +22,13 @@ reads contacts; every query that changes the world saves and restores it.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import statistics
 import sys
 import time
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 import numpy as np
 
@@ -98,8 +99,16 @@ class Baseline:
         ids = set(np.unique(scene[alone == obj.id]).tolist()) - {obj.id, -1}
         return sorted(self.w.get_object_by_id(i).name for i in ids)
 
-    def contact(self, a: Any, b: Any) -> bool:
+    @contextlib.contextmanager
+    def _saved(self) -> Iterator[None]:
+        """Save the world and restore it afterwards, in full every time, as the design's code did (our worlds reuse a
+        saved state while nothing changed: issue 15; the baseline does not get that)."""
+        self.w.mark_changed()
         with self.w.snapshot():
+            yield
+
+    def contact(self, a: Any, b: Any) -> bool:
+        with self._saved():
             p.stepSimulation(physicsClientId=self.cid)
             return bool(p.getContactPoints(a.id, b.id, physicsClientId=self.cid))
 
@@ -107,7 +116,7 @@ class Baseline:
         return b.get_position()[2] > a.get_position()[2] and self.contact(a, b)
 
     def stable(self, obj: Any) -> bool:
-        with self.w.snapshot():
+        with self._saved():
             before = [round(v, 3) for v in obj.get_position()]
             self.w.simulate(2.0)
             return before == [round(v, 3) for v in obj.get_position()]
@@ -127,14 +136,14 @@ class Baseline:
 
     def reachable(self, target: Any, tool: str, grasp: str | None = None) -> bool:
         position = target.get_position() if hasattr(target, "get_position") else target
-        with self.w.snapshot():
+        with self._saved():
             for name, value in self._ik(position, tool, grasp).items():
                 p.resetJointState(self.robot.id, self.robot.get_joint_id(name), value, physicsClientId=self.cid)
             return math.dist(self.robot.get_link_position(tool), position) <= 0.01
 
     def blocking(self, target: Any, tool: str, grasp: str | None = None) -> list[str]:
         position = target.get_position() if hasattr(target, "get_position") else target
-        with self.w.snapshot():
+        with self._saved():
             for name, value in self._ik(position, tool, grasp).items():
                 p.resetJointState(self.robot.id, self.robot.get_joint_id(name), value, physicsClientId=self.cid)
             p.stepSimulation(physicsClientId=self.cid)
