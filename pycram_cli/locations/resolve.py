@@ -30,7 +30,7 @@ import threading
 import weakref
 from collections import Counter
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -622,7 +622,6 @@ class BasePoseResolution(_Resolution):
     def _reach(self, i: int) -> tuple[str, Any] | None:
         """The first arm and grasp (arms nearest first, grasps in the description's order) that reach untouched."""
         robot, spec, cand = self.robot, self.spec, self.candidates
-        body = robot.body
         blocked: list[str] = []
         holdable = False
         arms = [self.arm_names[k] for k in self.arm_order[i] if k >= 0] if len(self.arm_order) else self.arm_names
@@ -641,14 +640,7 @@ class BasePoseResolution(_Resolution):
                     continue
                 if spec.accessing is not None and not self._follows_handle(arm, orientation):
                     continue
-                saved = body.get_joint_positions(list(solution.joint_positions))
-                body.set_joint_positions(solution.joint_positions)
-                try:
-                    touched = touching(robot, self.held, *self._allowed)
-                finally:
-                    body.set_joint_positions(saved)
-                if touched:
-                    blocked.extend(t for t in touched if t not in blocked)
+                if self._touches_at(solution.joint_positions, blocked):
                     continue
                 return arm, grasp
         if blocked:
@@ -666,7 +658,6 @@ class BasePoseResolution(_Resolution):
         what it stands on. An arm and grasp whose ways are straight come before one whose ways must go around
         something (finding that a way round does not exist costs a search: about 0.4 s)."""
         robot, spec, cand = self.robot, self.spec, self.candidates
-        body = robot.body
         blocked: list[str] = []
         holdable = False
         viable: list[tuple[str, Any, Any, Any]] = []
@@ -685,14 +676,7 @@ class BasePoseResolution(_Resolution):
                     holdable = True
                     continue
                 holdable = True
-                saved = body.get_joint_positions(list(solution.joint_positions))
-                body.set_joint_positions(solution.joint_positions)
-                try:
-                    touched = touching(robot, self.held, *self._allowed)
-                finally:
-                    body.set_joint_positions(saved)
-                if touched:
-                    blocked.extend(t for t in touched if t not in blocked)
+                if self._touches_at(solution.joint_positions, blocked):
                     continue
                 if self._ways_free(obj, arm, pre, solution, STRAIGHT, blocked):
                     return arm, grasp
@@ -708,6 +692,19 @@ class BasePoseResolution(_Resolution):
         else:
             cand.mark(i, "out of reach")
         return None
+
+    def _touches_at(self, joints: Mapping[str, float], blocked: list[str]) -> bool:
+        """Whether the arm at these joint values touches anything but what it may (the target, its support), what
+        it touches added to `blocked`; the joints are put back."""
+        body = self.robot.body
+        saved = body.get_joint_positions(list(joints))
+        body.set_joint_positions(joints)
+        try:
+            touched = touching(self.robot, self.held, *self._allowed)
+        finally:
+            body.set_joint_positions(saved)
+        blocked.extend(t for t in touched if t not in blocked)
+        return bool(touched)
 
     def _ways_free(self, obj: Object, arm: str, pre: Any, solution: Any, tier: dict[str, bool],
                    blocked: list[str]) -> bool:
