@@ -18,6 +18,8 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 os.environ.setdefault("PYCRAM_CACHE_DIR", tempfile.mkdtemp(prefix="pycram-test-cache-"))
 
 from pycram_cli import BulletWorld  # noqa: E402
+from pycram_cli.paths import default_world  # noqa: E402
+from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
@@ -41,3 +43,16 @@ def shared_models() -> Path:
     if not SHARED_MODELS.is_dir():
         pytest.skip("../shared/models is not present")
     return SHARED_MODELS
+
+
+@pytest.fixture
+def real_kitchen(tmp_path: Path, shared_models: Path) -> Iterator[BulletWorld]:
+    """The bundled kitchen world with the real PR2 and the real IAI kitchen from ../shared/models in place of ours."""
+    text = default_world().read_text()
+    text = text.replace("file: robots/pr2/pr2.urdf", f"file: {shared_models / 'pr2' / 'pr2.urdf'}")
+    text = text.replace("file: environments/kitchen/kitchen.urdf", f"file: {shared_models / 'kitchen' / 'kitchen.urdf'}")
+    path = tmp_path / "real_kitchen.yaml"
+    path.write_text(text)
+    world = load_world(path)
+    yield world
+    world.exit()

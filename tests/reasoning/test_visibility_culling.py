@@ -15,11 +15,9 @@ import pytest
 from scenes import kitchen_world
 from test_restore import arrange
 
-from pycram_cli.paths import default_world
 from pycram_cli.reasoning import occluding, visible
 from pycram_cli.reasoning import visibility as V
 from pycram_cli.world.camera import projection_matrix, view_matrix
-from pycram_cli.worldfile.loader import load_world
 
 FREE = ["milk", "cereal", "bowl", "spoon", "bottle"]
 SCENES = 12
@@ -90,18 +88,6 @@ def test_the_robot_turned_to_look_at_the_breakfast_sees_what_a_full_render_sees(
         check(world, np.random.default_rng(0), "at the counter")
     finally:
         world.exit()
-
-
-@pytest.fixture
-def real_kitchen(tmp_path, shared_models):
-    text = default_world().read_text()
-    text = text.replace("file: robots/pr2/pr2.urdf", f"file: {shared_models / 'pr2' / 'pr2.urdf'}")
-    text = text.replace("file: environments/kitchen/kitchen.urdf", f"file: {shared_models / 'kitchen' / 'kitchen.urdf'}")
-    path = tmp_path / "real_kitchen.yaml"
-    path.write_text(text)
-    world = load_world(path)
-    yield world
-    world.exit()
 
 
 @pytest.mark.parametrize("seed", range(4))
