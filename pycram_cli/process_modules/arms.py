@@ -3,13 +3,13 @@ along its path (`motion.py`)."""
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
-from ..reasoning.ik import IKSolution, solve
+from ..reasoning.ik import IKSolution, solve, solve_from
 from ..world import JointLimitError, Object
 from ..world.pose import quat_to_matrix
 from . import motion
@@ -38,8 +38,7 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     """`reach`, preferring a solution near the arm's current configuration: inverse kinematics starts from where the arm
     is, but may settle on a twisted solution far from it (an arm that would then have to sweep through everything in
     front of the robot to get there); then it is also solved from the middle of the joints' ranges (an arm held out in
-    front, elbow out), and the solution that moves the arm least is taken."""
-    solution = reach(robot, arm, position, orientation)
+    front, elbow out), and the solution that moves the arm least is taken. Both are searched at once (`reach_each`)."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     current = body.get_joint_positions(names)
@@ -47,17 +46,29 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     def spread(s: IKSolution) -> float:
         return max((abs(s.joint_positions[n] - current[n]) for n in names if n in s.joint_positions), default=0.0)
 
+    solution, other = reach_each(robot, arm, position, orientation, [None, _middle(robot, arm)],
+                                 enough=lambda k, s: k == 0 and s.success and spread(s) <= FAR)
+    assert solution is not None
     if solution.success and spread(solution) <= FAR:
         return solution
-    other = _from_middle(robot, arm, position, orientation)
+    assert other is not None
     if other.success and (not solution.success or sum(abs(other.joint_positions[n] - current[n]) for n in names)
                           < sum(abs(solution.joint_positions[n] - current[n]) for n in names)):
         return other
     return solution
 
 
-def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
-    """`reach` solved from the middle of the arm's joint ranges (an arm held out in front, elbow out)."""
+def reach_each(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
+               starts: Sequence[Mapping[str, float] | None],
+               enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
+    """`reach` from each start configuration of the arm (None: where it is), searched at once (`ik.solve_from`)."""
+    tool = robot.description.arm(arm).tool_frame
+    return solve_from(robot.body, tool, position, orientation, starts, threshold=REACH, angle_threshold=REACH_ANGLE,
+                      enough=enough)
+
+
+def _middle(robot: Robot, arm: str) -> dict[str, float]:
+    """The middle of the arm's joint ranges (an arm held out in front, elbow out); a joint without limits as it is."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     current = body.get_joint_positions(names)
@@ -65,7 +76,12 @@ def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation:
     for name in names:
         joint = body.joint(name)
         middle[name] = (joint.lower + joint.upper) / 2.0 if joint.limited else current[name]
-    return reach_from(robot, arm, middle, position, orientation)
+    return middle
+
+
+def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
+    """`reach` solved from the middle of the arm's joint ranges (an arm held out in front, elbow out)."""
+    return reach_from(robot, arm, _middle(robot, arm), position, orientation)
 
 
 def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
@@ -130,10 +146,12 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         toward = np.subtract(body.get_position(), position)[:2]
         toward = toward / (np.linalg.norm(toward) or 1.0) * back
         target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
-        solution = reach(robot, arm, target, orientation)
-        if not solution.success:  # inverse kinematics may stall from a folded arm: from the middle of its ranges
-            solution = _from_middle(robot, arm, target, orientation)
-    return solution.joint_positions if solution.success else None
+        # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
+        here, middle = reach_each(robot, arm, target, orientation, [None, _middle(robot, arm)],
+                                  enough=lambda k, s: k == 0 and s.success)
+        assert here is not None
+        solution = here if here.success else middle
+    return solution.joint_positions if solution is not None and solution.success else None
 
 
 def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True,

@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import weakref
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -204,28 +204,33 @@ class _Problem:
         self.lo = np.array(lower)
         self.hi = np.array(upper)
         self.rev = np.array(self.revolute, dtype=bool)
+        # the same, stacked over the variable joints, so that every joint's motion is computed at once
+        n = len(self.names)
+        self._axes = np.array(axes).reshape(n, 3)
+        self._K = np.array(self.K).reshape(n, 3, 3)
+        self._K2 = np.array(self.K2).reshape(n, 3, 3)
+        self._prismatic = np.flatnonzero(~self.rev)
 
     def forward(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Tool poses (S,4,4) for configurations q (S,n), with the world origin and axis of every joint (S,n,3)."""
         count, n = q.shape
-        origins = np.empty((count, n, 3))
-        axes = np.empty((count, n, 3))
-        eye3 = np.eye(3)
+        # every joint's motion (S,n,4,4) at once: a rotation about its axis (Rodrigues), or a shift along it
+        motions = np.zeros((count, n, 4, 4))
+        motions[:, :, 3, 3] = 1.0
+        sin = np.where(self.rev, np.sin(q), 0.0)[:, :, None, None]
+        versin = np.where(self.rev, 1.0 - np.cos(q), 0.0)[:, :, None, None]
+        motions[:, :, :3, :3] = _EYE3 + sin * self._K + versin * self._K2
+        for i in self._prismatic:
+            motions[:, i, :3, 3] = q[:, i:i + 1] * self._axes[i]
+        frames = np.empty((count, n, 4, 4))  # each joint's frame in the world, before its own motion
         t = np.broadcast_to(self.segments[0] if n else np.eye(4), (count, 4, 4))
         for i in range(n):
             if i:
                 t = t @ self.segments[i]
-            origins[:, i] = t[:, :3, 3]
-            axes[:, i] = t[:, :3, :3] @ self.axes[i]
-            motion = np.zeros((count, 4, 4))
-            motion[:, 3, 3] = 1.0
-            if self.revolute[i]:
-                sin, cos = np.sin(q[:, i]), np.cos(q[:, i])
-                motion[:, :3, :3] = eye3 + sin[:, None, None] * self.K[i] + (1.0 - cos)[:, None, None] * self.K2[i]
-            else:
-                motion[:, :3, :3] = eye3
-                motion[:, :3, 3] = q[:, i:i + 1] * self.axes[i]
-            t = t @ motion
+            frames[:, i] = t
+            t = t @ motions[:, i]
+        origins = frames[:, :, :3, 3]
+        axes = np.einsum("snij,nj->sni", frames[:, :, :3, :3], self._axes)
         return t @ self.tail, origins, axes
 
     def jacobian(self, tool: np.ndarray, origins: np.ndarray, axes: np.ndarray) -> np.ndarray:
@@ -233,10 +238,17 @@ class _Problem:
         count, n, _ = origins.shape
         jac = np.zeros((count, 6, n))
         lever = tool[:, None, :3, 3] - origins
-        linear = np.where(self.rev[None, :, None], np.cross(axes, lever), axes)
-        jac[:, :3, :] = linear.transpose(0, 2, 1)
+        a0, a1, a2 = axes[..., 0], axes[..., 1], axes[..., 2]
+        l0, l1, l2 = lever[..., 0], lever[..., 1], lever[..., 2]
+        rev = self.rev[None, :]
+        jac[:, 0, :] = np.where(rev, a1 * l2 - a2 * l1, a0)  # axis x lever for revolute joints, the axis for prismatic
+        jac[:, 1, :] = np.where(rev, a2 * l0 - a0 * l2, a1)
+        jac[:, 2, :] = np.where(rev, a0 * l1 - a1 * l0, a2)
         jac[:, 3:, :] = (axes * self.rev[None, :, None]).transpose(0, 2, 1)
         return jac
+
+
+_EYE3 = np.eye(3)
 
 
 def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
@@ -246,16 +258,14 @@ def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     angle = np.arccos(cos)
     v = np.stack([r[:, 2, 1] - r[:, 1, 2], r[:, 0, 2] - r[:, 2, 0], r[:, 1, 0] - r[:, 0, 1]], axis=1)
     sin = np.sin(angle)
-    out = np.empty_like(v)
-    for k in range(len(v)):
-        if angle[k] < 1e-9:
-            out[k] = v[k] / 2.0
-        elif sin[k] > 1e-6:
-            out[k] = v[k] * (angle[k] / (2.0 * sin[k]))
-        else:  # angle close to pi: the axis is the column of (r + I) with the largest norm
-            m = r[k] + np.eye(3)
-            col = m[:, int(np.argmax(np.linalg.norm(m, axis=0)))]
-            out[k] = col / np.linalg.norm(col) * angle[k]
+    small = angle < 1e-9
+    regular = ~small & (sin > 1e-6)
+    scale = np.where(small, 0.5, angle / (2.0 * np.where(regular, sin, 1.0)))
+    out = v * scale[:, None]
+    for k in np.flatnonzero(~small & ~regular):  # angle close to pi: the axis is the column of (r + I) with the largest norm
+        m = r[k] + np.eye(3)
+        col = m[:, int(np.argmax(np.linalg.norm(m, axis=0)))]
+        out[k] = col / np.linalg.norm(col) * angle[k]
     return out
 
 
@@ -264,24 +274,41 @@ def _angle(target: np.ndarray, current: np.ndarray) -> float:
     return math.acos(max(-1.0, min(1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0)))
 
 
-def _seeds(problem: _Problem, count: int) -> np.ndarray:
-    """Deterministic starting points: where the arm is, the middle of its range, then fixed pseudo-random ones."""
+def _seeds(problem: _Problem, count: int, current: np.ndarray | None = None) -> np.ndarray:
+    """Deterministic starting points: where the arm is (or `current`), the middle of its range, then fixed
+    pseudo-random ones."""
     lo = np.where(np.isfinite(problem.lo), problem.lo, -math.pi)
     hi = np.where(np.isfinite(problem.hi), problem.hi, math.pi)
-    seeds = [problem.current.copy(), (lo + hi) / 2.0]
+    seeds = [(problem.current if current is None else current).copy(), (lo + hi) / 2.0]
     rng = np.random.default_rng(SEED)
     while len(seeds) < count:
         seeds.append(lo + rng.random(len(lo)) * (hi - lo))
     return np.clip(np.array(seeds[:count]), problem.lo, problem.hi)
 
 
+Found = tuple[np.ndarray, float, "float | None"]
+
+
 def _search(problem: _Problem, seeds: np.ndarray, target_pos: np.ndarray, target_rot: np.ndarray | None,
-            threshold: float, angle_threshold: float, iterations: int) -> tuple[np.ndarray, float, float | None]:
+            threshold: float, angle_threshold: float, iterations: int) -> Found:
     """Levenberg–Marquardt from every seed at once; stops when one converged or all stalled.
 
     Returns the best configuration: the first seed (in seed order) that is within the
     thresholds once converged, or the one with the smallest weighted error.
     """
+    found = _search_groups(problem, seeds, [np.arange(len(seeds))], target_pos, target_rot, threshold,
+                           angle_threshold, iterations)
+    assert found[0] is not None
+    return found[0]
+
+
+def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.ndarray], target_pos: np.ndarray,
+                   target_rot: np.ndarray | None, threshold: float, angle_threshold: float, iterations: int,
+                   enough: "Callable[[int, Found], bool] | None" = None) -> list[Found | None]:
+    """`_search` for several groups of seeds (rows of `seeds`) at once: each group's answer is exactly what `_search`
+    on its seeds alone gives (every seed's iterations are independent of the others'; only when to stop depends
+    on the group), for the price of about one search. `enough(g, found)`, called as each group finishes, may end
+    the search early: the groups not finished yet are then None."""
     q = seeds.copy()
     count, n = q.shape
     rows = 6 if target_rot is not None else 3
@@ -292,6 +319,22 @@ def _search(problem: _Problem, seeds: np.ndarray, target_pos: np.ndarray, target
     best_ang = np.full(count, np.inf)
     history: list[np.ndarray] = []
     active = np.ones(count, dtype=bool)
+    answers: list[Found | None] = [None] * len(groups)
+    todo = list(range(len(groups)))
+
+    def finish(g: int) -> bool:
+        idx = groups[g]
+        pos, ang, cost = best_pos[idx], best_ang[idx], best_cost[idx]
+        converged = (pos < CONVERGED_POSITION) & (ang < CONVERGED_ANGLE)
+        within = (pos <= threshold) & (ang <= (angle_threshold if target_rot is not None else np.inf))
+        if converged.any():
+            pick = int(np.argmax(converged))
+        else:
+            pick = int(np.argmin(np.where(within, cost, np.inf))) if within.any() else int(np.argmin(cost))
+        answers[g] = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if target_rot is not None else None)
+        todo.remove(g)
+        return enough is not None and enough(g, answers[g])
+
     for _ in range(iterations + 1):
         tool, origins, axes = problem.forward(q)
         dp = target_pos[None, :] - tool[:, :3, 3]
@@ -310,15 +353,19 @@ def _search(problem: _Problem, seeds: np.ndarray, target_pos: np.ndarray, target
         best_pos = np.where(better, pos_err, best_pos)
         best_ang = np.where(better, ang_err, best_ang)
         converged = (best_pos < CONVERGED_POSITION) & (best_ang < CONVERGED_ANGLE)
-        if converged.any():
-            break
         history.append(best_cost.copy())
-        if len(history) > 8:
+        stalled = len(history) > 8
+        if stalled:
             active &= best_cost < 0.98 * history[-9]
             # a seed already within the thresholds that stopped improving is good enough
             good = (best_pos <= threshold * 0.5) & (best_ang <= angle_threshold * 0.5) & ~active
-            if good.any() or not active.any():
-                break
+        for g in list(todo):
+            idx = groups[g]
+            if converged[idx].any() or (stalled and (good[idx].any() or not active[idx].any())):
+                if finish(g):
+                    return answers
+        if not todo:
+            return answers
         jac = problem.jacobian(tool, origins, axes)[:, :rows]
         if target_rot is not None:
             jac[:, 3:] *= ORIENTATION_WEIGHT
@@ -327,13 +374,10 @@ def _search(problem: _Problem, seeds: np.ndarray, target_pos: np.ndarray, target
         lhs = jt @ jac + damping[:, None, None] * eye
         step = np.linalg.solve(lhs, (jt @ e[:, :, None]))[:, :, 0]
         q = np.clip(q + step, problem.lo, problem.hi)
-    converged = (best_pos < CONVERGED_POSITION) & (best_ang < CONVERGED_ANGLE)
-    within = (best_pos <= threshold) & (best_ang <= (angle_threshold if target_rot is not None else np.inf))
-    if converged.any():
-        pick = int(np.argmax(converged))
-    else:
-        pick = int(np.argmin(np.where(within, best_cost, np.inf))) if within.any() else int(np.argmin(best_cost))
-    return best_q[pick], float(best_pos[pick]), (float(best_ang[pick]) if target_rot is not None else None)
+    for g in list(todo):
+        if finish(g):
+            break
+    return answers
 
 
 def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
@@ -376,6 +420,30 @@ def solve(
     The world is left untouched. Deterministic: the same world and inputs give the same answer, bitwise.
     A failed search returns the best configuration found and its remaining errors.
     """
+    found = solve_from(robot, tool_link, position, orientation, [None], joints, threshold, angle_threshold, seeds,
+                       max_iterations)[0]
+    assert found is not None
+    return found
+
+
+def solve_from(
+    robot: "Object",
+    tool_link: str,
+    position: Sequence[float],
+    orientation: Sequence[float] | None = None,
+    starts: Sequence[Mapping[str, float] | None] = (None,),
+    joints: Sequence[str] | None = None,
+    threshold: float = 0.01,
+    angle_threshold: float = 0.1,
+    seeds: int = RESTARTS,
+    max_iterations: int = MAX_ITERATIONS,
+    enough: Callable[[int, IKSolution], bool] | None = None,
+) -> list[IKSolution | None]:
+    """`solve` from each of several start configurations (None: where the joints are; else values of the joints
+    that move), in one batched search: answer `k` is exactly what `solve` gives with the joints first set to
+    `starts[k]`, for about the price of one. `enough(k, answer)`, called as each answer is found, may end the
+    search: the answers not found by then are None (an answer near where the arm is is often enough, and the
+    alternative need not be searched to its end)."""
     target = np.asarray(check_position(position, "IK target position"))
     target_rot = None
     if orientation is not None:
@@ -388,12 +456,37 @@ def solve(
         problem = _Problem(robot, chain_for(robot, link_index), names)
         if not problem.names:
             pos, orn = robot.get_link_position_and_orientation(link_index)
-            return _verdict({}, pos, orn, target, target_rot, threshold, angle_threshold)
-        q, _, _ = _search(problem, _seeds(problem, max(1, seeds)), target, target_rot, threshold,
-                          angle_threshold, max_iterations)
-        solution = {name: float(v) for name, v in zip(problem.names, q)}
-        pos, orn = forward_pose(robot, tool_link, solution)
-    return _verdict(solution, pos, orn, target, target_rot, threshold, angle_threshold)
+            return [_verdict({}, pos, orn, target, target_rot, threshold, angle_threshold) for _ in starts]
+        rows: dict[bytes, int] = {}  # the same seed in two groups is searched once
+        union: list[np.ndarray] = []
+        groups: list[np.ndarray] = []
+        for start in starts:
+            current = None
+            if start is not None:
+                unknown = sorted(set(start) - set(problem.names))
+                if unknown:
+                    raise ValueError(f"IK start: expected values of the joints that move ({', '.join(problem.names)}), "
+                                     f"got {', '.join(unknown)}")
+                current = np.array([start.get(n, c) for n, c in zip(problem.names, problem.current)], dtype=float)
+            group = []
+            for seed in _seeds(problem, max(1, seeds), current):
+                key = seed.tobytes()
+                if key not in rows:
+                    rows[key] = len(union)
+                    union.append(seed)
+                group.append(rows[key])
+            groups.append(np.array(group))
+        answers: list[IKSolution | None] = [None] * len(starts)
+
+        def judged(k: int, found: Found) -> bool:
+            solution = {name: float(v) for name, v in zip(problem.names, found[0])}
+            pos, orn = forward_pose(robot, tool_link, solution)
+            answers[k] = _verdict(solution, pos, orn, target, target_rot, threshold, angle_threshold)
+            return enough is not None and enough(k, answers[k])
+
+        _search_groups(problem, np.array(union), groups, target, target_rot, threshold, angle_threshold,
+                       max_iterations, judged)
+    return answers
 
 
 def _verdict(solution: dict[str, float], pos: Sequence[float], orn: Sequence[float], target: np.ndarray,
