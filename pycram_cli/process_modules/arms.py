@@ -173,33 +173,50 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
         first = exc
     body = robot.body
     start = body.get_joint_positions(list(goal))
-    departures: list[list[dict[str, float] | None]] = [[]]
+    # the poses the ways go through are solved only when a way needs them (a way that works early saves the rest),
+    # each once: a way is a list of keys of `_VIAS`-like recipes, looked up in `solved`
+    solved: dict[tuple, dict[str, float] | None] = {}
+
+    def via(key: tuple) -> dict[str, float] | None:
+        if key not in solved:
+            kind = key[0]
+            if kind == "up":  # up from where it is (and back towards the base)
+                solved[key] = _shifted(robot, arm, start, key[1], key[2])
+            elif kind == "back-up":  # back, then up from there
+                solved[key] = _shifted(robot, arm, via(("up", 0.0, BACK)), key[1])
+            elif kind == "onto":  # above the goal
+                solved[key] = _shifted(robot, arm, goal, key[1])
+        return solved[key]
+
+    departures: list[list[Any]] = [[]]
     for h in VIA_HEIGHTS:
-        departures.append([_shifted(robot, arm, start, h)])
-    back = _shifted(robot, arm, start, 0.0, BACK)
-    departures.append([back])
+        departures.append([("up", h, 0.0)])
+    departures.append([("up", 0.0, BACK)])
     for h in VIA_HEIGHTS:
-        departures.append([back, _shifted(robot, arm, back, h)])
+        departures.append([("up", 0.0, BACK), ("back-up", h)])
     for h in VIA_HEIGHTS:  # up and back at once (where the arm cannot draw back at its height)
-        departures.append([_shifted(robot, arm, start, h, BACK)])
+        departures.append([("up", h, BACK)])
     # or joint by joint: the arm's outer half first (folding it in, out of the way), or its inner half first
     names = [n for n in robot.description.arm(arm).joints if n in goal]
     half = len(names) // 2
     outer_first = {n: (goal[n] if i >= half else start[n]) for i, n in enumerate(names)}
     inner_first = {n: (goal[n] if i < half else start[n]) for i, n in enumerate(names)}
-    departures += [[outer_first], [_shifted(robot, arm, start, VIA_HEIGHTS[0]), outer_first], [inner_first]]
+    departures += [[outer_first], [("up", VIA_HEIGHTS[0], 0.0), outer_first], [inner_first]]
     # or through one of the arm's named poses (its description's park, carry, ...): folded in, away from things
     for pose in robot.description.arm(arm).poses:
-        via = arm_configuration(robot, arm, pose)
-        if any(abs(via[n] - goal[n]) > 1e-9 for n in via if n in goal):
-            departures.append([via])
-    arrivals: list[list[dict[str, float] | None]] = [[]]
+        named = arm_configuration(robot, arm, pose)
+        if any(abs(named[n] - goal[n]) > 1e-9 for n in named if n in goal):
+            departures.append([named])
+    arrivals: list[list[Any]] = [[]]
     if down_onto_goal:
-        arrivals += [[_shifted(robot, arm, goal, h)] for h in VIA_HEIGHTS]
+        arrivals += [[("onto", h)] for h in VIA_HEIGHTS]
     for arrival in arrivals:
         for departure in departures:
-            way = departure + arrival
-            if not way or any(leg is None for leg in way):
+            plan = departure + arrival
+            if not plan:
+                continue
+            way = [via(leg) if isinstance(leg, tuple) else leg for leg in plan]
+            if any(leg is None for leg in way):
                 continue
             try:
                 for leg in way:
