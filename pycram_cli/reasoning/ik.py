@@ -210,15 +210,22 @@ class _Problem:
         self._K = np.array(self.K).reshape(n, 3, 3)
         self._K2 = np.array(self.K2).reshape(n, 3, 3)
         self._prismatic = np.flatnonzero(~self.rev)
+        self._all_revolute = bool(self.rev.all())
+        self._buffers: dict[int, np.ndarray] = {}  # the joints' motions, per number of configurations
 
     def forward(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Tool poses (S,4,4) for configurations q (S,n), with the world origin and axis of every joint (S,n,3)."""
         count, n = q.shape
         # every joint's motion (S,n,4,4) at once: a rotation about its axis (Rodrigues), or a shift along it
-        motions = np.zeros((count, n, 4, 4))
-        motions[:, :, 3, 3] = 1.0
-        sin = np.where(self.rev, np.sin(q), 0.0)[:, :, None, None]
-        versin = np.where(self.rev, 1.0 - np.cos(q), 0.0)[:, :, None, None]
+        motions = self._buffers.get(count)
+        if motions is None:
+            motions = self._buffers[count] = np.zeros((count, n, 4, 4))
+            motions[:, :, 3, 3] = 1.0
+        if self._all_revolute:
+            sin, versin = np.sin(q)[:, :, None, None], (1.0 - np.cos(q))[:, :, None, None]
+        else:
+            sin = np.where(self.rev, np.sin(q), 0.0)[:, :, None, None]
+            versin = np.where(self.rev, 1.0 - np.cos(q), 0.0)[:, :, None, None]
         motions[:, :, :3, :3] = _EYE3 + sin * self._K + versin * self._K2
         for i in self._prismatic:
             motions[:, i, :3, 3] = q[:, i:i + 1] * self._axes[i]
@@ -249,14 +256,16 @@ class _Problem:
 
 
 _EYE3 = np.eye(3)
+_ROWS = np.array([2, 0, 1])
+_COLS = np.array([1, 2, 0])
 
 
 def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3)."""
     r = target @ current.transpose(0, 2, 1)
-    cos = np.clip((np.trace(r, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+    cos = np.minimum(np.maximum((np.trace(r, axis1=1, axis2=2) - 1.0) / 2.0, -1.0), 1.0)
     angle = np.arccos(cos)
-    v = np.stack([r[:, 2, 1] - r[:, 1, 2], r[:, 0, 2] - r[:, 2, 0], r[:, 1, 0] - r[:, 0, 1]], axis=1)
+    v = r[:, _ROWS, _COLS] - r[:, _COLS, _ROWS]  # (r21 - r12, r02 - r20, r10 - r01)
     sin = np.sin(angle)
     small = angle < 1e-9
     regular = ~small & (sin > 1e-6)
@@ -353,7 +362,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         best_pos = np.where(better, pos_err, best_pos)
         best_ang = np.where(better, ang_err, best_ang)
         converged = (best_pos < CONVERGED_POSITION) & (best_ang < CONVERGED_ANGLE)
-        history.append(best_cost.copy())
+        history.append(best_cost)  # a new array every iteration (np.where): never changed in place
         stalled = len(history) > 8
         if stalled:
             active &= best_cost < 0.98 * history[-9]
@@ -373,7 +382,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         damping = 0.5 * cost + 1e-4
         lhs = jt @ jac + damping[:, None, None] * eye
         step = np.linalg.solve(lhs, (jt @ e[:, :, None]))[:, :, 0]
-        q = np.clip(q + step, problem.lo, problem.hi)
+        q = np.minimum(np.maximum(q + step, problem.lo), problem.hi)
     for g in list(todo):
         if finish(g):
             break
