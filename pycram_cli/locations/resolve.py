@@ -660,7 +660,7 @@ class BasePoseResolution(_Resolution):
         robot, spec, cand = self.robot, self.spec, self.candidates
         blocked: list[str] = []
         holdable = False
-        viable: list[tuple[str, Any, Any, Any]] = []
+        viable: list[tuple[str, Any, Any, Any, dict[str, Any]]] = []
         grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
         for arm in arms:
             for grasp in grasps:
@@ -678,12 +678,13 @@ class BasePoseResolution(_Resolution):
                 holdable = True
                 if self._touches_at(solution.joint_positions, blocked):
                     continue
-                if self._ways_free(obj, arm, pre, solution, STRAIGHT, blocked):
+                legs: dict[str, Any] = {}
+                if self._ways_free(obj, arm, pre, solution, STRAIGHT, blocked, legs):
                     return arm, grasp
-                viable.append((arm, grasp, pre, solution))  # its ways may go around what is in the way
+                viable.append((arm, grasp, pre, solution, legs))  # its ways may go around what is in the way
         for tier in (AROUND, SEARCH):
-            for arm, grasp, pre, solution in viable:
-                if self._ways_free(obj, arm, pre, solution, tier, blocked):
+            for arm, grasp, pre, solution, legs in viable:
+                if self._ways_free(obj, arm, pre, solution, tier, blocked, legs):
                     return arm, grasp
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))
@@ -707,22 +708,29 @@ class BasePoseResolution(_Resolution):
         return bool(touched)
 
     def _ways_free(self, obj: Object, arm: str, pre: Any, solution: Any, tier: dict[str, bool],
-                   blocked: list[str]) -> bool:
+                   blocked: list[str], legs: dict[str, Any]) -> bool:
         """Whether the arm's ways are free as pick-up will move it: from where it is to the pre-grasp pose, and from
         the grasp to the pose it will rest in holding the object (the object itself not counted), tried as `tier`
-        says (`STRAIGHT`, `AROUND`, `SEARCH`: see `move_over`). What they would hit is added to `blocked`."""
+        says (`STRAIGHT`, `AROUND`, `SEARCH`: see `move_over`). What they would hit is added to `blocked`. `legs`
+        remembers, across the tiers of one arm and grasp, which way was found free and which way's straight path
+        is not (a dearer tier need not walk them again)."""
         robot = self.robot
         body = robot.body
         rest = rest_pose(robot, arm, holding=True)
         with body.joints_kept(list(pre.joint_positions)):
             try:
-                move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose", **tier)
-                if rest is not None:
+                if legs.get("pre") is not True:
+                    move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose",
+                              straight=legs.get("pre"), **tier)
+                    legs["pre"] = True
+                if rest is not None and legs.get("rest") is not True:
                     body.reset_joints(solution.joint_positions)
                     move_over(robot, arm, arm_configuration(robot, arm, rest),
                               f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
-                              **tier)
-            except ManipulationFailure as failure:
+                              straight=legs.get("rest"), **tier)
+                    legs["rest"] = True
+            except ManipulationFailure as failure:  # move_over raises its straight path's failure
+                legs["pre" if legs.get("pre") is not True else "rest"] = failure
                 blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                 return False
         return True

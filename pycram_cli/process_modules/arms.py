@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
-from ..reasoning.ik import IKSolution, solve, solve_from
+from ..reasoning.ik import IKSolution, Query, solve, solve_each
 from ..world import JointLimitError, Object
 from ..world.pose import quat_to_matrix
 from . import motion
@@ -38,33 +38,81 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     """`reach`, preferring a solution near the arm's current configuration: inverse kinematics starts from where the arm
     is, but may settle on a twisted solution far from it (an arm that would then have to sweep through everything in
     front of the robot to get there); then it is also solved from the middle of the joints' ranges (an arm held out in
-    front, elbow out), and the solution that moves the arm least is taken. Both are searched at once (`reach_each`)."""
+    front, elbow out), and the solution that moves the arm least is taken. Both are searched at once."""
+    found: list[IKSolution] = []
+    reach_near_each(robot, arm, [(position, orientation)], lambda k, s: found.append(s) is None)
+    return found[0]
+
+
+#: `reach_near_each` searches the targets of this many at a time (more cost a little more each while the first may do)
+NEAR_BATCH = 4
+
+
+def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[float], Sequence[float] | None]],
+                    take: Callable[[int, IKSolution], bool]) -> None:
+    """`reach_near` for each target in turn: `take(k, solution)` gets target k's solution, in order, and ends it all by
+    returning True. The targets are searched NEAR_BATCH at a time in one batched search (`ik.solve_each`), so that
+    ways to hold an object that all fail cost about one search; each solution is exactly `reach_near`'s."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     current = body.get_joint_positions(names)
+    middle = _middle(robot, arm)
 
     def spread(s: IKSolution) -> float:
         return max((abs(s.joint_positions[n] - current[n]) for n in names if n in s.joint_positions), default=0.0)
 
-    solution, other = reach_each(robot, arm, position, orientation, [None, _middle(robot, arm)],
-                                 enough=lambda k, s: k == 0 and s.success and spread(s) <= FAR)
-    assert solution is not None
-    if solution.success and spread(solution) <= FAR:
-        return solution
-    assert other is not None
-    if other.success and (not solution.success or sum(abs(other.joint_positions[n] - current[n]) for n in names)
-                          < sum(abs(solution.joint_positions[n] - current[n]) for n in names)):
-        return other
-    return solution
+    def moved(s: IKSolution) -> float:
+        return sum(abs(s.joint_positions[n] - current[n]) for n in names)
+
+    for first in range(0, len(targets), NEAR_BATCH):
+        batch = targets[first:first + NEAR_BATCH]
+        answers: dict[int, IKSolution] = {}
+        handed = [0]  # how many of the batch's targets have been handed over
+        ended = [False]
+
+        def decided(k: int) -> IKSolution | None:
+            here, other = answers.get(2 * k), answers.get(2 * k + 1)
+            if here is None:
+                return None
+            if here.success and spread(here) <= FAR:
+                return here
+            if other is None:
+                return None
+            if other.success and (not here.success or moved(other) < moved(here)):
+                return other
+            return here
+
+        def found(g: int, solution: IKSolution) -> bool:
+            answers[g] = solution
+            while handed[0] < len(batch):
+                chosen = decided(handed[0])
+                if chosen is None:
+                    return False
+                handed[0] += 1
+                if take(first + handed[0] - 1, chosen):
+                    ended[0] = True
+                    return True
+            return True
+
+        queries = [(position, orientation, start) for position, orientation in batch for start in (None, middle)]
+        reach_each_query(robot, arm, queries, found)
+        if ended[0]:
+            return
 
 
 def reach_each(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
                starts: Sequence[Mapping[str, float] | None],
                enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
-    """`reach` from each start configuration of the arm (None: where it is), searched at once (`ik.solve_from`)."""
+    """`reach` from each start configuration of the arm (None: where it is), searched at once (`ik.solve_each`)."""
+    return reach_each_query(robot, arm, [(position, orientation, start) for start in starts], enough)
+
+
+def reach_each_query(robot: Robot, arm: str, queries: Sequence[Query],
+                     enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
+    """`reach` for each query (target position, orientation, start configuration), searched at once
+    (`ik.solve_each`)."""
     tool = robot.description.arm(arm).tool_frame
-    return solve_from(robot.body, tool, position, orientation, starts, threshold=REACH, angle_threshold=REACH_ANGLE,
-                      enough=enough)
+    return solve_each(robot.body, tool, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough)
 
 
 def _middle(robot: Robot, arm: str) -> dict[str, float]:
@@ -155,7 +203,8 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
 
 
 def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True,
-              around: bool = True, search: bool = True, ignore: Sequence[Object] = ()) -> None:
+              around: bool = True, search: bool = True, ignore: Sequence[Object] = (),
+              straight: ManipulationFailure | None = None) -> None:
     """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
     what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
     or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
@@ -163,14 +212,21 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
     a tool pose, down onto the goal from above it; last, a search through the arm's joint space
     (`motion.search_path`). Each leg is checked. Raises the straight path's ManipulationFailure when no way is
     free; then nothing has moved. `around=False`: the straight path only (a cheap first test); `search=False`: no
-    joint-space search (the dearest test: about 0.4 s when no way exists). `ignore`: what the arm may pass through."""
-    try:
-        motion.move(robot, goal, what, ignore)
-        return
-    except ManipulationFailure as exc:
+    joint-space search (the dearest test: about 0.4 s when no way exists). `ignore`: what the arm may pass through.
+    `straight`: the straight path's failure, when it is already known (from the same configuration): it is not
+    walked again."""
+    if straight is not None:
         if not around:
-            raise
-        first = exc
+            raise straight
+        first = straight
+    else:
+        try:
+            motion.move(robot, goal, what, ignore)
+            return
+        except ManipulationFailure as exc:
+            if not around:
+                raise
+            first = exc
     body = robot.body
     start = body.get_joint_positions(list(goal))
     # the poses the ways go through are solved only when a way needs them (a way that works early saves the rest),

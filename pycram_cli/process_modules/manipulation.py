@@ -25,7 +25,7 @@ from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
-from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, set_gripper
+from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, reach_near_each, set_gripper
 from .base import ProcessModule, Robot
 from .grasping import Grasp, holdable_grasps, wanted_orientation
 from .registry import process_module
@@ -86,38 +86,45 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
     gripper = robot.description.arm(arm).gripper
     opened = {joint: gripper.open for joint in gripper.joints}
-    for candidate in candidates:
-        # the pre-grasp pose near where the arm is, the grasp from there (so that the approach is a short straight move)
-        pre = reach_near(robot, arm, _offset(candidate.position, candidate.approach, -(candidate.depth + APPROACH)),
-                         candidate.orientation)
+    taken: list[tuple[Grasp, IKSolution, IKSolution]] = []
+
+    def attempt(k: int, pre: IKSolution) -> bool:
+        """The way `candidates[k]`, its pre-grasp pose solved near where the arm is (`pre`): whether it holds."""
+        nonlocal best
+        candidate = candidates[k]
+        # the grasp from the pre-grasp pose (so that the approach is a short straight move)
         solution = reach_from(robot, arm, pre.joint_positions, candidate.position, candidate.orientation) \
             if pre.success else pre
         if solution.success:
-            if pre.success:
-                # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object
-                # itself may be touched before: the approach stops there
-                # and the gripper free to open at the pre-grasp pose (where pick-up opens it)
-                with robot.body.joints_kept([*pre.joint_positions, *opened]):
-                    robot.body.reset_joints(pre.joint_positions)
-                    try:
-                        motion.move(robot, opened, f"opening the {arm} gripper")
-                        hits = []
-                    except ManipulationFailure as failure:
-                        hits = [failure]
-                if hits:
-                    refused.append(hits[0])
-                    continue
-                hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
-                if not hits:
-                    return candidate, pre, solution
-                shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
-                if shifted is not None:
-                    return shifted
-                blocked += hits
-                continue
-            solution = pre
+            # the gripper free to open at the pre-grasp pose (where pick-up opens it)
+            with robot.body.joints_kept([*pre.joint_positions, *opened]):
+                robot.body.reset_joints(pre.joint_positions)
+                try:
+                    motion.move(robot, opened, f"opening the {arm} gripper")
+                except ManipulationFailure as failure:
+                    refused.append(failure)
+                    return False
+            # the open gripper at the grasp pose inside something else (a neighbour, the drawer)? The object itself
+            # may be touched before: the approach stops there
+            hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
+            if not hits:
+                taken.append((candidate, pre, solution))
+                return True
+            shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
+            if shifted is not None:
+                taken.append(shifted)
+                return True
+            blocked.extend(hits)
+            return False
         if best is None or solution.position_error < best[0]:
             best = (solution.position_error, solution)
+        return False
+
+    # every way's pre-grasp pose near where the arm is, searched a few at a time (`reach_near_each`)
+    reach_near_each(robot, arm, [(_offset(c.position, c.approach, -(c.depth + APPROACH)), c.orientation)
+                                 for c in candidates], attempt)
+    if taken:
+        return taken[0]
     if blocked:
         raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {blocked[0]}",
                                   arm=arm, object=obj.name, colliding=sorted({h.obstacle.name for h in blocked}))

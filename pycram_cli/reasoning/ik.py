@@ -316,8 +316,9 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
                    enough: "Callable[[int, Found], bool] | None" = None) -> list[Found | None]:
     """`_search` for several groups of seeds (rows of `seeds`) at once: each group's answer is exactly what `_search`
     on its seeds alone gives (every seed's iterations are independent of the others'; only when to stop depends
-    on the group), for the price of about one search. `enough(g, found)`, called as each group finishes, may end
-    the search early: the groups not finished yet are then None."""
+    on the group), for the price of about one search. The targets may be one for all (`target_pos` (3,),
+    `target_rot` (3,3)) or one per seed ((S,3), (S,3,3)). `enough(g, found)`, called as each group finishes, may
+    end the search early: the groups not finished yet are then None."""
     q = seeds.copy()
     count, n = q.shape
     rows = 6 if target_rot is not None else 3
@@ -346,7 +347,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
 
     for _ in range(iterations + 1):
         tool, origins, axes = problem.forward(q)
-        dp = target_pos[None, :] - tool[:, :3, 3]
+        dp = target_pos - tool[:, :3, 3]
         pos_err = np.sqrt(np.einsum("ij,ij->i", dp, dp))
         if target_rot is not None:
             dr = _rotation_errors(target_rot, tool[:, :3, :3])
@@ -453,10 +454,40 @@ def solve_from(
     `starts[k]`, for about the price of one. `enough(k, answer)`, called as each answer is found, may end the
     search: the answers not found by then are None (an answer near where the arm is is often enough, and the
     alternative need not be searched to its end)."""
-    target = np.asarray(check_position(position, "IK target position"))
-    target_rot = None
-    if orientation is not None:
-        target_rot = _transform((0, 0, 0), check_quaternion(orientation, "IK target orientation"))[:3, :3]
+    return solve_each(robot, tool_link, [(position, orientation, start) for start in starts], joints, threshold,
+                      angle_threshold, seeds, max_iterations, enough)
+
+
+#: one query of `solve_each`: the target's position and orientation (None: any), and where the joints start from
+Query = tuple[Sequence[float], "Sequence[float] | None", "Mapping[str, float] | None"]
+
+
+def solve_each(
+    robot: "Object",
+    tool_link: str,
+    queries: Sequence[Query],
+    joints: Sequence[str] | None = None,
+    threshold: float = 0.01,
+    angle_threshold: float = 0.1,
+    seeds: int = RESTARTS,
+    max_iterations: int = MAX_ITERATIONS,
+    enough: Callable[[int, IKSolution], bool] | None = None,
+) -> list[IKSolution | None]:
+    """`solve` for several queries (target position, orientation, start configuration: None for where the joints
+    are, else values of the joints that move) in one batched search: answer `k` is exactly what `solve` gives for
+    query `k` with the joints first set to its start, for not much more than the price of one (the pre-grasp poses
+    of the ways to hold an object, tried in turn, cost one search when none is reachable). Either every query
+    has an orientation or none has. `enough(k, answer)`, called as each answer is found, may end the search: the
+    answers not found by then are None."""
+    if not queries:
+        return []
+    oriented = {orientation is not None for _, orientation, _ in queries}
+    if len(oriented) > 1:
+        raise ValueError("IK queries: expected an orientation for every target or for none")
+    targets = [np.asarray(check_position(position, "IK target position")) for position, _, _ in queries]
+    rotations = [None if orientation is None else
+                 _transform((0, 0, 0), check_quaternion(orientation, "IK target orientation"))[:3, :3]
+                 for _, orientation, _ in queries]
     link_index = robot.get_link_id(tool_link)
     names = list(joints) if joints is not None else _arm_joints(robot, tool_link)
     for name in names:
@@ -465,11 +496,12 @@ def solve_from(
         problem = _Problem(robot, chain_for(robot, link_index), names)
         if not problem.names:
             pos, orn = robot.get_link_position_and_orientation(link_index)
-            return [_verdict({}, pos, orn, target, target_rot, threshold, angle_threshold) for _ in starts]
-        rows: dict[bytes, int] = {}  # the same seed in two groups is searched once
+            return [_verdict({}, pos, orn, t, r, threshold, angle_threshold) for t, r in zip(targets, rotations)]
+        rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
         union: list[np.ndarray] = []
+        row_target: list[int] = []
         groups: list[np.ndarray] = []
-        for start in starts:
+        for k, (position, orientation, start) in enumerate(queries):
             current = None
             if start is not None:
                 unknown = sorted(set(start) - set(problem.names))
@@ -477,23 +509,30 @@ def solve_from(
                     raise ValueError(f"IK start: expected values of the joints that move ({', '.join(problem.names)}), "
                                      f"got {', '.join(unknown)}")
                 current = np.array([start.get(n, c) for n, c in zip(problem.names, problem.current)], dtype=float)
+            aim = (targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes())
             group = []
             for seed in _seeds(problem, max(1, seeds), current):
-                key = seed.tobytes()
+                key = (seed.tobytes(), aim)
                 if key not in rows:
                     rows[key] = len(union)
                     union.append(seed)
+                    row_target.append(k)
                 group.append(rows[key])
             groups.append(np.array(group))
-        answers: list[IKSolution | None] = [None] * len(starts)
+        answers: list[IKSolution | None] = [None] * len(queries)
 
         def judged(k: int, found: Found) -> bool:
             solution = {name: float(v) for name, v in zip(problem.names, found[0])}
             pos, orn = forward_pose(robot, tool_link, solution)
-            answers[k] = _verdict(solution, pos, orn, target, target_rot, threshold, angle_threshold)
+            answers[k] = _verdict(solution, pos, orn, targets[k], rotations[k], threshold, angle_threshold)
             return enough is not None and enough(k, answers[k])
 
-        _search_groups(problem, np.array(union), groups, target, target_rot, threshold, angle_threshold,
+        if len(set(row_target)) == 1:  # one target for all: broadcast it
+            target_pos, target_rot = targets[row_target[0]], rotations[row_target[0]]
+        else:
+            target_pos = np.array([targets[k] for k in row_target])
+            target_rot = None if rotations[0] is None else np.array([rotations[k] for k in row_target])
+        _search_groups(problem, np.array(union), groups, target_pos, target_rot, threshold, angle_threshold,
                        max_iterations, judged)
     return answers
 
