@@ -120,11 +120,14 @@ class Motion:
         skip = {body, *self.held, *ignore}
         self.obstacles = [obj for obj in self.world.objects if obj not in skip]
         skip_links = set((obj.id, link) for obj, link in ignore_links)
-        boxes = [(obj, link, *obj.get_aabb(link)) for obj in self.obstacles for link in [-1, *range(len(obj.joints))]
-                 if (obj.id, link) not in skip_links]
-        self._obstacle_boxes = boxes
-        self._o_lo = np.array([b[2] for b in boxes]).reshape(-1, 3)
-        self._o_hi = np.array([b[3] for b in boxes]).reshape(-1, 3)
+        # every obstacle link's box (kept by the objects while they do not change), but the links to ignore
+        self._obstacle_boxes = [(obj, link) for obj in self.obstacles for link in range(-1, len(obj.joints))
+                                if (obj.id, link) not in skip_links]
+        los, his = zip(*(obj.link_aabbs() for obj in self.obstacles)) if self.obstacles else ((), ())
+        keep = np.array([(obj.id, link) not in skip_links for obj in self.obstacles
+                         for link in range(-1, len(obj.joints))], dtype=bool)
+        self._o_lo = (np.concatenate(los) if los else np.zeros((0, 3)))[keep].reshape(-1, 3)
+        self._o_hi = (np.concatenate(his) if his else np.zeros((0, 3)))[keep].reshape(-1, 3)
         self.allowed: dict[tuple[str, int, int], float] = {}
         #: how much deeper an existing contact may get: PENETRATION along a motion, next to nothing for an approach
         #: that stops at contact (fingers closing on an object they already touch stop there, not 1 mm further in)
@@ -151,9 +154,11 @@ class Motion:
 
     # -- where the moving part is -----------------------------------------------------------------
     def _mover_boxes(self) -> tuple[np.ndarray, np.ndarray]:
-        boxes = [self.body.get_aabb(link) for link in self.links] + [obj.get_aabb() for obj in self.held]
-        lo = np.array([b[0] for b in boxes]).reshape(-1, 3)
-        hi = np.array([b[1] for b in boxes]).reshape(-1, 3)
+        lo, hi = self.body.link_aabbs(self.links)
+        if self.held:
+            boxes = [obj.get_aabb() for obj in self.held]
+            lo = np.concatenate([lo, np.array([b[0] for b in boxes]).reshape(-1, 3)])
+            hi = np.concatenate([hi, np.array([b[1] for b in boxes]).reshape(-1, 3)])
         return lo, hi
 
     def _mover_name(self, k: int) -> str:

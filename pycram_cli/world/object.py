@@ -6,8 +6,9 @@ import math
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Iterator, Mapping, Sequence
+from typing import Any, Iterable, Iterator, Mapping, Sequence
 
+import numpy as np
 import pybullet as p
 
 from ..errors import did_you_mean
@@ -128,6 +129,7 @@ class Object:
         self.world = world
         self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
         self._drawn: list[tuple[int, bool]] | None = None  # see drawn_links
+        self._boxes: tuple[int, Any, Any] | None = None  # see link_aabbs: (version, min corners, max corners)
         try:  # a bare name is searched for as world files do: here, the bundled resources, PyBullet's models
             self.path = find_model_file(path)
         except FileNotFoundError as exc:
@@ -347,6 +349,23 @@ class Object:
         lo = tuple(min(b[0][k] for b in boxes) for k in range(3))
         hi = tuple(max(b[1][k] for b in boxes) for k in range(3))
         return lo, hi  # type: ignore[return-value]
+
+    def link_aabbs(self, links: Sequence[int] | None = None) -> tuple["np.ndarray", "np.ndarray"]:
+        """The boxes of some links (default: every link, the base first, as -1) as two (n, 3) arrays (min corners,
+        max corners): `get_aabb` for many links at once. Every link's boxes are kept while the object does not
+        change (`BulletWorld.version_of`), so that asking again costs nothing."""
+        if links is None:
+            version = self.world.version_of(self)
+            if self._boxes is None or self._boxes[0] != version:
+                cid = self.world.client_id
+                rows = [p.getAABB(self.id, i, physicsClientId=cid) for i in range(-1, len(self.joints))]
+                self._boxes = (version, np.array([r[0] for r in rows], dtype=float).reshape(-1, 3),
+                               np.array([r[1] for r in rows], dtype=float).reshape(-1, 3))
+            return self._boxes[1], self._boxes[2]
+        cid = self.world.client_id
+        rows = [p.getAABB(self.id, i, physicsClientId=cid) for i in links]
+        return (np.array([r[0] for r in rows], dtype=float).reshape(-1, 3),
+                np.array([r[1] for r in rows], dtype=float).reshape(-1, 3))
 
     def get_local_aabb(self) -> tuple[Vec3, Vec3]:
         """The box of the object's collision shapes in its own frame (min corner, max corner): for a mesh, its
