@@ -25,9 +25,19 @@ from .limits import MAX_MAGNITUDE
 from .schema import is_number, is_vector, number_problem
 
 
+def arm_words(name: str) -> str:
+    """An arm's name in a sentence, without the article: "left arm", and "arm" for an arm called `arm` (a Fetch)."""
+    return name if name == "arm" or name.endswith(("arm", "_arm", "-arm")) else f"{name} arm"
+
+
 def arm_phrase(name: str) -> str:
     """How an arm is named in a sentence: "the left arm", and "the arm" for an arm called `arm` (a Fetch)."""
-    return f"the {name}" if name == "arm" or name.endswith(("arm", "_arm", "-arm")) else f"the {name} arm"
+    return f"the {arm_words(name)}"
+
+
+def gripper_words(arm: str) -> str:
+    """An arm's gripper in a sentence, without the article: "left gripper", and "gripper" for an arm called `arm`."""
+    return "gripper" if arm == "arm" or arm.endswith(("arm", "_arm", "-arm")) else f"{arm} gripper"
 
 if TYPE_CHECKING:
     from .robots import RobotDescription
@@ -213,12 +223,12 @@ def _arm_config(value: Any, robots: Robots, arm: str | None = None) -> str | Non
     joints = _arm_joints(robots, arm)
     if isinstance(value, (list, tuple)) and value and all(is_number(v) for v in value):
         if joints is not None and len(value) != len(joints):
-            return f"the {arm} arm has {len(joints)} joints ({', '.join(joints)}), got {len(value)} values"
+            return f"the {arm_words(arm)} has {len(joints)} joints ({', '.join(joints)}), got {len(value)} values"
         return None
     if isinstance(value, Mapping) and value and all(isinstance(k, str) and is_number(v) for k, v in value.items()):
         unknown = [k for k in value if joints is not None and k not in joints]
         if unknown:
-            return f"'{unknown[0]}' is not a joint of the {arm} arm ({_hint(unknown[0], joints or [], 'joint')})"
+            return f"'{unknown[0]}' is not a joint of the {arm_words(arm)} ({_hint(unknown[0], joints or [], 'joint')})"
         return None
     return "expected a named pose (e.g. park), a list of joint values, or a mapping joint: value" + _range_hint(
         list(value.values()) if isinstance(value, Mapping) else value)

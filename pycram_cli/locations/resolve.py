@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
 import numpy as np
 
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
-from ..kinds import arm_phrase
+from ..kinds import arm_phrase, arm_words
 from ..process_modules import Robot
 from ..process_modules import motion
 from ..process_modules.accessing import drawer_pushes_into
@@ -720,13 +720,13 @@ class BasePoseResolution(_Resolution):
         with body.joints_kept(list(pre.joint_positions)):
             try:
                 if legs.get("pre") is not True:
-                    move_over(robot, arm, pre.joint_positions, f"the {arm} arm's motion to the pre-grasp pose",
+                    move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the pre-grasp pose",
                               straight=legs.get("pre"), **tier)
                     legs["pre"] = True
                 if rest is not None and legs.get("rest") is not True:
                     body.reset_joints(solution.joint_positions)
                     move_over(robot, arm, arm_configuration(robot, arm, rest),
-                              f"the {arm} arm's motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
+                              f"the {arm_words(arm)}'s motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
                               straight=legs.get("rest"), **tier)
                     legs["rest"] = True
             except ManipulationFailure as failure:  # move_over raises its straight path's failure
@@ -763,7 +763,7 @@ class BasePoseResolution(_Resolution):
             free = True
             with body.joints_kept(list(above.joint_positions)):
                 try:
-                    move_over(robot, arm, above.joint_positions, f"the {arm} arm's motion above the place")
+                    move_over(robot, arm, above.joint_positions, f"the {arm_words(arm)}'s motion above the place")
                 except ManipulationFailure as failure:
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                     free = False

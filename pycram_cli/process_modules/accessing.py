@@ -13,6 +13,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from ..kinds import arm_words, gripper_words
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
@@ -93,13 +94,13 @@ class Accessing(ProcessModule):
         goal = min(joint.upper, joint.lower + float(slots["distance"])) if joint.limited else start + float(slots["distance"])
         grasp = handle_grasp(robot, arm, part, handle)
         if grasp is None:
-            raise GripperFailure(f"the {arm} gripper cannot hold the handle {handle}", arm=arm)
+            raise GripperFailure(f"the {gripper_words(arm)} cannot hold the handle {handle}", arm=arm)
         what = f"the handle {handle}"
         set_gripper(robot, arm, "open")
         pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
                          f"the pre-grasp pose for {what}", near=True)
         at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
-        move_from_above(robot, arm, pre, f"the {arm} arm's motion to {what}")
+        move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to {what}")
         motion.advance(robot, at.joint_positions)
         close_on(robot, arm)
         tool_frame = robot.description.arm(arm).tool_frame
@@ -120,12 +121,12 @@ class Accessing(ProcessModule):
                 tool = compose(part.get_link_position_and_orientation(handle), held_at)
                 try:
                     solution = solve_tool(robot, arm, tool[0], tool[1], what)
-                    motion.move(robot, solution.joint_positions, f"the {arm} arm pulling {what}", ignore_links=moving)
+                    motion.move(robot, solution.joint_positions, f"the {arm_words(arm)} pulling {what}", ignore_links=moving)
                     drawer_pushes_into(robot, part, moving, hand)
                 except (ReachabilityFailure, ManipulationFailure) as exc:
                     part.set_joint_position(joint.name, previous)
                     raise ManipulationFailure(
-                        f"the {arm} arm cannot follow {handle} beyond {previous - start:.2f} m "
+                        f"the {arm_words(arm)} cannot follow {handle} beyond {previous - start:.2f} m "
                         f"(asked to open {joint.name} to {goal:.2f} m): {exc}", arm=arm, joint=joint.name) from None
         finally:
             for obj in riders:

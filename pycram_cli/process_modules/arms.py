@@ -7,6 +7,7 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from ..kinds import arm_words, gripper_words
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..reasoning.ik import IKSolution, Query, solve, solve_each
@@ -156,7 +157,7 @@ def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: S
     if not solution.success:
         angle = "" if solution.orientation_error is None else f", {math.degrees(solution.orientation_error):.0f}° off in orientation"
         raise ReachabilityFailure(
-            f"{arm} arm cannot reach {what}: the tool frame stays {solution.position_error * 100:.1f} cm away{angle}",
+            f"{arm_words(arm)} cannot reach {what}: the tool frame stays {solution.position_error * 100:.1f} cm away{angle}",
             arm=arm, position_error=solution.position_error)
     return solution
 
@@ -171,7 +172,7 @@ def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Se
         other = _from_middle(robot, arm, position, orientation)
         if other.success and not motion.hits_at(robot, other.joint_positions):
             solution = other
-    move_over(robot, arm, solution.joint_positions, f"the {arm} arm's motion to {what}")
+    move_over(robot, arm, solution.joint_positions, f"the {arm_words(arm)}'s motion to {what}")
     return solution
 
 
@@ -311,7 +312,7 @@ def back_off(robot: Robot, arm: str, what: str) -> float:
         if not solution.success:
             continue
         try:
-            motion.move(robot, solution.joint_positions, f"the {arm} arm's retreat from {what}")
+            motion.move(robot, solution.joint_positions, f"the {arm_words(arm)}'s retreat from {what}")
         except ManipulationFailure:
             continue
         return distance
@@ -343,7 +344,7 @@ def set_gripper(robot: Robot, arm: str, opening: str) -> None:
     if not gripper.joints:
         return
     if opening == "open":
-        motion.move(robot, {joint: gripper.open for joint in gripper.joints}, f"opening the {arm} gripper")
+        motion.move(robot, {joint: gripper.open for joint in gripper.joints}, f"opening the {gripper_words(arm)}")
     else:
         close_on(robot, arm)
 
@@ -361,7 +362,7 @@ def arm_configuration(robot: Robot, arm: str, config: Any) -> dict[str, float]:
     if isinstance(config, str):
         if config not in desc.poses:
             hint = did_you_mean(config, desc.poses)
-            raise ManipulationFailure(f"{arm} arm has no pose '{config}'" + (f" ({hint})" if hint else "")
+            raise ManipulationFailure(f"{arm_words(arm)} has no pose '{config}'" + (f" ({hint})" if hint else "")
                                       + f"; poses: {', '.join(desc.poses)}")
         values: Sequence[float] = desc.poses[config]
         return dict(zip(desc.joints, values))
@@ -369,10 +370,10 @@ def arm_configuration(robot: Robot, arm: str, config: Any) -> dict[str, float]:
         unknown = [j for j in config if j not in desc.joints]
         if unknown:
             hint = did_you_mean(unknown[0], desc.joints)
-            raise ManipulationFailure(f"'{unknown[0]}' is not a joint of the {arm} arm" + (f" ({hint})" if hint else ""))
+            raise ManipulationFailure(f"'{unknown[0]}' is not a joint of the {arm_words(arm)}" + (f" ({hint})" if hint else ""))
         return {str(k): float(v) for k, v in config.items()}
     if len(config) != len(desc.joints):
-        raise ManipulationFailure(f"{arm} arm has {len(desc.joints)} joints ({', '.join(desc.joints)}), got {len(config)} values")
+        raise ManipulationFailure(f"{arm_words(arm)} has {len(desc.joints)} joints ({', '.join(desc.joints)}), got {len(config)} values")
     return dict(zip(desc.joints, (float(v) for v in config)))
 
 

@@ -20,6 +20,7 @@ from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 
+from ..kinds import arm_words, gripper_words
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..reasoning.ik import IKSolution
 from ..world import Object
@@ -80,7 +81,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     candidates, why = holdable_grasps(robot, arm, obj, grasp)
     how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
     if not candidates:
-        raise GripperFailure(f"the {arm} gripper cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
+        raise GripperFailure(f"the {gripper_words(arm)} cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
     best: tuple[float, IKSolution] | None = None
     blocked: list[motion.Hit] = []
     refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
@@ -100,7 +101,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             with robot.body.joints_kept([*pre.joint_positions, *opened]):
                 robot.body.reset_joints(pre.joint_positions)
                 try:
-                    motion.move(robot, opened, f"opening the {arm} gripper")
+                    motion.move(robot, opened, f"opening the {gripper_words(arm)}")
                 except ManipulationFailure as failure:
                     refused.append(failure)
                     return False
@@ -126,13 +127,13 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     if taken:
         return taken[0]
     if blocked:
-        raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {blocked[0]}",
+        raise ManipulationFailure(f"the {arm_words(arm)} cannot take {obj.name} with {how}: {blocked[0]}",
                                   arm=arm, object=obj.name, colliding=sorted({h.obstacle.name for h in blocked}))
     if refused:
-        raise ManipulationFailure(f"the {arm} arm cannot take {obj.name} with {how}: {refused[0]}", arm=arm,
+        raise ManipulationFailure(f"the {arm_words(arm)} cannot take {obj.name} with {how}: {refused[0]}", arm=arm,
                                   object=obj.name, colliding=sorted({n for f in refused for n in f.details.get("colliding", [])}))
     error = best[0] if best is not None else math.inf
-    raise ReachabilityFailure(f"{arm} arm cannot reach {obj.name} with {how}: the tool frame stays "
+    raise ReachabilityFailure(f"{arm_words(arm)} cannot reach {obj.name} with {how}: the tool frame stays "
                               f"{error * 100:.1f} cm away", arm=arm, position_error=error, object=obj.name)
 
 
@@ -182,7 +183,7 @@ def retreat(robot: Robot, arm: str, obj: Object) -> None:
         tool = robot.body.get_link_position_and_orientation(tool_frame)
         solution = reach(robot, arm, _offset(tool[0], direction, distance), tool[1])
         if not solution.success:
-            raise ReachabilityFailure(f"{arm} arm cannot lift {obj.name}: the tool frame stays "
+            raise ReachabilityFailure(f"{arm_words(arm)} cannot lift {obj.name}: the tool frame stays "
                                       f"{solution.position_error * 100:.1f} cm away", arm=arm, object=obj.name)
         motion.move(robot, solution.joint_positions, f"lifting {obj.name}")
         return True
@@ -225,7 +226,7 @@ def grip(robot: Robot, arm: str, obj: Object, back: Mapping[str, float]) -> bool
         fraction = min(1.0, GRIP_BACKOFF * (attempt + 1) / length)
         goal = {name: start[name] + _turn(body, name, start[name], back[name]) * fraction for name in back}
         try:
-            motion.move(robot, goal, f"the {arm} arm backing off from {obj.name}")
+            motion.move(robot, goal, f"the {arm_words(arm)} backing off from {obj.name}")
         except ManipulationFailure:
             break
     return False
@@ -266,15 +267,15 @@ class PickUp(ProcessModule):
             raise ManipulationFailure(f"{obj.name} is already held by {holder.name}", object=obj.name)
         held = robot.held_objects(arm)
         if held:
-            raise GripperFailure(f"the {arm} gripper already holds {held[0].name}", arm=arm)
+            raise GripperFailure(f"the {gripper_words(arm)} already holds {held[0].name}", arm=arm)
         how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
         candidate, pre, solution = plan_grasp(robot, arm, obj, grasp)
-        move_from_above(robot, arm, pre, f"the {arm} arm's motion to the pre-grasp pose for {obj.name}")
+        move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to the pre-grasp pose for {obj.name}")
         set_gripper(robot, arm, "open")  # there, clear of what stands around the object
         # in until the fingers or the palm touch something, never into it
         motion.advance(robot, solution.joint_positions)
         if not grip(robot, arm, obj, pre.joint_positions):
-            raise GripperFailure(f"the {arm} gripper closed on nothing: {obj.name} did not come between its fingers "
+            raise GripperFailure(f"the {gripper_words(arm)} closed on nothing: {obj.name} did not come between its fingers "
                                  f"with {how}", arm=arm, object=obj.name)
         robot.body.attach(obj, parent_link=robot.description.arm(arm).tool_frame)
         try:
@@ -372,7 +373,7 @@ def plan_place(robot: Robot, arm: str, obj: Object,
     move down on one IK branch), and what it will rest on. ReachabilityFailure when the arm reaches no way,
     ManipulationFailure when there is nothing to put it on or the arm does not hold it."""
     if robot.arm_holding(obj) != arm:
-        raise ManipulationFailure(f"{obj.name} is not held by the {arm} gripper", object=obj.name, arm=arm)
+        raise ManipulationFailure(f"{obj.name} is not held by the {gripper_words(arm)}", object=obj.name, arm=arm)
     att = robot.body.attachments[obj]
     held = invert(att.transform)  # the tool frame seen from the object
     upright = level(obj.get_orientation())
@@ -399,7 +400,7 @@ def plan_place(robot: Robot, arm: str, obj: Object,
             best = (solution.position_error, solution)
     if chosen is None:
         error = best[0] if best is not None else math.inf
-        raise ReachabilityFailure(f"{arm} arm cannot place {obj.name} at {where}: the tool frame stays "
+        raise ReachabilityFailure(f"{arm_words(arm)} cannot place {obj.name} at {where}: the tool frame stays "
                                   f"{error * 100:.1f} cm away", arm=arm, object=obj.name)
     return chosen
 
@@ -412,7 +413,7 @@ class Place(ProcessModule):
         arm: str = slots["arm"]
         target = tuple(float(v) for v in slots["target"])
         position, orientation, solution, above, support = plan_place(robot, arm, obj, target)
-        move_from_above(robot, arm, above, f"the {arm} arm's motion above the place for {obj.name}")
+        move_from_above(robot, arm, above, f"the {arm_words(arm)}'s motion above the place for {obj.name}")
         motion.advance(robot, solution.joint_positions)  # down until it touches the surface
         robot.body.detach(obj)
         set_gripper(robot, arm, "open")
@@ -421,7 +422,7 @@ class Place(ProcessModule):
         up = reach(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
         if up.success:  # and up, clear of what stands there, if the way is free
             try:
-                motion.move(robot, up.joint_positions, f"the {arm} arm's retreat from {obj.name}")
+                motion.move(robot, up.joint_positions, f"the {arm_words(arm)}'s retreat from {obj.name}")
             except ManipulationFailure:
                 pass
         settle(obj)

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
+from ...kinds import arm_words
 from ...failures import ManipulationFailure, NavigationFailure
 from ...schema import is_vector
 from ..declaration import ANY_ARM, Slot, drives
@@ -35,7 +36,7 @@ def _park_arms(actor: Actor, slots: Mapping[str, Any]) -> None:
     arms = [slots["arm"]] if slots.get("arm") else list(robot.description.arms)
     for arm in arms:
         if rest_pose(robot, arm) is None:
-            raise ManipulationFailure(f"the {arm} arm of {robot.description.name} has no park pose in its description",
+            raise ManipulationFailure(f"the {arm_words(arm)} of {robot.description.name} has no park pose in its description",
                                       arm=arm)
     moves = resting(robot, arms)
     if moves:
