@@ -222,6 +222,24 @@ def test_performing_with_an_arm_the_fetch_lacks_says_which_arms_it_has(world):
         perform(world, "pick-up", {"object": "milk", "arm": "right"})
 
 
+def test_failures_name_the_fetchs_arm_and_gripper_as_a_sentence_would(world):
+    # its only arm is called `arm`: "the arm cannot take ...", never "the arm arm"
+    from pycram_cli.failures import ManipulationFailure, ReachabilityFailure
+    from pycram_cli.process_modules import Robot
+    from pycram_cli.process_modules.manipulation import plan_grasp
+    perform(world, "moving", COUNTER)
+    robot = Robot.of(world)
+    said = []
+    for grasp in robot.description.grasps:
+        try:
+            plan_grasp(robot, "arm", obj(world, "milk"), grasp)
+        except (ManipulationFailure, ReachabilityFailure) as failure:
+            said.append(str(failure))
+    assert said, "some grasp of the milk fails from the counter"
+    assert all("arm arm" not in text and "arm gripper" not in text for text in said), said
+    assert any(text.startswith(("arm cannot reach milk", "the arm cannot take milk")) for text in said), said
+
+
 def test_a_query_for_an_arm_the_fetch_lacks_is_an_input_error():
     result = run("query", "reachable", "milk", "--arm", "right", "--world", "kitchen_fetch")
     assert result.exit_code == 2, result.output
