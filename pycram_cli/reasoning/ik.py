@@ -263,7 +263,7 @@ _COLS = np.array([1, 2, 0])
 def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
     """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3)."""
     r = target @ current.transpose(0, 2, 1)
-    cos = np.minimum(np.maximum((np.trace(r, axis1=1, axis2=2) - 1.0) / 2.0, -1.0), 1.0)
+    cos = np.minimum(np.maximum((r[:, 0, 0] + r[:, 1, 1] + r[:, 2, 2] - 1.0) / 2.0, -1.0), 1.0)  # the trace
     angle = np.arccos(cos)
     v = r[:, _ROWS, _COLS] - r[:, _COLS, _ROWS]  # (r21 - r12, r02 - r20, r10 - r01)
     sin = np.sin(angle)
@@ -331,6 +331,10 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
     active = np.ones(count, dtype=bool)
     answers: list[Found | None] = [None] * len(groups)
     todo = list(range(len(groups)))
+    member = np.zeros((len(groups), count), dtype=bool)  # member[g, s]: seed s is one of group g's
+    for g, idx in enumerate(groups):
+        member[g, idx] = True
+    pending = np.ones(len(groups), dtype=bool)
 
     def finish(g: int) -> bool:
         idx = groups[g]
@@ -343,6 +347,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
             pick = int(np.argmin(np.where(within, cost, np.inf))) if within.any() else int(np.argmin(cost))
         answers[g] = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if target_rot is not None else None)
         todo.remove(g)
+        pending[g] = False
         return enough is not None and enough(g, answers[g])
 
     for _ in range(iterations + 1):
@@ -369,11 +374,12 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
             active &= best_cost < 0.98 * history[-9]
             # a seed already within the thresholds that stopped improving is good enough
             good = (best_pos <= threshold * 0.5) & (best_ang <= angle_threshold * 0.5) & ~active
-        for g in list(todo):
-            idx = groups[g]
-            if converged[idx].any() or (stalled and (good[idx].any() or not active[idx].any())):
-                if finish(g):
-                    return answers
+        done = (member & converged).any(axis=1)  # per group: a seed converged, or (stalled) one is good or none active
+        if stalled:
+            done |= (member & good).any(axis=1) | ~(member & active).any(axis=1)
+        for g in np.flatnonzero(done & pending):
+            if finish(int(g)):
+                return answers
         if not todo:
             return answers
         jac = problem.jacobian(tool, origins, axes)[:, :rows]
