@@ -199,3 +199,32 @@ def test_a_target_z_names_the_surface_at_that_height(world):
     perform(world, "moving", {"target": [-0.3, 1.0, 0], "orientation": [0, 0, 1, 0]})
     with pytest.raises(ManipulationFailure, match="nothing to place milk on at .*no surface from 5 cm above to 15 cm below"):
         perform(world, "place", {"object": "milk", "target": [-0.8, 1.0, 1.25]})
+
+
+def test_the_ways_to_hold_an_object_are_handed_over_in_order_each_as_reach_near_finds_it(world):
+    from pycram_cli.process_modules.arms import reach_near, reach_near_each
+    from pycram_cli.process_modules.manipulation import grasp_orientation
+    perform(world, "moving", COUNTER)
+    robot = Robot.of(world)
+    top = grasp_orientation(robot, "top")
+    targets = [((1.25, 0.6 + 0.05 * k, 1.05), top) for k in range(6)]  # more than one batch
+    handed: list[int] = []
+    reach_near_each(robot, "right", targets, lambda k, s: handed.append(k) is None and False)
+    assert handed == list(range(6))
+    answers: dict[int, object] = {}
+    reach_near_each(robot, "right", targets, lambda k, s: answers.setdefault(k, s) is None or k == 2)
+    assert sorted(answers) == [0, 1, 2]  # ends where the taker says it has what it needs
+    for k, solution in answers.items():
+        assert solution == reach_near(robot, "right", *targets[k])  # bitwise what a search of its own gives
+
+
+def test_a_way_whose_straight_path_is_known_blocked_is_not_walked_again(world, monkeypatch):
+    from pycram_cli.process_modules import arms, motion
+    perform(world, "moving", COUNTER)
+    robot = Robot.of(world)
+    known = ManipulationFailure("the right arm's motion would collide: known", colliding=["kitchen"])
+    walked = []
+    monkeypatch.setattr(motion, "move", lambda *a, **k: walked.append(a[1]))
+    with pytest.raises(ManipulationFailure) as raised:
+        arms.move_over(robot, "right", {"r_elbow_flex_joint": -1.0}, "the motion", around=False, straight=known)
+    assert raised.value is known and walked == []

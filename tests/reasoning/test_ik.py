@@ -8,7 +8,7 @@ import pybullet as p
 import pytest
 from scenes import COUNTER_POSE, fingerprint
 
-from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve
+from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each, solve_from
 from pycram_cli.reasoning.ik import _Problem as Problem
 from pycram_cli.world.pose import angle_between, quat_multiply
 
@@ -129,3 +129,40 @@ def test_unknown_links_and_joints_are_reported(scene):
         solve(scene.robot, "l_gripper_tool_fram", (1, 1, 1))
     with pytest.raises(KeyError, match="no joint"):
         solve(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
+
+
+# -- several targets at once (solve_each, solve_from) ---------------------------------------------------------
+
+
+def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_counter):
+    robot = at_counter.robot
+    middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
+    queries = [((1.2, 0.9, 1.0), FRONT, None), ((1.25, 0.85, 0.95), TOP, middle),
+               ((3.0, 0.7, 1.0), FRONT, None), ((1.3, 1.0, 1.05), TOP, None)]  # the third out of reach
+    together = solve_each(robot, LEFT, queries)
+    alone = []
+    for position, orientation, start in queries:
+        with robot.joints_kept(LEFT_ARM):
+            if start is not None:
+                robot.reset_joints(start)
+            alone.append(solve(robot, LEFT, position, orientation))
+    assert together == alone  # bitwise: joint values, errors, verdicts
+    assert [s.success for s in together] == [True, True, False, True]
+
+
+def test_solving_from_several_starts_can_stop_at_the_first_answer_that_will_do(at_counter):
+    robot = at_counter.robot
+    middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
+    seen = []
+    answers = solve_from(robot, LEFT, (1.2, 0.9, 1.0), FRONT, [None, middle],
+                         enough=lambda k, s: seen.append(k) is None and k == 0 and s.success)
+    assert answers[0] == solve(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    assert seen[-1] == 0 and (answers[1] is None) == (seen == [0])  # the other start's answer was not waited for
+
+
+def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_are_refused(at_counter):
+    robot = at_counter.robot
+    with pytest.raises(ValueError, match="orientation for every target or for none"):
+        solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
+    with pytest.raises(ValueError, match="got torso_lift_joint"):
+        solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])

@@ -126,3 +126,22 @@ def test_the_prospection_reads_the_world_once_per_change(scene, monkeypatch):
     copy = world.prospection().copy_of(cube)
     assert p.getBasePositionAndOrientation(copy.id, physicsClientId=copy.world.client_id) == \
         p.getBasePositionAndOrientation(cube.id, physicsClientId=world.client_id)
+
+
+def test_link_boxes_read_at_once_are_pybullets_and_follow_every_change(scene):
+    world, arm, cube, other = scene
+    links = range(-1, len(arm.joints))
+    lo, hi = arm.link_aabbs()
+    assert lo.shape == hi.shape == (len(arm.joints) + 1, 3)
+    assert [(tuple(a), tuple(b)) for a, b in zip(lo, hi)] == [arm.get_aabb(link) for link in links]
+    assert arm.link_aabbs()[0] is lo  # kept while the arm stands still
+    before = cube.link_aabbs()[0].copy()
+    cube.set_position([0.5, 0.5, 0.3])  # read again once it moved
+    assert cube.link_aabbs()[0][0][2] == pytest.approx(before[0][2] + 0.3)
+    with world.snapshot():
+        arm.set_joint_positions({"shoulder": 0.9})
+        moved = [tuple(v) for v in arm.link_aabbs()[1]]
+        assert moved == [arm.get_aabb(link)[1] for link in links] and moved != [tuple(v) for v in hi]
+    assert [tuple(v) for v in arm.link_aabbs()[1]] == [tuple(v) for v in hi]  # restored, so are its boxes
+    some_lo, some_hi = arm.link_aabbs([0])
+    assert (tuple(some_lo[0]), tuple(some_hi[0])) == arm.get_aabb(0)
