@@ -13,8 +13,8 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ..kinds import arm_words, gripper_words
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..kinds import arm_words, gripper_words
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion

@@ -7,9 +7,9 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ..kinds import arm_words, gripper_words
 from ..errors import did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution, Query, solve, solve_each
 from ..world import JointLimitError, Object
 from ..world.pose import quat_to_matrix
@@ -65,8 +65,16 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
     def moved(s: IKSolution) -> float:
         return sum(abs(s.joint_positions[n] - current[n]) for n in names)
 
-    for first in range(0, len(targets), NEAR_BATCH):
-        batch = targets[first:first + NEAR_BATCH]
+    batches: list[tuple[int, Sequence[tuple[Sequence[float], Sequence[float] | None]]]] = []
+    first = 0
+    while first < len(targets):  # NEAR_BATCH at a time, each with an orientation for every target or for none
+        end = first + 1
+        while end < min(len(targets), first + NEAR_BATCH) and \
+                (targets[end][1] is None) == (targets[first][1] is None):
+            end += 1
+        batches.append((first, targets[first:end]))
+        first = end
+    for first, batch in batches:
         answers: dict[int, IKSolution] = {}
         handed = [0]  # how many of the batch's targets have been handed over
         ended = [False]

@@ -20,8 +20,8 @@ from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 
-from ..kinds import arm_words, gripper_words
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion

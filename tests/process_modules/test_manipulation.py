@@ -216,6 +216,10 @@ def test_the_ways_to_hold_an_object_are_handed_over_in_order_each_as_reach_near_
     assert sorted(answers) == [0, 1, 2]  # ends where the taker says it has what it needs
     for k, solution in answers.items():
         assert solution == reach_near(robot, "right", *targets[k])  # bitwise what a search of its own gives
+    mixed = [targets[0], ((1.25, 0.6, 1.05), None), targets[1]]  # with and without an orientation
+    got: list = []
+    reach_near_each(robot, "right", mixed, lambda k, s: got.append(s) is None and False)
+    assert got == [reach_near(robot, "right", *target) for target in mixed]
 
 
 def test_a_way_whose_straight_path_is_known_blocked_is_not_walked_again(world, monkeypatch):

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ...kinds import arm_words
 from ...failures import ManipulationFailure, NavigationFailure
+from ...kinds import arm_words
 from ...schema import is_vector
 from ..declaration import ANY_ARM, Slot, drives
 from .actor import Actor, Finder
