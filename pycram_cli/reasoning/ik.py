@@ -331,10 +331,12 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
     active = np.ones(count, dtype=bool)
     answers: list[Found | None] = [None] * len(groups)
     todo = list(range(len(groups)))
+    groups = [np.asarray(idx) for idx in groups]  # renumbered as the seeds of finished groups are dropped
     member = np.zeros((len(groups), count), dtype=bool)  # member[g, s]: seed s is one of group g's
     for g, idx in enumerate(groups):
         member[g, idx] = True
     pending = np.ones(len(groups), dtype=bool)
+    per_seed_target = target_pos.ndim == 2
 
     def finish(g: int) -> bool:
         idx = groups[g]
@@ -377,11 +379,27 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         done = (member & converged).any(axis=1)  # per group: a seed converged, or (stalled) one is good or none active
         if stalled:
             done |= (member & good).any(axis=1) | ~(member & active).any(axis=1)
-        for g in np.flatnonzero(done & pending):
+        finished = np.flatnonzero(done & pending)
+        for g in finished:
             if finish(int(g)):
                 return answers
         if not todo:
             return answers
+        if len(finished):  # the seeds only finished groups had are searched no further (the others' steps are the same)
+            keep = np.flatnonzero(member[pending].any(axis=0))
+            if len(keep) < count:
+                renumber = np.full(count, -1)
+                renumber[keep] = np.arange(len(keep))
+                groups = [renumber[idx] if pending[g] else idx for g, idx in enumerate(groups)]
+                member = member[:, keep]
+                q, best_cost, best_q, best_pos, best_ang = q[keep], best_cost[keep], best_q[keep], best_pos[keep], best_ang[keep]
+                active, cost, e = active[keep], cost[keep], e[keep]
+                tool, origins, axes = tool[keep], origins[keep], axes[keep]
+                history = [h[keep] for h in history]
+                if per_seed_target:
+                    target_pos = target_pos[keep]
+                    target_rot = target_rot[keep] if target_rot is not None else None
+                count = len(keep)
         jac = problem.jacobian(tool, origins, axes)[:, :rows]
         if target_rot is not None:
             jac[:, 3:] *= ORIENTATION_WEIGHT
