@@ -104,20 +104,13 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
             return True
 
         queries = [(position, orientation, start) for position, orientation in batch for start in (None, middle)]
-        reach_each_query(robot, arm, queries, found)
+        reach_each(robot, arm, queries, found)
         if ended[0]:
             return
 
 
-def reach_each(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
-               starts: Sequence[Mapping[str, float] | None],
+def reach_each(robot: Robot, arm: str, queries: Sequence[Query],
                enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
-    """`reach` from each start configuration of the arm (None: where it is), searched at once (`ik.solve_each`)."""
-    return reach_each_query(robot, arm, [(position, orientation, start) for start in starts], enough)
-
-
-def reach_each_query(robot: Robot, arm: str, queries: Sequence[Query],
-                     enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
     """`reach` for each query (target position, orientation, start configuration), searched at once
     (`ik.solve_each`)."""
     tool = robot.description.arm(arm).tool_frame
@@ -204,7 +197,7 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         toward = toward / (np.linalg.norm(toward) or 1.0) * back
         target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
         # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
-        here, middle = reach_each(robot, arm, target, orientation, [None, _middle(robot, arm)],
+        here, middle = reach_each(robot, arm, [(target, orientation, None), (target, orientation, _middle(robot, arm))],
                                   enough=lambda k, s: k == 0 and s.success)
         assert here is not None
         solution = here if here.success else middle

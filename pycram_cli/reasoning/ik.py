@@ -392,7 +392,8 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
                 renumber[keep] = np.arange(len(keep))
                 groups = [renumber[idx] if pending[g] else idx for g, idx in enumerate(groups)]
                 member = member[:, keep]
-                q, best_cost, best_q, best_pos, best_ang = q[keep], best_cost[keep], best_q[keep], best_pos[keep], best_ang[keep]
+                q, best_q, best_cost = q[keep], best_q[keep], best_cost[keep]
+                best_pos, best_ang = best_pos[keep], best_ang[keep]
                 active, cost, e = active[keep], cost[keep], e[keep]
                 tool, origins, axes = tool[keep], origins[keep], axes[keep]
                 history = [h[keep] for h in history]
@@ -454,32 +455,10 @@ def solve(
     The world is left untouched. Deterministic: the same world and inputs give the same answer, bitwise.
     A failed search returns the best configuration found and its remaining errors.
     """
-    found = solve_from(robot, tool_link, position, orientation, [None], joints, threshold, angle_threshold, seeds,
+    found = solve_each(robot, tool_link, [(position, orientation, None)], joints, threshold, angle_threshold, seeds,
                        max_iterations)[0]
     assert found is not None
     return found
-
-
-def solve_from(
-    robot: "Object",
-    tool_link: str,
-    position: Sequence[float],
-    orientation: Sequence[float] | None = None,
-    starts: Sequence[Mapping[str, float] | None] = (None,),
-    joints: Sequence[str] | None = None,
-    threshold: float = 0.01,
-    angle_threshold: float = 0.1,
-    seeds: int = RESTARTS,
-    max_iterations: int = MAX_ITERATIONS,
-    enough: Callable[[int, IKSolution], bool] | None = None,
-) -> list[IKSolution | None]:
-    """`solve` from each of several start configurations (None: where the joints are; else values of the joints
-    that move), in one batched search: answer `k` is exactly what `solve` gives with the joints first set to
-    `starts[k]`, for about the price of one. `enough(k, answer)`, called as each answer is found, may end the
-    search: the answers not found by then are None (an answer near where the arm is is often enough, and the
-    alternative need not be searched to its end)."""
-    return solve_each(robot, tool_link, [(position, orientation, start) for start in starts], joints, threshold,
-                      angle_threshold, seeds, max_iterations, enough)
 
 
 #: one query of `solve_each`: the target's position and orientation (None: any), and where the joints start from

@@ -8,7 +8,7 @@ import pybullet as p
 import pytest
 from scenes import COUNTER_POSE, fingerprint
 
-from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each, solve_from
+from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each
 from pycram_cli.reasoning.ik import _Problem as Problem
 from pycram_cli.world.pose import angle_between, quat_multiply
 
@@ -131,7 +131,7 @@ def test_unknown_links_and_joints_are_reported(scene):
         solve(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
 
 
-# -- several targets at once (solve_each, solve_from) ---------------------------------------------------------
+# -- several targets at once (solve_each) ------------------------------------------------------------------------
 
 
 def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_counter):
@@ -154,7 +154,7 @@ def test_solving_from_several_starts_can_stop_at_the_first_answer_that_will_do(a
     robot = at_counter.robot
     middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
     seen = []
-    answers = solve_from(robot, LEFT, (1.2, 0.9, 1.0), FRONT, [None, middle],
+    answers = solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), FRONT, middle)],
                          enough=lambda k, s: seen.append(k) is None and k == 0 and s.success)
     assert answers[0] == solve(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
     assert seen[-1] == 0 and (answers[1] is None) == (seen == [0])  # the other start's answer was not waited for
