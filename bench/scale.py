@@ -37,6 +37,7 @@ import numpy as np  # noqa: E402
 
 import scenes  # noqa: E402  (bench/scenes.py)
 import today  # noqa: E402  (bench/today.py)
+from reasoning import fmt_ms, median_ms  # noqa: E402  (bench/reasoning.py: the same timing and format)
 from pycram_cli import Object, load_world  # noqa: E402
 from pycram_cli.plan import load_plan, run_plan  # noqa: E402
 from pycram_cli.reasoning import occluding, stable, visible  # noqa: E402
@@ -44,20 +45,6 @@ from pycram_cli.world import BulletWorld  # noqa: E402
 
 PLAN = HERE / "plans" / "move_cubes.yaml"
 Row = tuple[str, float, float, float | None, str, str]
-
-
-def median_ms(func: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    answer = func()  # warm-up (first-use caches, the copies loaded)
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        answer = func()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times) * 1000.0, answer
-
-
-def fmt_ms(value: float) -> str:
-    return f"{value:.3f} ms" if value < 0.1 else f"{value:.2f} ms" if value < 10 else f"{value:.0f} ms"
 
 
 def short(answer: Any) -> str:

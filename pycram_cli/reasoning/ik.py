@@ -298,25 +298,14 @@ def _seeds(problem: _Problem, count: int, current: np.ndarray | None = None) -> 
 Found = tuple[np.ndarray, float, "float | None"]
 
 
-def _search(problem: _Problem, seeds: np.ndarray, target_pos: np.ndarray, target_rot: np.ndarray | None,
-            threshold: float, angle_threshold: float, iterations: int) -> Found:
-    """Levenberg–Marquardt from every seed at once; stops when one converged or all stalled.
-
-    Returns the best configuration: the first seed (in seed order) that is within the
-    thresholds once converged, or the one with the smallest weighted error.
-    """
-    found = _search_groups(problem, seeds, [np.arange(len(seeds))], target_pos, target_rot, threshold,
-                           angle_threshold, iterations)
-    assert found[0] is not None
-    return found[0]
-
-
 def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.ndarray], target_pos: np.ndarray,
                    target_rot: np.ndarray | None, threshold: float, angle_threshold: float, iterations: int,
                    enough: "Callable[[int, Found], bool] | None" = None) -> list[Found | None]:
-    """`_search` for several groups of seeds (rows of `seeds`) at once: each group's answer is exactly what `_search`
-    on its seeds alone gives (every seed's iterations are independent of the others'; only when to stop depends
-    on the group), for the price of about one search. The targets may be one for all (`target_pos` (3,),
+    """Levenberg–Marquardt from every seed at once, for several groups of seeds (rows of `seeds`): a group stops when
+    one of its seeds converged or all stalled, and its answer is the first of its seeds (in seed order) within the
+    thresholds once converged, or the one with the smallest weighted error. Every seed's iterations are independent
+    of the others' (only when to stop depends on the group), so each group's answer is exactly what a search of its
+    seeds alone gives, for the price of about one search. The targets may be one for all (`target_pos` (3,),
     `target_rot` (3,3)) or one per seed ((S,3), (S,3,3)). `enough(g, found)`, called as each group finishes, may
     end the search early: the groups not finished yet are then None."""
     q = seeds.copy()
