@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 
 import numpy as np
 
-from ..process_modules.collisions import PENETRATION, collisions, supports_from_below
+from ..process_modules.collisions import PENETRATION, SUPPORT_SLACK, collisions, ground_z, support_links, supports_from_below
 from ..world.pose import yaw_quaternion
 
 if TYPE_CHECKING:
@@ -33,7 +33,7 @@ RESOLUTION = 0.02
 MARGIN = 1.0
 #: inside a footprint, one sample every this many cells (the outline is sampled at every cell)
 INTERIOR_STRIDE = 5
-#: boxes thinner than this (m) are frames without geometry (URDF links with no shape)
+#: bands thinner than this (m) are left out
 THIN = 1e-3
 #: heights are rounded outwards to this step (m) before the bands are cut: fewer, slightly fuller bands
 HEIGHT_STEP = 0.02
@@ -130,13 +130,14 @@ class FloorMap:
 # -- building --------------------------------------------------------------------------------------------
 
 
-def _link_boxes(obj: "Object") -> list[tuple[str, Box]]:
+def _link_boxes(obj: "Object", skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
     boxes = []
+    solid = obj.solid_links()
     for index in [-1, *range(len(obj.joints))]:
+        if index not in solid or index in skip:  # a frame without geometry (PyBullet still gives it a box of a few mm)
+            continue
         lo, hi = obj.get_aabb(index)
         lo_a, hi_a = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
-        if np.any(hi_a - lo_a < THIN):
-            continue
         name = obj.get_link_name(index)
         boxes.append((f"{obj.name}/{name}" if obj.joints else obj.name, (lo_a, hi_a)))
     return boxes
@@ -163,11 +164,12 @@ def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Bo
 def obstacle_boxes(robot: "Object", held: Sequence["Object"], extra_ignore: Iterable["Object"] = ()) -> list[tuple[str, Box]]:
     """The boxes of everything the base could hit: every object's links but the robot's, what it holds and the floor."""
     skip = {robot.id, *(o.id for o in held), *(o.id for o in extra_ignore)}
+    ground = ground_z(robot)
     boxes = []
     for obj in robot.world.objects:
-        if obj.id in skip or supports_from_below(robot, obj):
+        if obj.id in skip or supports_from_below(robot, obj, ground):
             continue
-        boxes.extend(_link_boxes(obj))
+        boxes.extend(_link_boxes(obj, skip=support_links(robot, obj, ground)))
     return boxes
 
 
@@ -212,7 +214,8 @@ def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RE
     obstacles = obstacle_boxes(robot, held, ignore)
     floor_z = float(robot.get_position()[2])
     robot_top = max(float(b[1][2]) for _, b in own) if own else 1.0
-    low_limit = 0.01  # the floor the base rests on is not an obstacle
+    # what the base rests on (its ground, relative to the base origin) is not an obstacle
+    low_limit = ground_z(robot) - floor_z + SUPPORT_SLACK
     if obstacles:
         lo = np.min([b[0][:2] for _, b in obstacles], axis=0) - MARGIN
         hi = np.max([b[1][:2] for _, b in obstacles], axis=0) + MARGIN

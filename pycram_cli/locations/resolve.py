@@ -30,7 +30,7 @@ import threading
 import weakref
 from collections import Counter
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Iterator, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -282,18 +282,22 @@ def supports_of(world: "BulletWorld", obj: Object) -> set[tuple[int, str]]:
     return found
 
 
-def touching(robot: Robot, held: Sequence[Object], allowed_objects: set[int], allowed_links: set[tuple[int, str]]) -> list[str]:
-    """What the robot (and what it holds) touches now, but the allowed objects and links (names, sorted)."""
+def touching(robot: Robot, held: Sequence[Object], allowed_objects: set[int], allowed_links: set[tuple[int, str]],
+             joints: Iterable[str]) -> list[str]:
+    """What the part of the robot that `joints` move (and what it holds) touches now, but the allowed objects and
+    links (names, sorted). The base, the torso and the wheels on the floor do not move with an arm: not tested."""
     world = robot.world
-    movers = [robot.body, *held]
-    skip = {robot.body.id, *(o.id for o in held)}
+    body = robot.body
+    moving = body.links_below(joints)
+    skip = {body.id, *(o.id for o in held)}
     found = set()
     for other in world.objects:
         if other.id in skip or other.id in allowed_objects:
             continue
-        for mover in movers:
+        for mover in (body, *held):
             points = world.closest_points(mover, other, TOUCH)
-            if any((other.id, other.get_link_name(p.link_b)) not in allowed_links for p in points):
+            if any((mover is not body or p.link_a in moving)
+                   and (other.id, other.get_link_name(p.link_b)) not in allowed_links for p in points):
                 found.add(other.name)
                 break
     return sorted(found)
@@ -701,7 +705,7 @@ class BasePoseResolution(_Resolution):
         saved = body.get_joint_positions(list(joints))
         body.set_joint_positions(joints)
         try:
-            touched = touching(self.robot, self.held, *self._allowed)
+            touched = touching(self.robot, self.held, *self._allowed, joints)
         finally:
             body.set_joint_positions(saved)
         blocked.extend(t for t in touched if t not in blocked)
@@ -752,7 +756,7 @@ class BasePoseResolution(_Resolution):
             body.set_joint_positions(solution.joint_positions)
             body.move_attached()
             try:
-                touched = touching(robot, self.held, *self._allowed)
+                touched = touching(robot, self.held, *self._allowed, solution.joint_positions)
             finally:
                 body.set_joint_positions(saved)
                 body.move_attached()

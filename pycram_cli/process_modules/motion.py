@@ -69,19 +69,6 @@ class Hit:
         return f"{self.mover} would be {self.depth * 1000:.0f} mm inside {where}"
 
 
-def _downstream(body: Object, joint_indices: set[int]) -> set[int]:
-    """The links below any of the given joints (each joint's own child link included)."""
-    found: set[int] = set()
-    for joint in body.joints:
-        index = joint.index
-        while index != -1:
-            if index in joint_indices:
-                found.add(joint.index)
-                break
-            index = body.joints[index].parent_index
-    return found
-
-
 def followers(body: Object) -> list[Object]:
     """Everything that follows the robot (attached to it, and what is attached to that)."""
     found: list[Object] = []
@@ -113,7 +100,7 @@ class Motion:
         body = self.body = robot.body
         self.world = body.world
         self.joints = [body.joint(name) for name in joints if body.joint(name).movable]
-        self.links = sorted(_downstream(body, {j.index for j in self.joints}))
+        self.links = sorted(body.links_below(j.name for j in self.joints))
         # what the moving links hold moves with them; what the robot holds elsewhere (in the other hand, or in
         # this gripper's palm while its fingers move) is something to avoid like anything else
         self.held = [obj for obj in followers(body) if self._holder(obj) in self.links]

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Iterable
 
 from ..robots import description_for
 from ..world.pose import check_position, check_quaternion, quat_multiply
@@ -117,13 +117,15 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
             copy.set_joint_positions(joint_positions)
         else:
             copy.reset_joints(joint_positions)
-        found = _touching([copy, *(twin.copy_of(o) for o in held)], [twin.copy_of(o) for o in candidates], tolerance)
+        # what moves is what may not touch: the links the joints carry and what the robot holds (the base, the
+        # torso and the wheels on the floor stay where they are)
+        moving = copy.links_below(name for name in joint_positions if copy.joint(name).movable)
+        found = [other for other in (twin.copy_of(o) for o in candidates)
+                 if _touches(copy, moving, other, tolerance)
+                 or any(other.world.distance(twin.copy_of(o), other, tolerance) < math.inf for o in held)]
         return sorted((twin.original_of(o) for o in found), key=lambda o: (o.name, o.id))
 
 
-def _touching(movers: Sequence["Object"], candidates: Sequence["Object"], tolerance: float) -> list["Object"]:
-    found = []
-    for other in candidates:
-        if any(other.world.distance(m, other, tolerance) < math.inf for m in movers):
-            found.append(other)
-    return sorted(found, key=lambda o: (o.name, o.id))
+def _touches(body: "Object", links: frozenset[int], other: "Object", tolerance: float) -> bool:
+    """Whether any of the body's `links` comes within `tolerance` of `other`."""
+    return any(point.link_a in links for point in body.world.closest_points(body, other, tolerance))

@@ -129,6 +129,7 @@ class Object:
         self.world = world
         self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
         self._drawn: list[tuple[int, bool]] | None = None  # see drawn_links
+        self._solid: frozenset[int] | None = None  # see solid_links
         self._boxes: tuple[int, Any, Any] | None = None  # see link_aabbs: (version, min corners, max corners)
         try:  # a bare name is searched for as world files do: here, the bundled resources, PyBullet's models
             self.path = find_model_file(path)
@@ -337,6 +338,28 @@ class Object:
             links = sorted({shape.link for shape in self.visual_shapes() if shape.rgba[3] > 0.0})
             self._drawn = [(link, bool(p.getCollisionShapeData(self.id, link, physicsClientId=cid))) for link in links]
         return self._drawn
+
+    def solid_links(self) -> frozenset[int]:
+        """The links with collision shapes (-1: the base); read once. A frame-only link (a tool or camera frame,
+        a `base_footprint`) has none, though PyBullet still gives it a box of a few millimetres."""
+        if self._solid is None:
+            cid = self.world.client_id
+            self._solid = frozenset(link for link in range(-1, len(self.joints))
+                                    if p.getCollisionShapeData(self.id, link, physicsClientId=cid))
+        return self._solid
+
+    def links_below(self, joints: Iterable[str]) -> frozenset[int]:
+        """The links that move when any of these joints moves: each joint's child link and everything below it."""
+        indices = {self.get_joint_id(name) for name in joints}
+        found = set()
+        for joint in self.joints:
+            index = joint.index
+            while index != -1:
+                if index in indices:
+                    found.add(joint.index)
+                    break
+                index = self.joints[index].parent_index
+        return frozenset(found)
 
     def get_aabb(self, link: str | int | None = None) -> tuple[Vec3, Vec3]:
         """Axis-aligned bounding box (min corner, max corner) of a link or the whole object."""
