@@ -17,10 +17,10 @@ def _looking(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "looking", "Turn the head so that the camera looks at a position or an object.", (
+    "looking", "Point the camera at a position or an object: the head turns (a camera on the wrist: the arm moves; fixed on the body: the base turns).", (
         Slot("target", "position", False, "the point to look at"),
         Slot("object", "object", False, "the object to look at", "looks at its position"),
-    ), resolve=_looking, module="head", uses=drives("head"), one_of=("target", "object"), needs=("head", "camera"),
+    ), resolve=_looking, module="head", uses=drives("head"), one_of=("target", "object"), needs=("camera",),
     resource="head"))
 
 

@@ -40,7 +40,7 @@ from ..process_modules import Robot
 from ..process_modules import motion
 from ..process_modules.accessing import drawer_pushes_into
 from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
-from ..process_modules.head import look_at
+from ..process_modules.head import Mount, camera_mount, camera_yaw, look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
@@ -447,7 +447,11 @@ class BasePoseResolution(_Resolution):
         keep = np.hypot(px - primary[0], py - primary[1]) <= radius
         px, py = px[keep], py[keep]
         facing = np.arctan2(primary[1] - py, primary[0] - px)
-        tried = TURNS if reach_target is not None else TURNS[:1]  # the head turns to look: facing is enough
+        fixed_camera = view_target is not None and camera_mount(robot).kind is Mount.BODY
+        if fixed_camera and reach_target is None:  # the camera, not the base's front, faces the object
+            facing = facing - camera_yaw(robot)
+        # a head or an arm turns the camera to look: facing is enough; a camera fixed on the body needs the turns too
+        tried = TURNS if reach_target is not None or fixed_camera else TURNS[:1]
         xs = np.concatenate([px] * len(tried))
         ys = np.concatenate([py] * len(tried))
         turns = np.concatenate([np.full(len(px), t) for t in tried])
@@ -825,9 +829,9 @@ class BasePoseResolution(_Resolution):
         assert obj is not None
         target = tuple(float(v) for v in _centre(obj))
         try:
-            look_at(self.robot, target)
-        except Exception:  # noqa: BLE001 - the head cannot turn there: not from this pose
-            self.candidates.mark(i, "out of view", "the head cannot turn to it")
+            look_at(self.robot, target, turn_base=False)
+        except ReachabilityFailure:  # the camera cannot be pointed there: not from this pose
+            self.candidates.mark(i, "out of view", "the camera cannot point at it")
             return None
         answer = visible(obj, world=self.robot.world)
         if not answer.visible:

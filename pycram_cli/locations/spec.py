@@ -240,9 +240,8 @@ def parse_location(world: BulletWorld, value: Any, for_object: Object | None = N
     if "near" in value:
         near = tuple(float(v) for v in value["near"])
     handle = find_handle(world, value["accessing"]) if "accessing" in value else None
-    if visible is not None and (desc is None or desc.camera is None or desc.head is None):
-        what = "a camera" if desc is None or desc.camera is None else "a head"
-        raise _error("visible-for", f"robot '{robot.name if robot else '?'}' has no {what} to look with")
+    if visible is not None and (desc is None or desc.camera is None):
+        raise _error("visible-for", f"robot '{robot.name if robot else '?'}' has no camera to look with")
     for obj, key in ((reach, "reachable-for"), (visible, "visible-for"), (obj_for, "for")):
         if isinstance(obj, Object) and obj is robot:
             raise _error(key, f"'{obj.name}' is the robot itself")

@@ -119,8 +119,14 @@ class RobotDescription:
             raise KeyError(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
 
     def resource(self, role: str) -> str:
-        """The physical resource a role drives (`base`, `head`, `arm:<name>`); roles share one when the description says so."""
-        return self.resources.get(role, role)
+        """The physical resource a role drives (`base`, `head`, `arm:<name>`); roles share one when the description says
+        so. Without a head, looking moves what carries the camera: the arm whose `links` name its frame, else the base."""
+        if role in self.resources:
+            return self.resources[role]
+        if role == "head" and self.head is None and self.camera is not None:
+            arm = self.arm_of_link(self.camera.frame)
+            return f"arm:{arm}" if arm else "base"
+        return role
 
     def grasp_orientation(self, grasp: str | Sequence[float],
                           base_orientation: Sequence[float]) -> tuple[float, float, float, float]:

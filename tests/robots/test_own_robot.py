@@ -85,7 +85,7 @@ def test_reachable_answers_for_the_robot(kuka_dir: Path):
     ("move-arm-joints: {arms: {arm: park}}", "kuka has no pose 'park' (poses: home)"),
     ("pick-up: {object: cube, grasp: front}", "kuka has no grasp 'front' (grasps: top)"),
     ("moving: {target: [1, 0, 0]}", "robot 'kuka' cannot perform 'moving': its base cannot move"),
-    ("looking: {target: [1, 0, 0]}", "robot 'kuka' cannot perform 'looking': it has no head"),
+    ("looking: {target: [1, 0, 0]}", "robot 'kuka' cannot perform 'looking': it has no camera"),
 ])
 def test_what_the_robot_does_not_have_is_an_input_error_before_anything_runs(kuka_dir: Path, step: str, message: str):
     plan = kuka_dir / "bad.yaml"

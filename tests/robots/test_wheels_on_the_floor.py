@@ -15,34 +15,14 @@ import pytest
 from click.testing import CliRunner
 
 from pycram_cli.cli.main import cli
-from pycram_cli.paths import resources_dir, worlds_dir
 from pycram_cli.worldfile.loader import load_world
 
-WHEEL_COLLISION = """    <collision>
-      <origin xyz="0 0 0" rpy="1.57079632679 0 0"/>
-      <geometry><cylinder radius="0.055325" length="0.0896"/></geometry>
-    </collision>
-"""
-
+from robot_variants import write_variant
 
 @pytest.fixture(scope="module")
 def wheeled_world(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The Fetch kitchen with a Fetch whose drive wheels (axles 55.325 mm high) touch the floor."""
-    folder = tmp_path_factory.mktemp("wheeled")
-    fetch = resources_dir() / "robots" / "fetch"
-    urdf = (fetch / "fetch.urdf").read_text().replace('<robot name="fetch"', '<robot name="wheeled_fetch"')
-    for wheel in ("r_wheel_link", "l_wheel_link"):
-        start = urdf.index(f'<link name="{wheel}">')
-        end = urdf.index("</link>", start)
-        urdf = urdf[:end] + WHEEL_COLLISION + "  " + urdf[end:]
-    (folder / "wheeled_fetch.urdf").write_text(urdf)
-    description = (fetch / "fetch.yaml").read_text().replace("name: fetch", "name: wheeled_fetch")
-    (folder / "wheeled_fetch.yaml").write_text(description.replace("urdf: fetch.urdf", "urdf: wheeled_fetch.urdf"))
-    world = (worlds_dir() / "kitchen_fetch.yaml").read_text()
-    world = world.replace("file: robots/fetch/fetch.urdf", f"file: {folder / 'wheeled_fetch.urdf'}")
-    path = folder / "kitchen.yaml"
-    path.write_text(world.replace("# yaml-language-server: $schema=../resources/schemas/world.schema.json\n", ""))
-    return path
+    """The Fetch kitchen with a Fetch whose drive wheels touch the floor."""
+    return write_variant(tmp_path_factory.mktemp("wheeled"), "wheeled_fetch")
 
 
 def test_the_wheels_touch_the_floor(wheeled_world: Path) -> None:

@@ -73,6 +73,6 @@ def _look_at(actor: Actor, slots: Mapping[str, Any]) -> None:
 
 
 declare_action(Action(
-    "look-at", "Turn the head to look at an object or a position.", (
+    "look-at", "Point the camera at an object or a position (turning the head, the arm or the base that carries it).", (
         Slot("target", "target", True, "what to look at"),
-    ), run=_look_at, uses=drives("head"), needs=("head", "camera")))
+    ), run=_look_at, uses=drives("head"), needs=("camera",)))
