@@ -18,6 +18,7 @@ from click.shell_completion import CompletionItem
 from ..errors import InputError, Location, did_you_mean
 from ..jsonable import jsonable
 from ..kinds import KINDS, parse_vector
+from .. import locations  # noqa: F401 - registers pick-up's planning, which reachable asks about objects
 from ..reasoning import QUERIES, QuerySpec, run_query
 from ..reasoning.query import unknown_query
 from . import console

@@ -4,20 +4,45 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..errors import InputError, Location, did_you_mean
-from ..failures import ManipulationFailure
+from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..kinds import arm_phrase, gripper_words
+from ..locations import take_from_here
 from ..process_modules import Robot
 from ..process_modules.accessing import handle_pose
-from ..process_modules.manipulation import grasp_pose
 from .declaration import Designator, Slot, declare_designator, drives_arm
-from .inference import choose_arm_and_grasp, the_object
+from ..world import Object
+from .inference import choose_arm_and_grasp, free_arms, the_object
 
 
 def _pick_up(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
     obj = the_object(robot, slots["object"], "object")
     arm, grasp = slots.get("arm"), slots.get("grasp")
     if arm is None or grasp is None:
-        arm, grasp = choose_arm_and_grasp(robot, lambda a, g: grasp_pose(robot, a, obj, g), arm, grasp, obj.name)
+        arm, grasp = take_with(robot, obj, arm, grasp)
     return {"object": obj, "arm": arm, "grasp": grasp}
+
+
+def take_with(robot: Robot, obj: Object, arm: str | None, grasp: Any) -> tuple[str, Any]:
+    """The arm and grasp left open, chosen as the design's next solution: every free arm (nearest first) and grasp
+    (the description's order) is tried with pick-up's own planning from where the robot stands, and the first that
+    takes the object wins; when none does, the failure says what each ran into."""
+    if not free_arms(robot, arm) or (arm is not None and robot.held_objects(arm)):
+        held = ", ".join(o.name for o in robot.held_objects(arm))
+        raise GripperFailure(f"the {gripper_words(arm)} already holds {held}" if arm is not None else
+                             f"no free gripper to take {obj.name}: every gripper holds something", arm=arm, object=obj.name)
+    answer = take_from_here(robot.body, obj, arm, grasp)  # a full hand takes nothing: only free arms are tried
+    tried = answer.tried
+    if answer.takes:
+        assert answer.arm is not None
+        return answer.arm, answer.grasp
+    ways = "; ".join(f"{arm_phrase(a)} with {_grasp_words(g)}: {why}" for a, g, why in tried)
+    text = f"nothing takes {obj.name} from here" + (f" ({ways})" if ways else f": {answer.reason}")
+    kind = {"blocked": ManipulationFailure, "cannot hold": GripperFailure}.get(answer.reason, ReachabilityFailure)
+    raise kind(text, object=obj.name, tried=[[a, g if isinstance(g, str) else list(g), why] for a, g, why in tried])
+
+
+def _grasp_words(grasp: Any) -> str:
+    return f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
 
 
 declare_designator(Designator(

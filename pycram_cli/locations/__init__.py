@@ -22,7 +22,7 @@ from ..process_modules import Robot
 from ..world import BulletWorld, Object
 from .floor import FloorMap
 from .resolve import (REASONS, BasePose, BasePoseResolution, Candidates, Spot, SpotResolution, floor_map, resolution,
-                      summary)
+                      summary, take_from_here)
 from .spec import Handle, LocationSpec, Surface, find_handle, find_surface, handle_of, opening_joint, parse_location
 
 
@@ -34,4 +34,4 @@ def locate(world: BulletWorld, location: Any, for_object: Object | None = None) 
 
 __all__ = ["REASONS", "BasePose", "BasePoseResolution", "Candidates", "FloorMap", "Handle", "LocationSpec", "Spot",
            "SpotResolution", "Surface", "find_handle", "find_surface", "floor_map", "handle_of", "locate",
-           "opening_joint", "parse_location", "resolution", "summary"]
+           "opening_joint", "parse_location", "resolution", "summary", "take_from_here"]

@@ -44,6 +44,7 @@ from ..process_modules.head import Mount, camera_mount, camera_yaw, look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
+from ..reasoning.reachability import TakeAnswer, register_take_check
 from ..world import Object
 from ..world.pose import compose, invert, yaw_quaternion
 from . import floor
@@ -396,6 +397,29 @@ class BasePoseResolution(_Resolution):
         #: whether the robot's current pose is the first candidate (an action asks: no need to drive when it will do)
         self.here = False
         self.here_index: int | None = None
+        #: what each arm and grasp ran into at the last pose tested (arm, grasp, why), for take_here's failure
+        self.attempts: list[tuple[str, Any, str]] = []
+        self.taken: Any = None  # the grasp's IK solution of the last arm and grasp that take the object
+        self.shortfall = math.inf  # how far the tool stayed from the nearest grasp out of reach (m)
+
+    def take_here(self) -> TakeAnswer:
+        """Only the pose the robot stands at, for an object to take: the arm and grasp pick-up itself would take it
+        with (its own planning, `_grasp`), or why none does. The base's own contacts where it stands do not count."""
+        world = self.robot.world
+        self.here = True
+        with world.lock, world.snapshot():
+            self._prepared_inside()
+            i = self.here_index
+            assert i is not None
+            found = self._reach(i)
+        if found is not None:
+            solution = self.taken
+            return TakeAnswer(True, found[0], found[1], joint_positions=dict(solution.joint_positions),
+                              position_error=solution.position_error, orientation_error=solution.orientation_error)
+        arm = self.arm_names[int(self.arm_order[i][0])] if len(self.arm_order) and self.arm_names else None
+        return TakeAnswer(False, arm, reason=OUTCOMES[self.candidates.outcome[i]],
+                          detail=self.candidates.detail.get(i, ""), tried=tuple(self.attempts),
+                          position_error=self.shortfall)
 
     # -- the candidates ---------------------------------------------------------------------------------------
     def _prepare(self) -> None:
@@ -670,30 +694,45 @@ class BasePoseResolution(_Resolution):
         holdable = False
         viable: list[tuple[str, Any, Any, Any, dict[str, Any]]] = []
         grasps = [spec.grasp] if spec.grasp is not None else list(robot.description.grasps)
+        attempts: dict[tuple[str, Any], str] = {}  # what each arm and grasp ran into (for take_here's failure)
         for arm in arms:
             for grasp in grasps:
                 try:
                     _, pre, solution = plan_grasp(robot, arm, obj, grasp)
-                except GripperFailure:
+                except GripperFailure as failure:
+                    attempts[arm, grasp] = str(failure)
                     continue
                 except ManipulationFailure as failure:
                     holdable = True
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    attempts[arm, grasp] = str(failure)
                     continue
-                except ReachabilityFailure:
+                except ReachabilityFailure as failure:
                     holdable = True
+                    attempts[arm, grasp] = str(failure)
+                    self.shortfall = min(self.shortfall, float(failure.details.get("position_error", math.inf)))
                     continue
                 holdable = True
-                if self._touches_at(solution.joint_positions, blocked):
+                touched: list[str] = []
+                if self._touches_at(solution.joint_positions, touched):
+                    blocked.extend(n for n in touched if n not in blocked)
+                    attempts[arm, grasp] = f"{arm_phrase(arm)} at the grasp would touch {', '.join(touched)}"
                     continue
                 legs: dict[str, Any] = {}
                 if self._ways_free(obj, arm, pre, solution, STRAIGHT, blocked, legs):
+                    self.taken = solution
                     return arm, grasp
                 viable.append((arm, grasp, pre, solution, legs))  # its ways may go around what is in the way
         for tier in (AROUND, SEARCH):
             for arm, grasp, pre, solution, legs in viable:
                 if self._ways_free(obj, arm, pre, solution, tier, blocked, legs):
+                    self.taken = solution
                     return arm, grasp
+        for arm, grasp, _, _, legs in viable:
+            failure = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
+            attempts[arm, grasp] = str(failure) if failure is not None else "its ways are blocked"
+        self.attempts = [(arm, grasp, attempts[arm, grasp]) for arm in arms for grasp in grasps
+                         if (arm, grasp) in attempts]
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))
         elif not holdable:
@@ -974,6 +1013,15 @@ def _quiet_let_go(obj: Object) -> None:
         if obj.attachments[other].child is obj:
             del obj.attachments[other]
             other.attachments.pop(obj, None)
+
+
+def take_from_here(body: Object, obj: Object, arm: str | None = None, grasp: Any = None) -> TakeAnswer:
+    """Whether pick-up would take `obj` from where the robot stands (see `BasePoseResolution.take_here`)."""
+    robot = Robot.of(body.world)
+    return BasePoseResolution(robot, LocationSpec(reachable_for=obj, arm=arm, grasp=grasp)).take_here()
+
+
+register_take_check(take_from_here)
 
 
 def resolution(robot: Robot, spec: LocationSpec) -> BasePoseResolution | SpotResolution:

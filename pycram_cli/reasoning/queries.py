@@ -10,9 +10,10 @@ from typing import Any
 
 from ..errors import did_you_mean
 from ..kinds import arm_phrase
+from ..world import Object
 from .contact import contact
 from .query import Call, QueryAnswer, QueryParam, QuerySpec, declare_query, finite
-from .reachability import ReachableAnswer, reachable, touching_at
+from .reachability import ReachableAnswer, can_take, reachable, touching_at
 from .stable import stable
 from .supporting import support_points
 from .visibility import occluding, visible
@@ -167,6 +168,18 @@ def _reachable(call: Call) -> QueryAnswer:
     target = call.target()
     grasp = call.grasp()
     threshold = call.number("threshold")
+    if isinstance(target, Object):  # an object: can pick-up take it from here (its own grasps and ways)?
+        arms = call.arms()
+        taken = can_take(call.robot(), target, arms[0] if call.args.get("arm") is not None else None, grasp)
+        if taken is not None:
+            call.resolved["arm"] = taken.arm
+            desc = call.description("arms", "arm")
+            details = {"arm": taken.arm, "gripper_link": desc.arm(taken.arm).tool_frame if taken.arm else None,
+                       "grasp": taken.grasp, "as": "pick-up", "position_error": finite(taken.position_error),
+                       "orientation_error": finite(taken.orientation_error), "joint_positions": taken.joint_positions,
+                       "reason": taken.reason, "detail": taken.detail, "arms_tried": arms,
+                       "tried": [[a, g, why] for a, g, why in taken.tried]}
+            return QueryAnswer("reachable", call.resolved, taken.takes, details, taken.takes)
     arm, tool, answer, tried = _reach(call, target, grasp, threshold)
     call.resolved["arm"] = arm
     details = {"arm": arm, "gripper_link": tool, "position_error": finite(answer.position_error),
@@ -177,6 +190,14 @@ def _reachable(call: Call) -> QueryAnswer:
 
 def _say_reachable(answer: QueryAnswer) -> str:
     a, d = answer.args, answer.details
+    if d.get("as") == "pick-up":
+        target = _place(a["target"])
+        if answer.result:
+            return f"{target} is reachable: pick-up takes it with {arm_phrase(d['arm'])} and a {_place(d['grasp'])} grasp"
+        why = {"blocked": f"blocked by {d['detail']}", "cannot hold": "no gripper can hold it"}.get(d["reason"],
+                                                                                                  d["reason"])
+        arms = ", ".join(arm_phrase(arm) for arm in d["arms_tried"])
+        return f"{target} is NOT reachable from here: pick-up with {arms} finds no grasp ({why})"
     grasp = f", {_place(a['grasp'])} grasp" if a.get("grasp") is not None else ""
     errors = f"{_mm(d['position_error'])} from the target" + (f", {_deg(d['orientation_error'])} off" if grasp else "")
     if not answer.result:
@@ -188,7 +209,8 @@ def _say_reachable(answer: QueryAnswer) -> str:
 
 
 declare_query(QuerySpec(
-    "reachable", "Can the robot bring its tool frame to the target (within 1 cm, and the grasp orientation)?",
+    "reachable", "Can the robot bring its tool frame to the target (within 1 cm, and the grasp orientation)? For an object: "
+    "can pick-up take it from where the robot stands (its grasps, the ways there and back)?",
     (QueryParam("target", "target", True, _TARGET, positional=True), _ARM, _GRASP, _REACH), _reachable, _say_reachable))
 
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterable
+from typing import TYPE_CHECKING, Any, Callable, Iterable
 
 from ..robots import description_for
 from ..world.pose import check_position, check_quaternion, quat_multiply
@@ -42,6 +42,41 @@ class ReachableAnswer:
 
     def __bool__(self) -> bool:
         return self.reachable
+
+
+@dataclass(frozen=True)
+class TakeAnswer:
+    """Whether the robot can take an object from where it stands, as pick-up would: with which arm and grasp, or why
+    not (`reason`: out of reach, blocked, cannot hold; `detail`: what blocks, which object)."""
+
+    takes: bool
+    arm: str | None = None
+    grasp: Any = None
+    reason: str = ""
+    detail: str = ""
+    tried: tuple[tuple[str, Any, str], ...] = ()  # (arm, grasp, what it ran into) for every way tried
+    joint_positions: dict[str, float] = field(default_factory=dict)  # the arm at the grasp
+    position_error: float = math.inf  # at the grasp; when out of reach, how far the nearest grasp stays (m)
+    orientation_error: float | None = None
+
+    def __bool__(self) -> bool:
+        return self.takes
+
+
+#: how to tell whether the robot can take an object from where it stands: pick-up's own planning, registered by the
+#: layer that has it (locations) — a query asked of an object answers for the poses pick-up will use
+TakeCheck = Callable[["Object", "Object", "str | None", Any], TakeAnswer]
+_TAKE_CHECKS: list[TakeCheck] = []
+
+
+def register_take_check(check: TakeCheck) -> None:
+    """Let `reachable` and `blocking` ask pick-up's planning about objects (done once, by pycram_cli.locations)."""
+    _TAKE_CHECKS[:] = [check]
+
+
+def can_take(robot: "Object", obj: "Object", arm: str | None = None, grasp: Any = None) -> TakeAnswer | None:
+    """Pick-up's own answer for `obj` from where the robot stands, or None when no planner is loaded."""
+    return _TAKE_CHECKS[0](robot, obj, arm, grasp) if _TAKE_CHECKS else None
 
 
 def target_pose(target: Any) -> tuple[tuple[float, float, float], tuple[float, float, float, float] | None]:
