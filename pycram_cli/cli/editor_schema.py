@@ -144,6 +144,8 @@ OBJECT_VALUES: dict[str, Schema] = {
                              "resources, then in pybullet_data"),
     "position": _with(_VECTOR3, "[x, y, z] in metres, world frame"),
     "orientation": _numbers((4,), _number(), "a unit quaternion [x, y, z, w]"),
+    "up": {"enum": ["z", "y", "x", "-z", "-y", "-x"], "description": "the model's own axis that points up (default z; "
+                                                                  "y for a Y-up mesh), turned upright before orientation"},
     "color": _with(_COLOR, "its colour (meshes)"),
     "joints": {"type": "object", "additionalProperties": _number(), "description": "initial joint positions: "
                                                                                    "{joint: value}"},

@@ -17,6 +17,7 @@ from ..paths import find_plan, find_world
 from ..scenario import prepare
 from ..scenario.variations import SUFFIX, parse_variations
 from ..worldfile.spec import parse_world
+from ..worldfile.loader import load_spec
 from ..yamlsource import LMap, load_yaml
 from . import console
 from .complete import plan_or_world_names, world_names
@@ -88,7 +89,7 @@ def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, 
             kind = kind_of(path)
             kinds.append(kind)
             if kind == "world":
-                parse_world(path)
+                load_spec(parse_world(path)).exit()  # loaded too: what starts inside what is found here, not at run
             elif kind == "variation":
                 check_variations(path, world_file, params)
             else:

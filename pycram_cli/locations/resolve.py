@@ -41,7 +41,7 @@ from ..process_modules import motion
 from ..process_modules.accessing import drawer_pushes_into
 from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
 from ..process_modules.head import Mount, camera_mount, camera_yaw, look_at
-from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place
+from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place, resting_on
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..reasoning.reachability import TakeAnswer, register_take_check
@@ -904,7 +904,8 @@ class SpotResolution(_Resolution):
         assert surface is not None and obj is not None
         lo, hi = surface.box()
         self.top = float(hi[2])
-        self.upright = level(obj.get_orientation())
+        self.surface_link = surface.obj.get_link_id(surface.link) if surface.link is not None else None
+        self.upright = level(obj.get_orientation(), obj.upright)
         position = obj.get_position()  # inside the caller's snapshot: the object stood upright where it is
         _quiet_let_go(obj)
         obj.set_position_and_orientation(position, self.upright)
@@ -969,7 +970,9 @@ class SpotResolution(_Resolution):
                 position = (float(cand.xs[i]), float(cand.ys[i]), self.top)
                 world.restore_state(saved)
                 _quiet_let_go(obj)
-                obj.set_position_and_orientation(position, self.upright)
+                # as place will stand it: its lowest point on the surface, wherever the model's origin is
+                obj.set_position_and_orientation(resting_on(obj, self.upright, position, self.top, surface.obj,
+                                                            self.surface_link), self.upright)
                 hits = self._touching(obj, surface)
                 if hits:
                     cand.mark(i, "collides", ", ".join(hits))

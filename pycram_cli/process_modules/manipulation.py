@@ -24,7 +24,8 @@ from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution
 from ..world import Object
-from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
+from ..world.pose import (Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix,
+                          yaw_quaternion)
 from . import motion
 from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, reach_near_each, set_gripper
 from .base import ProcessModule, Robot
@@ -247,13 +248,16 @@ def _tool_at(robot: Robot, arm: str, joints: Mapping[str, float]) -> Vec3:
         return robot.body.get_link_position(tool)
 
 
-def level(orientation: Sequence[float]) -> Quat:
-    """The object's orientation stood upright: its own z axis up, heading kept (that of its x axis, or of its
-    y axis when x points up or down)."""
-    rotation = quat_to_matrix(orientation)
+def level(orientation: Sequence[float], upright: Sequence[float] = (0.0, 0.0, 0.0, 1.0)) -> Quat:
+    """The object's orientation stood upright: `upright` (the object's own, `Object.upright`: its z axis up for most
+    models, y for a Y-up mesh) turned to the heading it has (that of its upright frame's x axis, or of its y axis when
+    x points up or down)."""
+    rotation = quat_to_matrix(quat_multiply(orientation, quat_inverse(upright)))
     axis = rotation[:, 0] if math.hypot(rotation[0, 0], rotation[1, 0]) > 0.2 else rotation[:, 1]
     heading = math.atan2(axis[1], axis[0]) - (0.0 if axis is rotation[:, 0] else math.pi / 2)
-    return yaw_quaternion(heading)
+    if tuple(upright) == (0.0, 0.0, 0.0, 1.0):
+        return yaw_quaternion(heading)
+    return quat_multiply(yaw_quaternion(heading), upright)
 
 
 @process_module("pick-up")
@@ -311,7 +315,6 @@ def support_height(robot: Robot, obj: Object, orientation: Quat, xy: Sequence[fl
 def rest_pose(robot: Robot, obj: Object, orientation: Quat, target: Sequence[float], arm: str) -> tuple[Vec3, Object]:
     """Where `obj` rests, stood with `orientation` at the target's x, y on the surface under it: its lowest point on the
     support, DROP above (measured with closest points, so whatever the mesh's origin and the shapes' margins)."""
-    lo, _ = obj.get_local_aabb()
     if len(target) > 2:  # the surface at the target's height: from SURFACE above it to SURFACE_BELOW below it
         height, support = support_height(robot, obj, orientation, target, float(target[2]) + SURFACE,
                                          SURFACE + SURFACE_BELOW)
@@ -323,15 +326,25 @@ def rest_pose(robot: Robot, obj: Object, orientation: Quat, target: Sequence[flo
         raise ManipulationFailure(f"there is nothing to place {obj.name} on at ({where})"
                                   + (f" (no surface from {SURFACE * 100:.0f} cm above to {SURFACE_BELOW * 100:.0f} cm "
                                      "below that height)" if len(target) > 2 else ""), object=obj.name)
-    # stood upright (a turn about z), its lowest point is its box's bottom: 2 mm above the surface the rays met,
-    # then lowered by the gap closest points measure (shapes, margins and all)
-    position = (float(target[0]), float(target[1]), height - lo[2] + 0.002)
+    return resting_on(obj, orientation, target, height, support), support
+
+
+def resting_on(obj: Object, orientation: Quat, xy: Sequence[float], height: float, support: Object,
+               link: int | None = None) -> Vec3:
+    """Where `obj`, stood with `orientation` (upright: a turn about z) at x, y over a surface `height` high, rests: its
+    lowest point DROP above the support (or that link of it), measured with closest points, so whatever the mesh's
+    origin (its bottom, its centre, anywhere) and the shapes' margins; the object is put back as it was."""
     with _trial_pose(obj):
+        # its lowest point is its box's bottom (stood so): 2 mm above the surface, then lowered by the gap closest
+        # points measure
+        obj.set_position_and_orientation((float(xy[0]), float(xy[1]), height + 1.0), orientation)
+        bottom = obj.get_aabb()[0][2] - (height + 1.0)
+        position = (float(xy[0]), float(xy[1]), height - bottom + 0.002)
         obj.set_position_and_orientation(position, orientation)
-        gap = robot.world.distance(obj, support, 0.02)
+        gap = obj.world.distance(obj, support, 0.02, link_b=link)
     if math.isfinite(gap):
         position = (position[0], position[1], position[2] - gap + DROP)
-    return position, support
+    return position
 
 
 @contextlib.contextmanager
@@ -376,7 +389,7 @@ def plan_place(robot: Robot, arm: str, obj: Object,
         raise ManipulationFailure(f"{obj.name} is not held by the {gripper_words(arm)}", object=obj.name, arm=arm)
     att = robot.body.attachments[obj]
     held = invert(att.transform)  # the tool frame seen from the object
-    upright = level(obj.get_orientation())
+    upright = level(obj.get_orientation(), obj.upright)
     where = f"({', '.join(f'{v:.3f}' for v in target)})"
     best: tuple[float, Any] | None = None
     chosen = None

@@ -63,7 +63,7 @@ class Scenario:
         """A fresh simulation of the scenario's world, varied by its variant if any (the caller exits it)."""
         if self.variant is None:
             return load_spec(self.world, mode=mode)
-        world = load_spec(self.variant.world_spec(self.world), mode=mode)
+        world = load_spec(self.variant.world_spec(self.world), mode=mode, check_start=False)
         try:
             state = world.save_state()
             reset(world, state)  # exactly the state a sweep's kept world starts every scenario from

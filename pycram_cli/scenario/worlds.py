@@ -50,7 +50,7 @@ class LoadedWorlds:
         """A world of the variant's structure in its freshly loaded state, the variant applied."""
         loaded = self._worlds.get(variant.structure)
         if loaded is None or not loaded.world.alive:
-            world = load_spec(variant.world_spec(self.scenario.world))
+            world = load_spec(variant.world_spec(self.scenario.world), check_start=False)
             loaded = _Loaded(world, world.save_state())
             self.loads += 1
             self._worlds[variant.structure] = loaded

@@ -15,7 +15,7 @@ from ..errors import did_you_mean
 from .bullet_world import BulletWorld, WorldError
 from .meshes import read_mesh
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, find_model_file, mesh_urdf, prepare_urdf
-from .pose import Quat, Vec3, check_position, check_quaternion, compose, invert
+from .pose import UP_TURNS, Quat, Vec3, check_position, check_quaternion, compose, invert, up_axis
 from ..quiet import silenced
 
 KINEMATIC_TYPES = ("robot", "environment")
@@ -137,6 +137,9 @@ class Object:
             raise FileNotFoundError(f"object '{name}': {exc}") from None
         self.fixed = fixed if fixed is not None else type in KINEMATIC_TYPES
         self._color, self._mass = rgba, mass  # as given: a copy of the object is loaded alike
+        #: the turn that stands the model upright (its axis that points most nearly up where it starts: a Y-up mesh
+        #: stood on its feet keeps them down when it is placed again), applied before its heading
+        self.upright: Quat = UP_TURNS[up_axis(orientation)]
         if self.path.suffix.lower() in MESH_SUFFIXES:
             load_path = mesh_urdf(self.path, rgba, mass)
         else:

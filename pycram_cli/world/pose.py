@@ -116,3 +116,16 @@ def angle_between(a: Sequence[float], b: Sequence[float]) -> float:
 
 def yaw_quaternion(yaw: float) -> Quat:
     return (0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+
+
+_H = math.sqrt(0.5)
+#: the model axis that points up -> the turn (about x or y) that stands a model with that axis up upright
+UP_TURNS: dict[str, Quat] = {"z": (0.0, 0.0, 0.0, 1.0), "y": (_H, 0.0, 0.0, _H), "x": (0.0, -_H, 0.0, _H),
+                             "-z": (1.0, 0.0, 0.0, 0.0), "-y": (-_H, 0.0, 0.0, _H), "-x": (0.0, _H, 0.0, _H)}
+
+
+def up_axis(orientation: Sequence[float]) -> str:
+    """The model axis (z, y, x, -z, -y, -x) that points most nearly up in this orientation."""
+    column = quat_to_matrix(orientation)[2]  # the world z component of each model axis
+    scores = {"z": column[2], "y": column[1], "x": column[0], "-z": -column[2], "-y": -column[1], "-x": -column[0]}
+    return max(scores, key=lambda axis: (scores[axis], -list(scores).index(axis)))

@@ -26,13 +26,14 @@ from ..files import probe
 from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
-from ..schema import check_keys, expect, is_number, names_only, number_list, quaternion
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
 from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
+from ..world.pose import UP_TURNS, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
 
 WORLD_KEYS = ("description", "gravity", "objects")
 WORLD_REQUIRED = ("objects",)
-OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "color", "joints", "attach", "fixed", "mass",
+OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "up", "color", "joints", "attach", "fixed", "mass",
                "description")
 OBJECT_REQUIRED = ("name", "type", "file")
 ATTACH_KEYS = ("to", "parent_link", "child_link")
@@ -60,6 +61,7 @@ class ObjectSpec:
     fixed: bool | None = None
     mass: float | None = None
     description: Path | None = None  # an explicit robot description file
+    up: str = "z"  # the model's axis that points up (its orientation already includes the turn)
     file_text: str = ""
     where: Location = field(default_factory=Location)
 
@@ -218,6 +220,15 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
         spec.position = number_list(item["position"], 3, item.loc("position", True), "position", errors) or spec.position
     if "orientation" in item:
         spec.orientation = quaternion(item["orientation"], item.loc("orientation", True), "orientation", errors) or spec.orientation
+    if "up" in item:
+        up = item["up"]
+        if not isinstance(up, str) or up not in UP_TURNS:
+            errors.append(InputError(f"up: expected the model's axis that points up ({', '.join(UP_TURNS)}), got "
+                                     f"{describe(up)}", item.loc("up", True), key="up",
+                                     suggestion=did_you_mean(str(up), list(UP_TURNS)) if isinstance(up, str) else None))
+        else:
+            spec.up = up
+            spec.orientation = list(quat_multiply(spec.orientation, UP_TURNS[up]))
     if "color" in item:
         color = number_list(item["color"], (3, 4), item.loc("color", True), "color", errors)
         if color is not None and not all(0 <= c <= 1 for c in color):
