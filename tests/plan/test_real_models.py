@@ -5,11 +5,14 @@ as ours and the process modules drive it unchanged. Skipped when ../shared/model
 """
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from pycram_cli.paths import plans_dir
 from pycram_cli.plan import load_plan, run_plan
 from pycram_cli.reasoning import stable, supporting
+from pycram_cli.world.pose import angle_between
 from pycram_cli.worldfile.loader import load_world
 
 
@@ -101,3 +104,18 @@ def test_the_whole_demo_sets_the_breakfast_and_stands_the_designs_spoon_on_the_i
         assert supporting(kitchen, obj, link="kitchen_island_surface"), name
     for name in ("milk", "bowl", "cereal"):
         assert stable(design_world.get_object_by_name(name)), name
+
+
+def test_the_design_meshes_settled_by_physics_are_set_as_well_as_upright_ones(design_world):
+    """Real objects rest tilted: after 3 s of physics the design's meshes lean by 1-3° (the bowl most). The unchanged
+    demo still sets the milk, the bowl and the cereal; the spoon rocks for ever (see above) and fails the last assert."""
+    before = {name: design_world.get_object_by_name(name).get_orientation() for name in LISTING}
+    design_world.simulate(3.0)
+    tilts = [angle_between(before[name], design_world.get_object_by_name(name).get_orientation()) for name in LISTING]
+    assert max(tilts) > math.radians(1.0)  # settled, not as placed
+    run_plan(load_plan(plans_dir() / "set_table.yaml"), design_world)
+    kitchen = design_world.get_object_by_name("kitchen")
+    set_ = [name for name in LISTING
+            if supporting(kitchen, design_world.get_object_by_name(name), link="kitchen_island_surface")
+            and stable(design_world.get_object_by_name(name))]
+    assert len(set_) >= 3, set_
