@@ -746,6 +746,93 @@ def _optical(tree: _Tree, names: Names, parent: str, xyz: Vec3, rpy: Vec3) -> st
     return optical
 
 
+@dataclass(frozen=True)
+class _Column:
+    """The column (torso lift or fixed mast) as built: its link, its height and the arm's mount on it."""
+
+    link: str
+    joint: str | None  # the torso joint, None for a fixed mast
+    top: float  # its top, in its own frame (m)
+    mount_z: float  # the pan joint's height in its frame (m)
+    floor_z: float  # the height of its frame, torso at its default (m)
+
+
+def _root(rng: random.Random, names: Names, body: _Body, rgba) -> tuple[_Tree, str, float]:
+    """A footprint frame on the floor with the base link above it, or the base link itself as the root;
+    returns the tree, the base link and its height above the floor."""
+    if rng.random() < 0.5:
+        root, base, lift = names.frame("base_footprint"), names.link("base"), _r(rng, 0.05, 0.12)
+        tree = _Tree(Link(root))
+        tree.add(Joint(f"{root}_joint", "fixed", root, base, (0.0, 0.0, lift)), Link(base, _base_shapes(body, lift, rgba), 400.0))
+        return tree, base, lift
+    base = names.link("base")
+    return _Tree(Link(base, _base_shapes(body, 0.0, rgba), 400.0)), base, 0.0
+
+
+def _column(rng: random.Random, tree: _Tree, names: Names, body: _Body, base: str, lift: float, mount_y: float,
+            plan: _ArmPlan, camera_kind: str, rgba) -> _Column:
+    """The torso lift (prismatic) or fixed mast, tall enough for the head or the mast camera, with the shoulder bracket."""
+    mount_z = round(body.shoulder_height - plan.pan_offset[1] - body.top - body.torso_default, 3)
+    if camera_kind == "head":
+        top = max(round(_r(rng, 1.15, 1.5) - 0.09 - body.top - body.torso_default, 3), mount_z + 0.15)
+    elif camera_kind == "mast":
+        top = max(round(_r(rng, 1.1, 1.45) - 0.04 - body.top - body.torso_default, 3), mount_z + 0.12)
+    else:
+        top = round(mount_z + _r(rng, 0.08, 0.2), 3)
+    half_d, half_w = body.column_depth / 2, body.column_width / 2
+    shapes = (box((-half_d, -half_w, -_column_sink(body)), (half_d, half_w, top), rgba),
+              box((half_d, mount_y - 0.04, mount_z - 0.1), (half_d + 0.02, mount_y + 0.04, mount_z - 0.045), rgba))
+    link = names.link("torso" if body.torso_travel else "mast")
+    origin = (body.column_x, 0.0, round(body.top - lift, 4))
+    joint = None
+    if body.torso_travel:
+        joint = names.joint("torso")
+        tree.add(Joint(joint, "prismatic", base, link, origin, ORIGIN, Z_AXIS, 0.0, body.torso_travel, 500.0, 0.1),
+                 Link(link, shapes, 500.0))
+    else:
+        tree.add(Joint(names.joint("mast"), "fixed", base, link, origin), Link(link, shapes, 500.0))
+    return _Column(link, joint, top, mount_z, body.top + body.torso_default)
+
+
+def _head(rng: random.Random, tree: _Tree, names: Names, body: _Body, column: _Column,
+          rgba) -> tuple[Head, str, _Obstacle]:
+    """A pan/tilt head on the column's top (the tilt axis' sign is seeded); returns it, its camera frame and its box."""
+    pan, tilt = names.joint("head_pan"), names.joint("head_tilt")
+    pan_link, tilt_link = names.link("head_pan"), names.link("head_tilt")
+    limit, sign = _r(rng, 1.5, 2.6), rng.choice((1.0, -1.0))
+    tree.add(Joint(pan, "revolute", column.link, pan_link, (0.0, 0.0, column.top), ORIGIN, Z_AXIS, -limit, limit, 5.0, 2.0),
+             Link(pan_link, (Shape("cylinder", (0.05, 0.06), (0.0, 0.0, 0.03), ORIGIN, rgba),), 600.0))
+    lower, upper = (-0.6, 1.2) if sign > 0 else (-1.2, 0.6)
+    tree.add(Joint(tilt, "revolute", pan_link, tilt_link, (0.0, 0.0, 0.09), ORIGIN, (0.0, sign, 0.0), lower, upper, 5.0, 2.0),
+             Link(tilt_link, (box((-0.05, -0.1, -0.035), (0.045, 0.1, 0.035), rgba),), 600.0))
+    frame = _optical(tree, names, tilt_link, (0.05, 0.0, 0.0), ORIGIN)
+    top = column.floor_z + column.top
+    return (Head(pan, tilt, pan_link, tilt_link, round(0.45 * sign, 3)), frame,
+            _Obstacle((body.column_x - 0.15, -0.15, top - 0.02), (body.column_x + 0.15, 0.15, top + 0.25)))
+
+
+def _mast_camera(rng: random.Random, tree: _Tree, names: Names, body: _Body, column: _Column,
+                 rgba) -> tuple[str, _Obstacle]:
+    """A camera fixed on the column's top, looking forward and down; returns its frame and its housing's box."""
+    half_d = body.column_depth / 2
+    housing = names.link("camera_housing")
+    tree.add(Joint(names.joint("camera_housing"), "fixed", column.link, housing, (half_d, 0.0, column.top)),
+             Link(housing, (box((-0.03, -0.06, 0.0), (0.015, 0.06, 0.06), rgba),), 600.0))
+    frame = _optical(tree, names, housing, (0.02, 0.0, 0.03), (0.0, _r(rng, 0.3, 0.6), 0.0))
+    top = column.floor_z + column.top
+    return frame, _Obstacle((body.column_x + half_d - 0.03, -0.06, top), (body.column_x + half_d + 0.02, 0.06, top + 0.06))
+
+
+def _wrist_camera(rng: random.Random, tree: _Tree, names: Names, plan: _ArmPlan, palm: str, palm_half: float,
+                  rgba) -> tuple[str, list[str]]:
+    """A camera on the palm's top, looking along the tool (a little down); returns its frame and its links."""
+    housing = names.link("camera_housing")
+    tree.add(Joint(names.joint("camera_housing"), "fixed", palm, housing, (0.0, 0.0, palm_half)),
+             Link(housing, (box((0.035, -0.03, 0.0), (plan.palm - 0.01, 0.03, 0.03), rgba),), 600.0))
+    frame = _optical(tree, names, housing, (round(plan.palm - 0.005, 3), 0.0, 0.015), (0.0, _r(rng, 0.1, 0.3), 0.0))
+    return frame, [housing, names.frame("camera_link"), frame]
+
+
 def generate(seed: int) -> ZooRobot:
     """The zoo robot of a seed (deterministic: the same seed gives the same robot)."""
     rng = random.Random(seed)
@@ -753,96 +840,44 @@ def generate(seed: int) -> ZooRobot:
     colours = tuple(rng.sample(COLOURS, 3))
     body = _body(rng)
     camera_kind = CAMERA_KINDS[seed % 3] if seed < 3 else rng.choice(CAMERA_KINDS)
-    # the root: a footprint frame on the floor with the base link above it, or the base link itself
-    if rng.random() < 0.5:
-        root, base, lift = names.frame("base_footprint"), names.link("base"), _r(rng, 0.05, 0.12)
-        tree = _Tree(Link(root))
-        tree.add(Joint(f"{root}_joint", "fixed", root, base, (0.0, 0.0, lift)),
-                 Link(base, _base_shapes(body, lift, colours[0]), 400.0))
-    else:
-        root = base = names.link("base")
-        lift = 0.0
-        tree = _Tree(Link(base, _base_shapes(body, 0.0, colours[0]), 400.0))
+    tree, base, lift = _root(rng, names, body, colours[0])
     _wheels(rng, tree, names, base, body, lift)
-    # the column: a torso lift or a fixed mast, the arm mounted on its front
+    # the column (a torso lift or a fixed mast) with the arm mounted on its front
     mount_x = round(body.column_x + body.column_depth / 2 + 0.07, 3)
     mount_y = _r(rng, -0.08, 0.08)
     plan = _arm_plan(rng, body, mount_x, mount_y)
-    column_z = round(body.shoulder_height - plan.pan_offset[1] - body.top - body.torso_default, 3)  # pan, column frame
-    if camera_kind == "head":
-        column_top = max(round(_r(rng, 1.15, 1.5) - 0.09 - body.top - body.torso_default, 3), column_z + 0.15)
-    elif camera_kind == "mast":
-        column_top = max(round(_r(rng, 1.1, 1.45) - 0.04 - body.top - body.torso_default, 3), column_z + 0.12)
-    else:
-        column_top = round(column_z + _r(rng, 0.08, 0.2), 3)
-    down = _column_sink(body)
-    half_d, half_w = body.column_depth / 2, body.column_width / 2
-    column_shapes = (box((-half_d, -half_w, -down), (half_d, half_w, column_top), colours[1]),
-                     box((half_d, mount_y - 0.04, column_z - 0.1), (half_d + 0.02, mount_y + 0.04, column_z - 0.045),
-                         colours[1]))
-    column = names.link("torso" if body.torso_travel else "mast")
-    column_origin = (body.column_x, 0.0, round(body.top - lift, 4))
-    torso_joint = None
-    if body.torso_travel:
-        torso_joint = names.joint("torso")
-        tree.add(Joint(torso_joint, "prismatic", base, column, column_origin, ORIGIN, Z_AXIS, 0.0, body.torso_travel,
-                       500.0, 0.1), Link(column, column_shapes, 500.0))
-    else:
-        tree.add(Joint(names.joint("mast"), "fixed", base, column, column_origin), Link(column, column_shapes, 500.0))
-    # the camera: on a pan/tilt head, fixed on the mast, or on the wrist
+    column = _column(rng, tree, names, body, base, lift, mount_y, plan, camera_kind, colours[1])
+    obstacles = [_Obstacle((body.column_x - body.column_depth / 2, -body.column_width / 2, body.top),
+                           (body.column_x + body.column_depth / 2, body.column_width / 2, column.floor_z + column.top))]
+    # the camera on a pan/tilt head or fixed on the mast (a wrist camera comes with the hand)
     head = None
-    obstacles = [_Obstacle((body.column_x - half_d, -half_w, body.top),
-                           (body.column_x + half_d, half_w, body.top + body.torso_default + column_top))]
-    column_floor = body.top + body.torso_default  # the column frame's height, torso at its default
     if camera_kind == "head":
-        pan, tilt = names.joint("head_pan"), names.joint("head_tilt")
-        pan_link, tilt_link = names.link("head_pan"), names.link("head_tilt")
-        limit, sign = _r(rng, 1.5, 2.6), rng.choice((1.0, -1.0))
-        tree.add(Joint(pan, "revolute", column, pan_link, (0.0, 0.0, column_top), ORIGIN, Z_AXIS, -limit, limit, 5.0, 2.0),
-                 Link(pan_link, (Shape("cylinder", (0.05, 0.06), (0.0, 0.0, 0.03), ORIGIN, colours[2]),), 600.0))
-        lower, upper = (-0.6, 1.2) if sign > 0 else (-1.2, 0.6)
-        tree.add(Joint(tilt, "revolute", pan_link, tilt_link, (0.0, 0.0, 0.09), ORIGIN, (0.0, sign, 0.0), lower, upper,
-                       5.0, 2.0),
-                 Link(tilt_link, (box((-0.05, -0.1, -0.035), (0.045, 0.1, 0.035), colours[2]),), 600.0))
-        frame = _optical(tree, names, tilt_link, (0.05, 0.0, 0.0), ORIGIN)
-        head = Head(pan, tilt, pan_link, tilt_link, round(0.45 * sign, 3))
-        obstacles.append(_Obstacle((body.column_x - 0.15, -0.15, column_floor + column_top - 0.02),
-                                   (body.column_x + 0.15, 0.15, column_floor + column_top + 0.25)))
+        head, frame, extra = _head(rng, tree, names, body, column, colours[2])
+        obstacles.append(extra)
     elif camera_kind == "mast":
-        housing = names.link("camera_housing")
-        tree.add(Joint(names.joint("camera_housing"), "fixed", column, housing, (half_d, 0.0, column_top)),
-                 Link(housing, (box((-0.03, -0.06, 0.0), (0.015, 0.06, 0.06), colours[2]),), 600.0))
-        frame = _optical(tree, names, housing, (0.02, 0.0, 0.03), (0.0, _r(rng, 0.3, 0.6), 0.0))
-        obstacles.append(_Obstacle((body.column_x + half_d - 0.03, -0.06, column_floor + column_top),
-                                   (body.column_x + half_d + 0.02, 0.06, column_floor + column_top + 0.06)))
+        frame, extra = _mast_camera(rng, tree, names, body, column, colours[2])
+        obstacles.append(extra)
     # the arm and its gripper
-    mount = (round(half_d + 0.07, 4), mount_y, column_z)
-    arm = _arm(rng, tree, names, plan, column, mount, colours[1:])
+    arm = _arm(rng, tree, names, plan, column.link, (round(body.column_depth / 2 + 0.07, 4), mount_y, column.mount_z),
+               colours[1:])
     gripper, tool, hand_links, palm_shapes, palm_half = _gripper(rng, tree, names, plan, arm.palm, colours[0])
-    hand = {arm.palm, *hand_links}
     if camera_kind == "wrist":
-        housing = names.link("camera_housing")
-        tree.add(Joint(names.joint("camera_housing"), "fixed", arm.palm, housing, (0.0, 0.0, palm_half)),
-                 Link(housing, (box((0.035, -0.03, 0.0), (plan.palm - 0.01, 0.03, 0.03), colours[2]),), 600.0))
-        frame = _optical(tree, names, housing, (round(plan.palm - 0.005, 3), 0.0, 0.015), (0.0, _r(rng, 0.1, 0.3), 0.0))
-        hand |= {housing, names.frame("camera_link"), names.frame("camera_optical_frame")}
-        hand_links += [housing, names.frame("camera_link"), names.frame("camera_optical_frame")]
+        frame, camera_links = _wrist_camera(rng, tree, names, plan, arm.palm, palm_half, colours[2])
+        hand_links += camera_links
     tree.reshape(arm.palm, palm_shapes)
-    hfov, vfov = _fov(rng)
-    camera = Camera(camera_kind, frame, hfov, vfov)
+    camera = Camera(camera_kind, frame, *_fov(rng))
     # the park pose, searched for with the torso at its default
     pan_index = next(i for i, j in enumerate(tree.joints) if j.name == arm.joints[0])
-    subtree = _subtree(tree.joints, pan_index)
-    problem = _ParkProblem(subtree, {l.name: l for l in tree.links}, tuple(arm.joints), arm.up_sign,
-                           (round(mount_x, 4), mount_y, round(column_floor + column_z, 4)), frozenset(hand),
-                           tuple(obstacles), body.shape, body.radius, body.top + body.torso_default + 0.03)
-    park = _park(problem)
-    return ZooRobot(seed=seed, name=f"zoo_{names.prefix}", root_link=root, links=tuple(tree.links),
+    problem = _ParkProblem(_subtree(tree.joints, pan_index), {link.name: link for link in tree.links}, tuple(arm.joints),
+                           arm.up_sign, (mount_x, mount_y, round(column.floor_z + column.mount_z, 4)),
+                           frozenset({arm.palm, *hand_links}), tuple(obstacles), body.shape, body.radius,
+                           body.top + body.torso_default + 0.03)
+    return ZooRobot(seed=seed, name=f"zoo_{names.prefix}", root_link=tree.links[0].name, links=tuple(tree.links),
                     joints=tuple(tree.joints), base_shape=body.shape, base_radius=body.radius, base_top=body.top,
-                    torso_joint=torso_joint, torso_default=body.torso_default, shoulder_height=body.shoulder_height,
+                    torso_joint=column.joint, torso_default=body.torso_default, shoulder_height=body.shoulder_height,
                     arm_name=rng.choice(ARM_NAMES), arm_kinds=plan.kinds, arm_joints=tuple(arm.joints),
                     arm_links=tuple(arm.links + hand_links), tool_frame=tool, palm_link=arm.palm, gripper=gripper,
-                    camera=camera, head=head, park=park, weak=plan.weak)
+                    camera=camera, head=head, park=_park(problem), weak=plan.weak)
 
 
 def _subtree(joints: Sequence[Joint], first: int) -> tuple[Joint, ...]:
