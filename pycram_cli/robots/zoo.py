@@ -574,15 +574,18 @@ class _ParkProblem:
     base_shape: str
     base_radius: float
     floor_z: float  # every arm sphere stays above this (the base top plus the torso's default plus a margin)
+    sight: tuple[float, float] | None  # the camera (x, z) on the body; the parked arm stays below its view of the counter
 
 
 def _candidates(problem: _ParkProblem, steps: int = 13) -> np.ndarray:
-    """Joint values (N, arm joints) to try: the pan at 0 or ±90°, the rolls and slides at 0, the pitches on a grid."""
+    """Joint values (N, arm joints) to try: the pan at 0, ±45°, ±90° or ±135°, the rolls and slides at 0, the pitches
+    on a grid."""
     axes: list[np.ndarray] = []
     for name in problem.arm_joints:
         joint = next(j for j in problem.joints if j.name == name)
         if name == problem.arm_joints[0]:
-            axes.append(np.array([v for v in (0.0, math.pi / 2, -math.pi / 2) if joint.lower <= v <= joint.upper]))
+            pans = (0.0, math.pi / 4, -math.pi / 4, math.pi / 2, -math.pi / 2, 3 * math.pi / 4, -3 * math.pi / 4)
+            axes.append(np.array([v for v in pans if joint.lower <= v <= joint.upper]))
         elif name in problem.up_sign:
             axes.append(np.linspace(joint.lower, joint.upper, steps + 2)[1:-1])
         else:
@@ -632,12 +635,14 @@ class _Rating:
     outside: np.ndarray  # how far the arm reaches past the base's footprint (m)
     lowest: np.ndarray  # the lowest point of the arm past the pan link (m)
     highest: np.ndarray  # its highest point (m)
+    in_view: np.ndarray  # how far the arm reaches into the body camera's view of the counter (m)
 
 
 def _rate(problem: _ParkProblem, spheres: dict[str, tuple[np.ndarray, np.ndarray]], count: int) -> _Rating:
     first = problem.joints[0].child  # the pan link: fixed to the body, not checked against it
     bad, outside = np.zeros(count), np.zeros(count)
     lowest, highest = np.full(count, np.inf), np.full(count, -np.inf)
+    in_view = np.zeros(count)
     for name, (centres, radii) in spheres.items():
         bottom = centres[..., 2] - radii
         bad += np.maximum(problem.floor_z - bottom, 0.0).max(axis=1)
@@ -650,9 +655,25 @@ def _rate(problem: _ParkProblem, spheres: dict[str, tuple[np.ndarray, np.ndarray
             continue
         lowest = np.minimum(lowest, bottom.min(axis=1))
         highest = np.maximum(highest, (centres[..., 2] + radii).max(axis=1))
+        if problem.sight is not None:
+            in_view = np.maximum(in_view, _into_view(problem.sight, centres, radii))
         for obstacle in problem.obstacles:
             bad += np.maximum(0.02 - (_box_distance(centres, obstacle) - radii), 0.0).max(axis=1)
-    return _Rating(bad, outside, lowest, highest)
+    return _Rating(bad, outside, lowest, highest, in_view)
+
+
+#: what a camera on the body must see past the parked arm: things this high (m) this far in front of the base (m)
+VIEW_TARGET = (0.55, 0.85)
+
+
+def _into_view(sight: tuple[float, float], centres: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """How far (m) spheres in front of the camera reach above its line of sight down to VIEW_TARGET (x-z plane):
+    above it, the parked arm would hide the counter's front from the camera."""
+    (cx, cz), (tx, tz) = sight, VIEW_TARGET
+    x = centres[..., 0]
+    line = cz + (x - cx) * (tz - cz) / (tx - cx)
+    above = centres[..., 2] + radii + 0.02 - line
+    return np.where(x + radii > cx - 0.05, np.maximum(above, 0.0), 0.0).max(axis=1)
 
 
 def _self_clear(problem: _ParkProblem, spheres: dict[str, tuple[np.ndarray, np.ndarray]], rows: np.ndarray) -> np.ndarray:
@@ -671,13 +692,17 @@ def _self_clear(problem: _ParkProblem, spheres: dict[str, tuple[np.ndarray, np.n
 
 
 def _park(problem: _ParkProblem) -> tuple[float, ...]:
-    """A park pose: clear of the body and of itself, within the tightest footprint that allows one, its lowest point
-    as high as it goes up to PARK_HEIGHT (above the counters and what stands on them), its highest as low as can be."""
+    """A park pose: clear of the body and of itself; out of the body camera's view of the counter and within the
+    tightest footprint (up to 0.2 m past the base's edge) that allows one, else in its view, else farther out; its
+    lowest point as high as it goes up to PARK_HEIGHT (above the counters and what stands on them), its highest as
+    low as can be."""
     values = _candidates(problem)
     spheres = _link_spheres(problem, values)
     rating = _rate(problem, spheres, len(values))
-    for tolerance in (0.0, 0.05, 0.1, 0.2, 0.4, math.inf):
-        rows = np.flatnonzero((rating.body <= 0.0) & (rating.outside <= tolerance))
+    near = [(view, tolerance) for view in (0.0, math.inf) for tolerance in (0.0, 0.05, 0.1, 0.2)]
+    far = [(view, tolerance) for tolerance in (0.4, math.inf) for view in (0.0, math.inf)]
+    for view, tolerance in near + far:  # the view kept free, the arm within 0.2 m of the footprint, first
+        rows = np.flatnonzero((rating.body <= 0.0) & (rating.outside <= tolerance) & (rating.in_view <= view))
         rows = rows[np.lexsort((rating.highest[rows], -np.minimum(rating.lowest[rows], PARK_HEIGHT)))]
         for start in range(0, len(rows), 256):  # the highest first; self-collision is checked on few rows
             chunk = rows[start:start + 256]
@@ -850,13 +875,15 @@ def generate(seed: int) -> ZooRobot:
     obstacles = [_Obstacle((body.column_x - body.column_depth / 2, -body.column_width / 2, body.top),
                            (body.column_x + body.column_depth / 2, body.column_width / 2, column.floor_z + column.top))]
     # the camera on a pan/tilt head or fixed on the mast (a wrist camera comes with the hand)
-    head = None
+    head, sight = None, None
     if camera_kind == "head":
         head, frame, extra = _head(rng, tree, names, body, column, colours[2])
         obstacles.append(extra)
+        sight = (body.column_x + 0.05, column.floor_z + column.top + 0.09)
     elif camera_kind == "mast":
         frame, extra = _mast_camera(rng, tree, names, body, column, colours[2])
         obstacles.append(extra)
+        sight = (body.column_x + body.column_depth / 2 + 0.02, column.floor_z + column.top + 0.06)
     # the arm and its gripper
     arm = _arm(rng, tree, names, plan, column.link, (round(body.column_depth / 2 + 0.07, 4), mount_y, column.mount_z),
                colours[1:])
@@ -871,7 +898,7 @@ def generate(seed: int) -> ZooRobot:
     problem = _ParkProblem(_subtree(tree.joints, pan_index), {link.name: link for link in tree.links}, tuple(arm.joints),
                            arm.up_sign, (mount_x, mount_y, round(column.floor_z + column.mount_z, 4)),
                            frozenset({arm.palm, *hand_links}), tuple(obstacles), body.shape, body.radius,
-                           body.top + body.torso_default + 0.03)
+                           body.top + body.torso_default + 0.03, sight)
     return ZooRobot(seed=seed, name=f"zoo_{names.prefix}", root_link=tree.links[0].name, links=tuple(tree.links),
                     joints=tuple(tree.joints), base_shape=body.shape, base_radius=body.radius, base_top=body.top,
                     torso_joint=column.joint, torso_default=body.torso_default, shoulder_height=body.shoulder_height,

@@ -174,7 +174,7 @@ def test_parked_the_arm_is_clear_of_the_body_of_itself_and_above_the_base(zoo, l
     lowest = min(body.aabb(link)[0][2] for link in arm)
     assert lowest > robot.base_top + robot.torso_default  # also with the torso all the way down
     reach = max(np.abs(body.aabb(link)[k][:2]).max() for link in arm for k in (0, 1))
-    assert reach <= robot.base_radius + 0.12  # tucked over the base (at most 0.1 m past its edge, and the margin)
+    assert reach <= robot.base_radius + 0.22  # tucked over the base (at most 0.2 m past its edge, and the margin)
 
 
 @pytest.mark.parametrize("seed", SEEDS)
