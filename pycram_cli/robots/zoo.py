@@ -163,6 +163,7 @@ class ZooRobot:
     grasps: dict[str, tuple[float, float, float, float]] = field(default_factory=lambda: dict(GRASPS))
 
     def joint(self, name: str) -> Joint:
+        """The model's joint of that name."""
         return next(j for j in self.joints if j.name == name)
 
 
@@ -221,6 +222,7 @@ class Names:
 
 
 def _names(rng: random.Random, seed: int) -> Names:
+    """A prefix with the seed in it (`zr3`), a suffix style and a vocabulary."""
     letters = rng.choice(("zr", "zq", "zk", "zv", "zx"))
     joint_suffix, link_suffix = rng.choice((("_joint", "_link"), ("_j", ""), ("", "_lk")))
     return Names(f"{letters}{seed}", joint_suffix, link_suffix, rng.choice(VOCABULARIES))
@@ -256,6 +258,7 @@ def box(lo: Sequence[float], hi: Sequence[float], rgba=COLOURS[0]) -> Shape:
 
 
 def tube_x(radius: float, x0: float, x1: float, rgba=COLOURS[0]) -> Shape:
+    """A cylinder along the link's x axis from x0 to x1."""
     return Shape("cylinder", (radius, round(x1 - x0, 6)), (round((x0 + x1) / 2, 6), 0.0, 0.0), ALONG_X, rgba)
 
 
@@ -276,6 +279,7 @@ class _Body:
 
 
 def _body(rng: random.Random) -> _Body:
+    """The base's and column's sizes; the shoulder stays at least 0.3 m above the base's top at every torso height."""
     shape = rng.choice(("box", "cylinder"))
     radius = _r(rng, 0.2, 0.35)
     top = _r(rng, 0.22, 0.38)
@@ -300,6 +304,8 @@ def _body(rng: random.Random) -> _Body:
 
 @dataclass(frozen=True)
 class _ArmPlan:
+    """The arm's seeded layout and sizes, before it is built."""
+
     kinds: tuple[str, ...]  # per joint: pan, pitch1..3, roll_upper, roll_fore, roll_wrist, prism_upper, prism_fore
     upper: float  # shoulder pitch -> elbow pitch (m)
     fore: float  # elbow pitch -> wrist pitch (m)
@@ -350,7 +356,6 @@ def _pitch_limits(rng: random.Random, kind: str) -> tuple[float, float]:
     if kind == "pitch2":
         return -_r(rng, 2.4, 2.7), _r(rng, 2.4, 2.7)
     return -_r(rng, 2.0, 2.3), _r(rng, 2.0, 2.3)
-
 
 
 def _segments(plan: _ArmPlan, fractions: dict[str, float]) -> list[float]:
@@ -417,6 +422,8 @@ def _joint_axis(rng: random.Random, kind: str, extension: float) -> tuple[Vec3, 
 
 @dataclass
 class _ArmBuild:
+    """The arm as built: its joints and links, shoulder to palm."""
+
     joints: list[str] = field(default_factory=list)
     links: list[str] = field(default_factory=list)
     up_sign: dict[str, float] = field(default_factory=dict)  # pitch joint -> +1 when positive values raise the link
@@ -455,10 +462,20 @@ def _arm(rng: random.Random, tree: _Tree, names: Names, plan: _ArmPlan, parent: 
 # -- the gripper -------------------------------------------------------------------------------------------------
 
 
-def _gripper(rng: random.Random, tree: _Tree, names: Names, plan: _ArmPlan, palm: str,
-             rgba) -> tuple[Gripper, str, list[str], tuple[Shape, ...], float]:
-    """Fingers on the palm and the tool frame between the pads; returns the gripper, tool frame, its links,
-    the palm's shapes and the palm's half-height (for a wrist camera)."""
+@dataclass(frozen=True)
+class _Hand:
+    """The gripper as built: what the description says of it, and the palm's shapes (the palm link exists already)."""
+
+    gripper: Gripper
+    tool: str  # the tool frame, between the finger pads
+    links: tuple[str, ...]  # the fingers and the tool frame
+    palm_shapes: tuple[Shape, ...]
+    palm_half_height: float  # where a wrist camera sits
+
+
+def _gripper(rng: random.Random, tree: _Tree, names: Names, plan: _ArmPlan, palm: str, rgba) -> _Hand:
+    """Fingers on the palm (two prismatic, one prismatic against a fixed pad, or two revolute claws), spread along
+    the tool's y axis, and the tool frame between the pads."""
     roll = random.Random(rng.random())
     kind = roll.choices(GRIPPER_KINDS, weights=(0.5, 0.3, 0.2))[0]
     width = _r(rng, 0.08, 0.12)
@@ -502,7 +519,7 @@ def _gripper(rng: random.Random, tree: _Tree, names: Names, plan: _ArmPlan, palm
     tool = names.frame(rng.choice(("tool_frame", "tcp", "grasp_point")))
     tree.add(Joint(f"{tool}_joint", "fixed", palm, tool, (round(x0 + length / 2, 4), 0.0, 0.0)), Link(tool))
     links.append(tool)
-    return gripper, tool, links, tuple(palm_shapes), half_height
+    return _Hand(gripper, tool, tuple(links), tuple(palm_shapes), half_height)
 
 
 # -- kinematics and a sphere cover, for the park search --------------------------------------------------------
@@ -887,11 +904,12 @@ def generate(seed: int) -> ZooRobot:
     # the arm and its gripper
     arm = _arm(rng, tree, names, plan, column.link, (round(body.column_depth / 2 + 0.07, 4), mount_y, column.mount_z),
                colours[1:])
-    gripper, tool, hand_links, palm_shapes, palm_half = _gripper(rng, tree, names, plan, arm.palm, colours[0])
+    hand = _gripper(rng, tree, names, plan, arm.palm, colours[0])
+    hand_links = list(hand.links)
     if camera_kind == "wrist":
-        frame, camera_links = _wrist_camera(rng, tree, names, plan, arm.palm, palm_half, colours[2])
+        frame, camera_links = _wrist_camera(rng, tree, names, plan, arm.palm, hand.palm_half_height, colours[2])
         hand_links += camera_links
-    tree.reshape(arm.palm, palm_shapes)
+    tree.reshape(arm.palm, hand.palm_shapes)
     camera = Camera(camera_kind, frame, *_fov(rng))
     # the park pose, searched for with the torso at its default
     pan_index = next(i for i, j in enumerate(tree.joints) if j.name == arm.joints[0])
@@ -903,7 +921,7 @@ def generate(seed: int) -> ZooRobot:
                     joints=tuple(tree.joints), base_shape=body.shape, base_radius=body.radius, base_top=body.top,
                     torso_joint=column.joint, torso_default=body.torso_default, shoulder_height=body.shoulder_height,
                     arm_name=rng.choice(ARM_NAMES), arm_kinds=plan.kinds, arm_joints=tuple(arm.joints),
-                    arm_links=tuple(arm.links + hand_links), tool_frame=tool, palm_link=arm.palm, gripper=gripper,
+                    arm_links=tuple(arm.links + hand_links), tool_frame=hand.tool, palm_link=arm.palm, gripper=hand.gripper,
                     camera=camera, head=head, park=_park(problem), weak=plan.weak)
 
 
