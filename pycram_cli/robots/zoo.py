@@ -19,9 +19,10 @@ Why
 
 Everything is deterministic: one seed gives byte-identical files (numbers are written with a
 fixed precision). Only primitive shapes are used, so no meshes are needed. The arm's `park`
-pose is found by a search of the arm's pitch joints against a sphere cover of the shapes, so
-that the arm is tucked over the base, above its top at every torso height and clear of the
-body and of itself.
+pose is found by a search of the arm's pan and pitch joints against a sphere cover of the
+shapes, so that the arm is tucked over the base (or at most 0.2 m beside it), above its top at
+every torso height, clear of the body and of itself and, where it can be, out of the body
+camera's view of the counter in front.
 
     python -m pycram_cli.robots.zoo 0 1 2 --out /tmp/zoo
 """
