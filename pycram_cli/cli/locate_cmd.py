@@ -123,7 +123,7 @@ def locate_cmd(ctx: click.Context, goal: str, target: str, arm: str | None, gras
     if as_json:
         console.emit_json(jsonable({
             "location": spec.to_json(), "world": str(path), "status": status,
-            "found": [f.to_json() for f in found], "candidates": len(resolution.candidates),
+            "found": [f.to_json() for f in found], "candidates": len(resolution.candidates) if resolution.prepared else 0,
             "tried": resolution.cursor, "ruled_out": dict(sorted(counts.items())),
             "failure": failure.message if failure is not None and not found else None,
             **({"plot": plot} if plot else {})}, nonfinite=None))

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import click
 
-from ..errors import InputError, InputErrors, Location, as_list
+from ..designators import process_module_problems
+from ..errors import InputError, InputErrors, Location, as_list, raise_if_any
 from ..paths import find_plan, find_world
 from ..scenario import prepare
 from ..scenario.variations import SUFFIX, parse_variations
@@ -97,7 +98,10 @@ def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, 
             kind = kind_of(path)
             kinds.append(kind)
             if kind == "world":
-                warn_missing_meshes(parse_world(path))
+                world = parse_world(path)
+                if world.robot_description is not None:
+                    raise_if_any(process_module_problems(world.robot_description))
+                warn_missing_meshes(world)
             elif kind == "variation":
                 check_variations(path, world_file, params)
             else:

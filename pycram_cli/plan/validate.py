@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
-from ..designators import DESIGNATORS
+from ..designators import DESIGNATORS, process_module_problems
 from ..failures import ALIASES, FAILURES, failure_class
 from ..kinds import KINDS, Robots
 from ..reasoning import QUERIES
@@ -411,6 +411,8 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
         facts = WorldFacts.of_world(world)
     validator = Validator(plan, facts, values)
     validator.errors.extend(errors or [])
+    if facts is not None and facts.description is not None:
+        validator.errors.extend(process_module_problems(facts.description))
     if check_world_file and plan.world is not None:
         try:
             find_world(plan.world, plan.path.parent, plan.world_where)
