@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 from rich.live import Live
-from rich.markup import escape
+from rich.text import Text
 
 from .. import interrupts
 from ..files import check_writable
@@ -63,7 +63,7 @@ class LiveView:
         pass
 
     def log(self, node: TraceNode, message: str) -> None:
-        self.live.console.print(f"[cyan]log[/] [dim]{escape(node.path)}[/]: {escape(message)}")
+        self.live.console.print(Text.assemble(("log", "cyan"), " ", (node.path, "dim"), ": ", message))
 
 
 class Paced:
@@ -241,6 +241,6 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = 
         for nested in failure.get("failures") or []:
             message += f"\n  - {nested.get('type')} at {nested.get('path')}: {nested.get('message')}"
         if console.out.is_terminal:
-            console.out.print(f"[bold red]✗[/] {escape(message)}")
+            console.out.print(Text.assemble(("✗", "bold red"), " ", message))
         else:
             console.plain(message)
