@@ -18,7 +18,7 @@ from ..scenario.variations import beside, read_variations
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
-from .files import REPORT_FORMATS, check_outputs, write_output, write_report
+from .files import REPORT_FORMATS, check_outputs, distinct_outputs, write_output, write_report
 from .gui_view import GuiView
 from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
                       wait_for_window)
@@ -142,6 +142,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
                          Location("--camera"))
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
                    (report_file, REPORT_FORMATS, "report")])
+    distinct_outputs([(trace_file, "trace"), (render_file, "image"), (report_file, "report")])
     for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report")):
         if output is not None:
             check_writable(output, key)  # a pipe, a device, no permission: before anything runs
