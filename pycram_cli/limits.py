@@ -50,6 +50,9 @@ MAX_RETRIES = 1_000_000_000
 
 #: runs of one sweep: `-n` scenarios, times the `--compare` alternatives
 MAX_SWEEP_RUNS = 100_000
+#: a sweep's results.jsonl read back by `sweep --resume`, at most this many bytes (sweep.json: MAX_SWEEP_META_BYTES)
+MAX_SWEEP_RESULTS_BYTES = 256 * 1024 * 1024
+MAX_SWEEP_META_BYTES = 16 * 1024 * 1024
 #: `sweep --timeout` at most this many seconds per scenario (one day)
 MAX_SCENARIO_TIMEOUT = 86_400.0
 #: `sweep --workers` at most this many worker processes or Ray actors
