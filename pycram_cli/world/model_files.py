@@ -121,8 +121,10 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     return target
 
 
+@functools.lru_cache(maxsize=256)
 def _package_name(folder: Path) -> str | None:
-    """The <name> in a folder's package.xml, or None (no manifest, or one that cannot be read)."""
+    """The <name> in a folder's package.xml, or None (no manifest, or one that cannot be read); read once per
+    folder, as every package:// URI of a model looks at the same folders."""
     manifest = folder / "package.xml"
     try:
         if not manifest.is_file():

@@ -123,3 +123,15 @@ def test_a_mesh_with_xml_metacharacters_in_its_name_loads(world, tmp_path, name)
     thing = Object("thing", "box", mesh)
     lo, hi = thing.get_aabb()
     assert hi[0] - lo[0] > 0.01
+
+
+def test_a_urdf_with_xml_metacharacters_in_its_own_name_loads(world, tmp_path):
+    folder = tmp_path / 'a "b" <c> & d'
+    folder.mkdir()
+    shutil.copy(DATA / "cube.obj", folder / "cube.obj")
+    path = urdf(folder, '<link name="a"><visual><geometry><mesh filename="cube.obj"/></geometry></visual>'
+                        '<collision><geometry><mesh filename="cube.obj"/></geometry></collision></link>',
+                name="m'\"<x>&.urdf")
+    thing = Object("thing", "box", path)
+    lo, hi = thing.get_aabb()
+    assert hi[0] - lo[0] > 0.01
