@@ -261,11 +261,16 @@ class Validator:
     def objects(self, head: str, slots: LMap) -> None:
         """With a world: the names in designator slots (objects, their links and joints) must be in it."""
         spec = DESIGNATORS.get(head)
-        if spec is not None and self.facts is not None and not self._robot_checked:
-            self._robot_checked = True  # said once, at the first designator
-            self._robot_for(head, slots)
+        if spec is not None:
+            self.need_robot(head, slots)
         if spec is not None:
             self._names(slots, [(s.name, s.kind, s.of) for s in spec.slots])
+
+    def need_robot(self, head: str, slots: LMap) -> None:
+        """With a world: designators and actions need a robot with a description (said once, at the first)."""
+        if self.facts is not None and not self._robot_checked:
+            self._robot_checked = True
+            self._robot_for(head, slots)
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""

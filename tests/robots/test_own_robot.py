@@ -187,3 +187,13 @@ def test_locate_for_a_robot_without_arms_says_it_cannot(kuka_dir: Path):
         assert result.exit_code == 2, result.output
         assert "Traceback" not in result.output and "internal error" not in result.stderr
         assert "it has no arms" in result.stderr
+
+
+@pytest.mark.parametrize("step", ["action: park-arms", "action: pick-up\n    object: cube"])
+def test_an_action_for_a_robot_without_a_description_is_refused_at_validate(tmp_path: Path, step: str):
+    (tmp_path / "world.yaml").write_text(WORLD.replace(", description: kuka.yaml", "") % KUKA)
+    plan = tmp_path / "plan.yaml"
+    plan.write_text(f"world: world.yaml\nbody:\n  - {step}\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2, result.output
+    assert f"{plan}:3:" in result.stderr and "no robot description for 'kuka' (model.urdf)" in result.stderr
