@@ -19,6 +19,7 @@ import math
 import os
 import re
 import xml.etree.ElementTree as ET
+from xml.sax.saxutils import escape as xml_escape
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -75,7 +76,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     rgba = tuple(color) if color is not None else (0.8, 0.8, 0.8, 1.0)
     stat = mesh_path.stat()
     key = _digest(str(mesh_path), stat.st_size, stat.st_mtime_ns, rgba, mass, 3, PIECES_VERSION)
-    name = re.sub(r"[^A-Za-z0-9_.+-]", "_", mesh_path.stem) or "mesh"  # written into XML and a file name
+    name = _safe_stem(mesh_path)  # written into XML and a file name
     target = cache_dir() / "meshes" / f"{name}-{key}.urdf"
     if target.exists():
         return target
@@ -103,7 +104,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     </inertial>
     <visual>
       <geometry>
-        <mesh filename="{mesh_path}" scale="1 1 1"/>
+        <mesh filename="{_attribute(mesh_path)}" scale="1 1 1"/>
       </geometry>
       <material name="{name}_color">
         <color rgba="{rgba[0]} {rgba[1]} {rgba[2]} {rgba[3] if len(rgba) > 3 else 1.0}"/>
@@ -111,7 +112,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     </visual>
     <collision>
       <geometry>
-        <mesh filename="{collision_path}" scale="1 1 1"/>
+        <mesh filename="{_attribute(collision_path)}" scale="1 1 1"/>
       </geometry>
     </collision>
   </link>
@@ -204,7 +205,8 @@ def safe_path(path: Path) -> Path:
     text = str(path)
     if _SAFE_PATH.fullmatch(text):
         return path
-    link = cache_dir() / "links" / f"{_digest(os.fsencode(path))}{path.suffix.lower() if _SAFE_PATH.fullmatch(path.suffix) else ''}"
+    suffix = path.suffix.lower() if _SAFE_PATH.fullmatch(path.suffix) else ""
+    link = cache_dir() / "links" / f"{_digest(os.fsencode(path))}{suffix}"
     if not link.is_symlink() or os.readlink(link) != text:
         link.parent.mkdir(parents=True, exist_ok=True)
         temporary = link.with_name(f"{link.name}.{os.getpid()}.tmp")
@@ -212,6 +214,16 @@ def safe_path(path: Path) -> Path:
         temporary.symlink_to(path)
         os.replace(temporary, link)
     return link
+
+
+def _safe_stem(path: Path) -> str:
+    """A file's stem with every character that would need escaping replaced (for names pycram writes)."""
+    return re.sub(r"[^A-Za-z0-9_.+-]", "_", path.stem) or "model"
+
+
+def _attribute(path: Path) -> str:
+    """A path as the value of an XML attribute (the cache folder itself may have any name)."""
+    return xml_escape(str(path), {'"': "&quot;"})
 
 
 @dataclass
@@ -247,7 +259,7 @@ def prepare_urdf(urdf: Path) -> PreparedUrdf:
                 parent.remove(element)
         else:
             mesh.set("filename", str(safe_path(resolved.absolute())))
-    target = cache_dir() / "urdf" / f"{_digest(urdf.stem)}-{key}.urdf"
+    target = cache_dir() / "urdf" / f"{_safe_stem(urdf)}-{key}.urdf"
     ET.indent(tree)
     write_atomic(target, ET.tostring(tree, encoding="unicode"))
     return PreparedUrdf(target, missing)
