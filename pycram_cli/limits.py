@@ -31,6 +31,13 @@ MAX_STEP_DEPTH = 100
 MAX_TRACE_NODES = 50_000
 #: branch threads one run may have alive at once
 MAX_THREADS = 256
+#: items (list elements, mapping entries and single values, a shared part counted each time it appears) in one
+#: value a step computes at run time (all the values of one `set` together)
+MAX_VALUE_ITEMS = 100_000
+#: characters of text (strings and mapping keys) in one value a step computes at run time
+MAX_VALUE_CHARS = 1_000_000
+#: lists and mappings nested inside each other in one value a step computes at run time
+MAX_VALUE_NESTING = MAX_NESTING
 #: attempts of a `retry` kept in the trace in full, at the start and at the end; those between are summarised
 RETRY_KEPT = 3
 
@@ -43,6 +50,9 @@ MAX_RETRIES = 1_000_000_000
 
 #: runs of one sweep: `-n` scenarios, times the `--compare` alternatives
 MAX_SWEEP_RUNS = 100_000
+#: a sweep's results.jsonl read back by `sweep --resume`, at most this many bytes (sweep.json: MAX_SWEEP_META_BYTES)
+MAX_SWEEP_RESULTS_BYTES = 256 * 1024 * 1024
+MAX_SWEEP_META_BYTES = 16 * 1024 * 1024
 #: `sweep --timeout` at most this many seconds per scenario (one day)
 MAX_SCENARIO_TIMEOUT = 86_400.0
 #: `sweep --workers` at most this many worker processes or Ray actors

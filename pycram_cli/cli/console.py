@@ -12,6 +12,7 @@ from typing import Any, Iterable, Sequence
 
 from rich.console import Console
 from rich.table import Table
+from rich.text import Text
 
 from ..errors import InputError
 from ..jsonable import jsonable
@@ -39,28 +40,28 @@ def info(message: str) -> None:
     if _quiet:
         return
     if err.is_terminal:
-        err.print(f"[cyan]info[/]: {_escape(message)}")
+        err.print(_labelled("info", "cyan", message))
     else:
         err.print(f"info: {message}", markup=False)
 
 
 def warning(message: str) -> None:
     if err.is_terminal:
-        err.print(f"[yellow]warning[/]: {_escape(message)}")
+        err.print(_labelled("warning", "yellow", message))
     else:
         err.print(f"warning: {message}", markup=False)
 
 
 def error(message: str) -> None:
     if err.is_terminal:
-        err.print(f"[bold red]error[/]: {_escape(message)}")
+        err.print(_labelled("error", "bold red", message))
     else:
         err.print(f"error: {message}", markup=False)
 
 
 def success(message: str) -> None:
     if out.is_terminal:
-        out.print(f"[bold green]✓[/] {_escape(message)}")
+        out.print(_labelled("✓", "bold green", message, ""))
     else:
         out.print(message, markup=False)
 
@@ -73,12 +74,12 @@ def input_errors(errors: Sequence[InputError]) -> None:
 
 
 def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
-    """A table of plain text: every cell is escaped, so `[x, y, z]` is shown, not taken for markup."""
-    grid = Table(title=_escape(title) if title else None, show_lines=False, header_style="bold")
+    """A table of plain text: every cell is plain Text, so `[x, y, z]` is shown, not taken for markup."""
+    grid = Table(title=Text(title) if title else None, show_lines=False, header_style="bold")
     for column in columns:
-        grid.add_column(_escape(column), overflow="fold")
+        grid.add_column(Text(column), overflow="fold")
     for row in rows:
-        grid.add_row(*(_escape(str(c)) for c in row))
+        grid.add_row(*(Text(str(c)) for c in row))
     out.print(grid)
 
 
@@ -99,7 +100,7 @@ def plain(text: str) -> None:
     out.print(text, markup=False)
 
 
-def _escape(text: str) -> str:
-    from rich.markup import escape
-
-    return escape(text)
+def _labelled(label: str, style: str, message: str, colon: str = ":") -> Text:
+    """`label: message` with the label styled and the message as plain text (never read as markup: a file named
+    `[/].yaml`, a value `[bold]` or a trailing backslash is shown as it is)."""
+    return Text.assemble((label, style), f"{colon} ", message)

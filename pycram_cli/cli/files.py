@@ -6,16 +6,21 @@ reported at once (exit 2, the file named) instead of after a whole plan has run.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any, Iterable
 
 from .. import interrupts
 from ..errors import InputError, Location
 from ..report import REPORT_FORMATS, build_report
-from ..files import reason, write_atomic
+from ..files import check_writable, reason, write_atomic
 from . import console
 
-__all__ = ["REPORT_FORMATS", "check_output", "check_outputs", "write_output", "write_report"]
+__all__ = ["PLOT_FORMATS", "REPORT_FORMATS", "check_output", "check_outputs", "check_plot", "distinct_outputs", "same_file",
+           "write_output", "write_report"]
+
+#: the maps `locate --plot` and `sweep --plot` draw
+PLOT_FORMATS = {".png": "PNG"}
 
 
 def check_output(path: Path, kinds: dict[str, str] | None = None, what: str = "file") -> None:
@@ -45,6 +50,34 @@ def check_outputs(items: Iterable[tuple[Path | None, dict[str, str] | None, str]
     for path, kinds, what in items:
         if path is not None:
             check_output(path, kinds, what)
+
+
+def check_plot(path: Path | None) -> None:
+    """`--plot FILE` of `locate` and `sweep`, checked like every other output before any work: a PNG file whose
+    folder exists (a missing folder is refused, never made) and that can be written."""
+    if path is not None:
+        check_output(path, PLOT_FORMATS, "plot")
+        check_writable(path, "plot")
+
+
+def same_file(first: Path, second: Path) -> bool:
+    """Whether two paths name one file: the same after links and `.`/`..` are followed, or one file twice."""
+    try:
+        if os.path.realpath(first) == os.path.realpath(second):
+            return True
+        return first.exists() and second.exists() and os.path.samefile(first, second)
+    except (OSError, ValueError):
+        return False
+
+
+def distinct_outputs(items: Iterable[tuple[Path | None, str]]) -> None:
+    """InputError when two of the outputs given (path, what) name the same file: one would silently replace the other."""
+    given = [(Path(path), what) for path, what in items if path is not None]
+    for index, (path, what) in enumerate(given):
+        for earlier, earlier_what in given[:index]:
+            if same_file(earlier, path):
+                raise InputError(f"the {earlier_what} and the {what} name the same file: give each its own",
+                                 Location(str(path)))
 
 
 def write_output(path: Path, data: bytes | str, what: str) -> None:

@@ -27,6 +27,7 @@ from ..locations.plot import COLOURS, draw
 from ..world.camera import write_png
 from . import console
 from .complete import link_names, object_names
+from .files import check_plot
 from .options import open_world, world_option
 
 EXIT_FAILED = 1
@@ -105,6 +106,7 @@ def locate_cmd(ctx: click.Context, goal: str, target: str, arm: str | None, gras
 
     Exit status: 0 found, 1 cannot be satisfied, 2 bad input.
     """
+    check_plot(Path(plot) if plot is not None else None)
     location = _location(goal, target, arm, grasp, visible_for, reachable_for, for_object, near)
     found: list[Any] = []
     failure: LocationFailure | None = None
@@ -123,7 +125,7 @@ def locate_cmd(ctx: click.Context, goal: str, target: str, arm: str | None, gras
     if as_json:
         console.emit_json(jsonable({
             "location": spec.to_json(), "world": str(path), "status": status,
-            "found": [f.to_json() for f in found], "candidates": len(resolution.candidates),
+            "found": [f.to_json() for f in found], "candidates": len(resolution.candidates) if resolution.prepared else 0,
             "tried": resolution.cursor, "ruled_out": dict(sorted(counts.items())),
             "failure": failure.message if failure is not None and not found else None,
             **({"plot": plot} if plot else {})}, nonfinite=None))

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 from rich.live import Live
-from rich.markup import escape
+from rich.text import Text
 
 from .. import interrupts
 from ..files import check_writable
@@ -18,7 +18,7 @@ from ..scenario.variations import beside, read_variations
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
-from .files import REPORT_FORMATS, check_outputs, write_output, write_report
+from .files import REPORT_FORMATS, check_outputs, distinct_outputs, write_output, write_report
 from .gui_view import GuiView
 from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
                       wait_for_window)
@@ -63,7 +63,7 @@ class LiveView:
         pass
 
     def log(self, node: TraceNode, message: str) -> None:
-        self.live.console.print(f"[cyan]log[/] [dim]{escape(node.path)}[/]: {escape(message)}")
+        self.live.console.print(Text.assemble(("log", "cyan"), " ", (node.path, "dim"), ": ", message))
 
 
 class Paced:
@@ -142,6 +142,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
                          Location("--camera"))
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
                    (report_file, REPORT_FORMATS, "report")])
+    distinct_outputs([(trace_file, "trace"), (render_file, "image"), (report_file, "report")])
     for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report")):
         if output is not None:
             check_writable(output, key)  # a pipe, a device, no permission: before anything runs
@@ -241,6 +242,6 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = 
         for nested in failure.get("failures") or []:
             message += f"\n  - {nested.get('type')} at {nested.get('path')}: {nested.get('message')}"
         if console.out.is_terminal:
-            console.out.print(f"[bold red]✗[/] {escape(message)}")
+            console.out.print(Text.assemble(("✗", "bold red"), " ", message))
         else:
             console.plain(message)

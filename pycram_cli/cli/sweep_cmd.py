@@ -13,6 +13,7 @@ from ..sweep import BACKENDS, PreparedSweep, SweepSettings, prepare_sweep, run_s
 from ..sweep.plot import plot_outcomes
 from . import console
 from .complete import plan_names, world_names
+from .files import check_plot
 from .options import json_option
 
 EXIT_INTERRUPTED = 130
@@ -81,6 +82,7 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     whatever the number of workers; `pycram run PLAN --vary VARY.yaml --scenario SEED` replays one.
     Exit code 0 when the sweep ran (whatever its success rate), 2 for invalid input.
     """
+    check_plot(plot_file)
     out = out_dir if out_dir is not None else Path(f"sweep-{Path(plan_file).stem}")
     settings = SweepSettings(plan_file, vary_file, world_file, count, seed, workers, backend, address, out, compare,
                              timeout, resume)

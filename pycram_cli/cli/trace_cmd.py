@@ -10,11 +10,12 @@ import click
 from rich.markup import escape
 from rich.tree import Tree
 
+from ..errors import InputError, Location
 from ..plan import trace as traces
 from ..report import REPORT_FORMATS, report_world
 from . import console
 from .complete import world_names
-from .files import check_output, write_report
+from .files import check_output, same_file, write_report
 from .options import Number
 
 STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "recovered": ("↺", "yellow"),
@@ -186,6 +187,9 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
     """Print the trace in FILE as a tree (as the live view of `pycram run` shows it), then the world's final state."""
     if report_file is not None:
         check_output(report_file, REPORT_FORMATS, "report")
+        if same_file(Path(file), report_file):
+            raise InputError("the report would replace the trace it is made from: give it another name",
+                             Location(str(report_file)))
     data = traces.load(file, replay=report_file is not None)
     timing = not no_timing
     status = data.get("status", "?")

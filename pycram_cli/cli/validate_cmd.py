@@ -12,12 +12,13 @@ from pathlib import Path
 
 import click
 
-from ..errors import InputError, InputErrors, Location, as_list
+from ..designators import process_module_problems
+from ..errors import InputError, InputErrors, Location, as_list, raise_if_any
 from ..paths import find_plan, find_world
 from ..scenario import prepare
 from ..scenario.variations import SUFFIX, parse_variations
-from ..worldfile.spec import parse_world
 from ..worldfile.loader import load_spec
+from ..worldfile.spec import WorldSpec, parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
 from .complete import plan_or_world_names, world_names
@@ -56,6 +57,15 @@ def kind_of(path: Path) -> str:
                      Location(str(path), 1, 1))
 
 
+def warn_missing_meshes(world: WorldSpec) -> None:
+    """A warning for each mesh file a world's models name but that is not found: the run loads them without it."""
+    for spec in world.objects:
+        info = world.models.get(spec.name)
+        for uri in info.missing if info is not None else ():
+            console.warning(f"{spec.where}: object '{spec.name}': mesh file not found, loaded "
+                            f"without it: {uri} (in {spec.file})")
+
+
 def check_variations(path: Path, world_file: str | None, params: tuple[str, ...] = ()) -> None:
     """A variation file against its plan and world."""
     data = load_yaml(path)
@@ -89,11 +99,15 @@ def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, 
             kind = kind_of(path)
             kinds.append(kind)
             if kind == "world":
-                load_spec(parse_world(path)).exit()  # loaded too: what starts inside what is found here, not at run
+                world = parse_world(path)
+                if world.robot_description is not None:
+                    raise_if_any(process_module_problems(world.robot_description))
+                warn_missing_meshes(world)
+                load_spec(world).exit()  # loaded too: what starts inside what is found here, not at run
             elif kind == "variation":
                 check_variations(path, world_file, params)
             else:
-                prepare(path, world_file, assignments=params)
+                warn_missing_meshes(prepare(path, world_file, assignments=params).world)
             console.success(f"{path}: valid {kind} file")
         except (InputError, InputErrors) as exc:
             problems.extend(as_list(exc))

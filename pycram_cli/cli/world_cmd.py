@@ -6,7 +6,7 @@ from pathlib import Path
 from typing import Any
 
 import click
-from rich.markup import escape
+from rich.text import Text
 
 from ..world import Object
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, movable_objects, render, robot_camera
@@ -84,8 +84,8 @@ def _print_world(path: Path, robot: str | None, rows: list[dict[str, Any]]) -> N
     for row in rows:
         console.plain("")
         kind = row["type"] + (", fixed" if row["fixed"] else "")
-        console.out.print(f"[bold]{escape(row['name'])}[/]  {escape(kind)}" if console.out.is_terminal
-                          else f"{row['name']}  {kind}", markup=console.out.is_terminal, highlight=False)
+        console.out.print(Text.assemble((row["name"], "bold" if console.out.is_terminal else ""), f"  {kind}"),
+                          highlight=False)
         for label, text in _fields(row):
             console.plain(_fold(f"  {label:9} {text}", width, " " * 12))
         joints = row["joints"]

@@ -8,10 +8,10 @@ validation, the scheduler's resources, `pycram designators` and `perform` are ge
 # the design's eleven designators, declared in this order (pycram designators lists them so), then ours
 from . import navigation, manipulation, perception, arms, torso  # noqa: F401,I001
 from .declaration import (ANY_ARM, DESIGNATORS, Designator, Slot, SlotProblem, check_designator, declare_designator,
-                          drives, drives_arm, robot_resources)
+                          drives, drives_arm, process_module_problems, robot_resources)
 from .performing import perform
 from .result import Performed
 from . import actions  # noqa: E402,I001  (action designators, one level up: their own registry, ACTIONS)
 
 __all__ = ["ANY_ARM", "DESIGNATORS", "Designator", "Performed", "Slot", "SlotProblem", "check_designator",
-           "declare_designator", "drives", "drives_arm", "perform", "robot_resources"]
+           "declare_designator", "drives", "drives_arm", "perform", "process_module_problems", "robot_resources"]

@@ -47,7 +47,7 @@ def _arms_moved(slots: Mapping[str, Any]) -> frozenset[str]:
 
 
 def _check_design_slots(slots: Mapping[str, Any], robots: Robots) -> list[SlotProblem]:
-    """`left-arm` and `right-arm` name arms too: the robot must have them."""
+    """`left-arm` and `right-arm` name arms too: the robot must have them, with as many joints as values given."""
     problems = []
     for key in ("left-arm", "right-arm"):
         if key not in slots:
@@ -57,6 +57,10 @@ def _check_design_slots(slots: Mapping[str, Any], robots: Robots) -> list[SlotPr
         if problem:
             problems.append(SlotProblem(f"slot '{key}': {problem}", key, "use arms: {ARM: CONFIGURATION} for the "
                                         "robot's own arm names" if "has no arm" in problem else None))
+            continue
+        problem = KINDS["arm-configs"].check({arm: slots[key]}, robots)  # joint values counted against the arm
+        if problem:
+            problems.append(SlotProblem(f"slot '{key}': {problem.split(': ', 1)[1]}", key))
     return problems
 
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
-from ..errors import did_you_mean
+from ..errors import InputError, did_you_mean
 from ..kinds import KINDS, NOTHING_KNOWN, Robots
 
 if TYPE_CHECKING:
@@ -189,3 +189,15 @@ def slot_problems(spec: Any, what: str, slots: Mapping[str, Any], skip: Callable
     if spec.check is not None:
         problems.extend(spec.check(for_check, robots))
     return problems
+
+
+def process_module_problems(desc: "RobotDescription") -> list[InputError]:
+    """A description's `process_modules` keys that name no designator (each at its place, with the closest name)."""
+    errors = []
+    for designator in desc.process_modules:
+        if designator not in DESIGNATORS:
+            key = f"process_modules.{designator}"
+            errors.append(InputError(f"no designator '{designator}'", desc.where(key), key=key,
+                                     suggestion=did_you_mean(designator, DESIGNATORS)
+                                     or f"designators: {', '.join(DESIGNATORS)}"))
+    return errors

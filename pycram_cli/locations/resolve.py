@@ -364,7 +364,9 @@ class _Resolution:
         raise NotImplementedError
 
     def counts(self) -> Counter[str]:
-        """Why candidates were ruled out so far (those never tested count as `not tried`)."""
+        """Why candidates were ruled out so far (those never tested count as `not tried`; none before there are any)."""
+        if not self._prepared:
+            return Counter()
         counts = self.candidates.counts()
         untested = self.candidates.untested()
         if untested:
@@ -372,7 +374,7 @@ class _Resolution:
         return counts
 
     def summary(self) -> str:
-        return summary(self.counts(), len(self.candidates))
+        return summary(self.counts(), len(self.candidates) if self._prepared else 0)
 
     def _fail(self, text: str) -> LocationFailure:
         return LocationFailure(text, location=self.spec.describe(), counts=dict(self.counts()))

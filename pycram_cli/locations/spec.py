@@ -222,6 +222,9 @@ def parse_location(world: BulletWorld, value: Any, for_object: Object | None = N
         key = next((k for k in (value if isinstance(value, Mapping) else ()) if problem.startswith(f"{k}: ")), None)
         raise InputError(problem[len(key) + 2:] if key else problem, WHERE, key=key)
     assert isinstance(value, Mapping)
+    for key in ("reachable-for", "accessing"):
+        if key in value and desc is not None and not desc.arms:
+            raise _error(key, f"robot '{desc.name}' cannot reach: it has no arms (arms: {{}} in {desc.path.name})")
     reach: Any = None
     if "reachable-for" in value:
         target = value["reachable-for"]

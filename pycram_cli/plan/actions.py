@@ -100,6 +100,7 @@ class ActionStep(Node):
         facts = v.facts
         if facts is None:
             return
+        v.need_robot(self.name, self.slots)
         spec = ACTIONS[self.name]
         objects = list(facts.objects)
         for slot in spec.slots:

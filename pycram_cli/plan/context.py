@@ -20,6 +20,7 @@ from typing import Any, Iterator, Mapping
 
 from ..failures import Failure
 from ..jsonable import jsonable  # noqa: F401  (plan modules take it from here)
+from ..limits import MAX_VALUE_CHARS, MAX_VALUE_ITEMS, MAX_VALUE_NESTING
 from ..world import Object
 
 NAME = r"[A-Za-z_][A-Za-z0-9_-]*"
@@ -173,6 +174,34 @@ def evaluate(value: Any, frame: Frame) -> Any:
     if isinstance(value, (list, tuple)):
         return [evaluate(item, frame) for item in value]
     return value
+
+
+def size_problem(value: Any) -> str | None:
+    """Why a run-time value is too large to keep (more items, characters or nesting than the limits allow), or None.
+
+    Values share their parts (`[$x, $x]` holds $x twice without copying it), so a value doubled step after
+    step stays cheap to make but not to record or show: parts are counted each time they appear, and
+    counting stops at the limit, so it costs at most the limit whatever the value."""
+    items = chars = 0
+    stack: list[tuple[Any, int]] = [(value, 0)]
+    while stack:
+        item, depth = stack.pop()
+        items += 1
+        if items > MAX_VALUE_ITEMS:
+            return f"a value of more than {MAX_VALUE_ITEMS} items (the limit; a value that grows at each step?)"
+        if isinstance(item, str):
+            chars += len(item)
+        elif isinstance(item, Mapping) or isinstance(item, (list, tuple)):
+            if depth >= MAX_VALUE_NESTING:
+                return f"a value nested more than {MAX_VALUE_NESTING} levels deep (the limit)"
+            if isinstance(item, Mapping):
+                chars += sum(len(key) for key in item if isinstance(key, str))
+                stack.extend((child, depth + 1) for child in item.values())
+            else:
+                stack.extend((child, depth + 1) for child in item)
+        if chars > MAX_VALUE_CHARS:
+            return f"a value of more than {MAX_VALUE_CHARS} characters of text (the limit; a value that grows at each step?)"
+    return None
 
 
 def _interpolated(match: re.Match[str], frame: Frame) -> str:

@@ -20,7 +20,7 @@ from ..failures import Failure
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
 from ..world import BulletWorld
-from .context import Frame, evaluate, jsonable
+from .context import Frame, evaluate, jsonable, size_problem
 from .params import bind_params
 from .resources import ResourceAnalysis
 from .runtime import Cancelled, Decider, LimitExceeded, Record, close_pending
@@ -185,7 +185,12 @@ class Exec:
                     key if key is not None else self.key, depth if depth is not None else self.depth)
 
     def evaluate(self, value: Any) -> Any:
-        return evaluate(value, self.frame)
+        """The value with its references looked up; LimitExceeded (at the step evaluating it) when it is too large."""
+        result = evaluate(value, self.frame)
+        problem = size_problem(result)
+        if problem is not None:
+            raise LimitExceeded(problem, "")
+        return result
 
     # -- leaves -------------------------------------------------------------------------------
     @contextlib.contextmanager
@@ -237,6 +242,7 @@ class Exec:
             raise
         except LimitExceeded as exc:
             tn.status = "failed"
+            exc.path = exc.path or tn.path  # a value too large is found where it is evaluated, not knowing the step
             if tn.failure is None:
                 tn.failure = failure_record(exc, exc.path)
             self.run.stop_for(exc)

@@ -32,7 +32,7 @@ from ..limits import MAX_CALL_DEPTH, MAX_WAIT
 from ..reasoning import QUERIES, check_query_args, run_query
 from ..schema import describe
 from ..yamlsource import LList, LMap
-from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, truthy
+from .context import REFERENCE, FailureInfo, Frame, display, is_reference, jsonable, size_problem, truthy
 from .resources import ResourceAnalysis
 from .runtime import LimitExceeded, Record, Runtime
 from .syntax import Node, Parser, node_family, node_type, plain
@@ -445,6 +445,9 @@ class SetStep(Node):
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         values = {name: ex.evaluate(value) for name, value in self.values.items()}
+        problem = size_problem(values)  # the work of one set: its values together, recorded in the trace
+        if problem is not None:
+            raise LimitExceeded(problem, tn.path)
         frame = ex.frame.binder(self.scope)
         for name, value in values.items():
             frame.bind(name, value)

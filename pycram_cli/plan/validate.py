@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Iterable, Mapping
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
-from ..designators import DESIGNATORS
+from ..designators import DESIGNATORS, process_module_problems
 from ..failures import ALIASES, FAILURES, failure_class
 from ..kinds import KINDS, Robots
 from ..reasoning import QUERIES
@@ -261,11 +261,16 @@ class Validator:
     def objects(self, head: str, slots: LMap) -> None:
         """With a world: the names in designator slots (objects, their links and joints) must be in it."""
         spec = DESIGNATORS.get(head)
-        if spec is not None and self.facts is not None and not self._robot_checked:
-            self._robot_checked = True  # said once, at the first designator
-            self._robot_for(head, slots)
+        if spec is not None:
+            self.need_robot(head, slots)
         if spec is not None:
             self._names(slots, [(s.name, s.kind, s.of) for s in spec.slots])
+
+    def need_robot(self, head: str, slots: LMap) -> None:
+        """With a world: designators and actions need a robot with a description (said once, at the first)."""
+        if self.facts is not None and not self._robot_checked:
+            self._robot_checked = True
+            self._robot_for(head, slots)
 
     def _robot_for(self, head: str, slots: LMap) -> None:
         """With a world: designators need a robot with a description."""
@@ -411,6 +416,8 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
         facts = WorldFacts.of_world(world)
     validator = Validator(plan, facts, values)
     validator.errors.extend(errors or [])
+    if facts is not None and facts.description is not None:
+        validator.errors.extend(process_module_problems(facts.description))
     if check_world_file and plan.world is not None:
         try:
             find_world(plan.world, plan.path.parent, plan.world_where)

@@ -73,9 +73,11 @@ def report_data(trace: dict[str, Any], world_path: Path) -> dict[str, Any]:
             "world_file": world_path.name, "generator": f"pycram {_pycram_version()}"}
 
 
-def _script_safe(text: str) -> str:
-    """Text that cannot end the <script> element it is put in."""
-    return text.replace("</", "<\\/")
+def _script_safe(json_text: str) -> str:
+    """JSON that cannot end, or change how the browser reads, the <script> element it is put in: `<`, `>` and `&`
+    only occur inside its strings, where `\\u003c`, `\\u003e` and `\\u0026` mean the same (so `</script>`,
+    `<!--<script>` and `-->` in a name or a message stay text)."""
+    return json_text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
 def build_report(trace: dict[str, Any], world_path: Path) -> str:

@@ -239,7 +239,7 @@ class _Reader:
                                   self.number(data, "closed", 0.0), self.number(data, "max_width", math.inf, True),
                                   self.number(data, "finger_height", 0.0))
 
-    def poses(self, arm: LMap, joints: tuple[str, ...]) -> dict[str, tuple[float, ...]]:
+    def poses(self, arm: LMap, arm_name: str, joints: tuple[str, ...]) -> dict[str, tuple[float, ...]]:
         if "poses" not in arm:
             return {}
         value = arm["poses"]
@@ -249,6 +249,7 @@ class _Reader:
             return {}
         poses = {}
         for name, values in names_only(value, self.errors).items():
+            self.places[f"arms.{arm_name}.poses.{name}"] = value.loc(name, True)
             numbers = number_list(values, len(joints), value.loc(name, True), f"poses.{name}", self.errors) \
                 if joints else None
             if numbers is not None:
@@ -265,13 +266,14 @@ class _Reader:
         for key in ARM_KEYS:
             self.mark(f"arms.{name}.{key}", data, key)
         if isinstance(data.get("gripper"), LMap):
-            self.mark(f"arms.{name}.gripper.joints", data["gripper"], "joints")
+            for key in ("joints", "open", "closed"):
+                self.mark(f"arms.{name}.gripper.{key}", data["gripper"], key)
         joints = self.names(data, "joints")
         if "joints" in data and not joints and isinstance(data["joints"], LList):
             self.error("an arm needs at least one joint", data.loc("joints", True), "joints")
         return ArmDescription(name=str(name), joints=joints, tool_frame=self.name(data, "tool_frame"),
                               palm_link=self.name(data, "palm_link"), gripper=self.gripper(data, str(name)),
-                              links=self.names(data, "links"), poses=self.poses(data, joints))
+                              links=self.names(data, "links"), poses=self.poses(data, str(name), joints))
 
     def read(self) -> RobotDescription:
         data = load_yaml(self.path)
@@ -313,9 +315,7 @@ class _Reader:
         if "camera" in data and data["camera"] is not None:
             cam = self.mapping(data, "camera", CAMERA_KEYS, ("frame", "horizontal_fov", "vertical_fov"))
             if cam is not None:
-                camera = CameraDescription(self.name(cam, "frame"), self.number(cam, "horizontal_fov", 1.0, True),
-                                           self.number(cam, "vertical_fov", 0.75, True), self.number(cam, "near", 0.05, True),
-                                           self.number(cam, "far", 6.0, True))
+                camera = self.camera(cam)
         head = None
         if "head" in data and data["head"] is not None:
             raw_head = self.mapping(data, "head", HEAD_KEYS, ("pan_joint", "tilt_joint"))
@@ -346,6 +346,23 @@ class _Reader:
                                 head=head, torso_joint=torso_joint, torso_default=torso_default, mobile=mobile,
                                 urdf=urdf, resources=resources, process_modules=modules, places=self.places)
 
+    def camera(self, cam: LMap) -> CameraDescription:
+        """The camera: fields of view are angles in (0, pi), and near comes before far."""
+        fovs = []
+        for key, default in (("horizontal_fov", 1.0), ("vertical_fov", 0.75)):
+            fov = self.number(cam, key, default, True)
+            if not fov < math.pi:
+                self.error(f"a field of view must be an angle between 0 and pi (radians), got {fov:g}",
+                           cam.loc(key, True), f"camera.{key}")
+                fov = default
+            fovs.append(fov)
+        near, far = self.number(cam, "near", 0.05, True), self.number(cam, "far", 6.0, True)
+        if not near < far:
+            self.error(f"near ({near:g}) must be less than far ({far:g}): nothing would be seen",
+                       cam.loc("near" if "near" in cam else "far", True), f"camera.{'near' if 'near' in cam else 'far'}")
+            near, far = 0.05, 6.0
+        return CameraDescription(self.name(cam, "frame"), fovs[0], fovs[1], near, far)
+
     def string_map(self, data: LMap, key: str, allowed_keys: list[str] | None) -> dict[str, str]:
         if key not in data or data[key] is None:
             return {}
@@ -362,6 +379,7 @@ class _Reader:
             if not isinstance(v, str) or not v:
                 self.error(f"expected a name, got {describe(v)}", value.loc(k, True), f"{key}.{k}")
                 continue
+            self.places[f"{key}.{k}"] = value.loc(k)
             result[str(k)] = v
         return result
 
@@ -392,6 +410,37 @@ def check_against_model(desc: RobotDescription, model: ModelInfo, model_path: Pa
         if link not in model.links:
             errors.append(InputError(f"the model {model_path.name} has no link '{link}'", desc.where(key), key=key,
                                      suggestion=did_you_mean(link, model.links)))
+    return errors + _values_outside_limits(desc, model)
+
+
+def _outside(value: float, joint: str, model: ModelInfo) -> str | None:
+    """`joint is V, outside its limits [lo, hi]` when the model limits the joint and `value` is beyond, else None."""
+    info = model.joints.get(joint)
+    if info is None or not info.limited or info.lower - 1e-9 <= value <= info.upper + 1e-9:
+        return None
+    return f"{joint} is {value:g}, outside its limits [{info.lower:g}, {info.upper:g}]"
+
+
+def _values_outside_limits(desc: RobotDescription, model: ModelInfo) -> list[InputError]:
+    """Named poses and gripper values the model's joint limits do not allow (continuous joints have none)."""
+    errors: list[InputError] = []
+    for arm in desc.arms.values():
+        for pose, values in arm.poses.items():
+            key = f"arms.{arm.name}.poses.{pose}"
+            for joint, value in zip(arm.joints, values):
+                problem = _outside(value, joint, model)
+                if problem:
+                    errors.append(InputError(f"pose '{pose}': {problem}", desc.where(key), key=key))
+                    break
+        for which in ("open", "closed"):
+            value = getattr(arm.gripper, which)
+            for joint in arm.gripper.joints:
+                info = model.joints.get(joint)
+                if _outside(value, joint, model) and info is not None:
+                    key = f"arms.{arm.name}.gripper.{which}"
+                    errors.append(InputError(f"the gripper's {which} value {value:g} is outside {joint}'s limits "
+                                             f"[{info.lower:g}, {info.upper:g}]", desc.where(key), key=key))
+                    break
     return errors
 
 

@@ -54,7 +54,7 @@ from ..world.pose import quat_multiply, yaw_quaternion
 from ..schema import check_keys, describe, expect, is_number, names_only, number_list
 from ..world.model_files import MESH_SUFFIXES, describe_model
 from ..worldfile.loader import load_spec
-from ..worldfile.spec import ObjectSpec, WorldSpec, resolve_file
+from ..worldfile.spec import ObjectSpec, WorldSpec, Unreadable, resolve_file
 from ..yamlsource import LList, LMap, load_yaml
 
 TOP_KEYS = ("description", "plan", "separation", "objects", "robot", "params")
@@ -493,23 +493,59 @@ def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[Inp
                 expect(entry[key], str, entry.loc(key, True), key, errors)
         if len(errors) != count:
             continue
-        found = resolve_file(entry["file"], base)
-        if found is None or found.suffix.lower() not in {".urdf", *MESH_SUFFIXES}:
-            errors.append(InputError(f"model file not found: '{entry['file']}' (looked beside the world, in the bundled "
-                                     "resources and pybullet_data)", entry.loc("file", True), key="file"))
-            continue
-        if entry["type"] in ("robot", "environment"):
-            errors.append(InputError("a swapped object stays a free object (not a robot or environment)",
-                                     entry.loc("type", True), key="type"))
-            continue
-        color = None
-        if "color" in entry:
-            color = number_list(entry["color"], (3, 4), entry.loc("color", True), "color", errors)
-        mass = None
-        if "mass" in entry and expect(entry["mass"], float, entry.loc("mass", True), "mass", errors):
-            mass = float(entry["mass"])
-        swaps.append(Swap(entry["type"], found, color, mass))
+        swap = _parse_swap(entry, base, errors)
+        if swap is not None:
+            swaps.append(swap)
     return swaps
+
+
+def _parse_swap(entry: LMap, base: Path, errors: list[InputError]) -> Swap | None:
+    """One model a swap puts in, checked as a world file's object is: its type, its model file (found, a regular
+    file PyBullet can load), a colour within 0..1 and a positive mass."""
+    if not entry["type"].strip():
+        errors.append(InputError("the swapped object's type must not be empty", entry.loc("type", True), key="type"))
+        return None
+    if entry["type"] in ("robot", "environment"):
+        errors.append(InputError("a swapped object stays a free object (not a robot or environment)",
+                                 entry.loc("type", True), key="type"))
+        return None
+    found = _swap_model(entry, base, errors)
+    if found is None:
+        return None
+    color = None
+    if "color" in entry:
+        color = number_list(entry["color"], (3, 4), entry.loc("color", True), "color", errors)
+        if color is not None and not all(0 <= c <= 1 for c in color):
+            errors.append(InputError("color values must be between 0 and 1 (r, g, b[, a])", entry.loc("color", True),
+                                     key="color"))
+            return None
+    mass = None
+    if "mass" in entry and expect(entry["mass"], float, entry.loc("mass", True), "mass", errors):
+        if not entry["mass"] > 0:
+            errors.append(InputError("mass must be positive (kg)", entry.loc("mass", True), key="mass"))
+            return None
+        mass = float(entry["mass"])
+    return Swap(entry["type"], found, color, mass)
+
+
+def _swap_model(entry: LMap, base: Path, errors: list[InputError]) -> Path | None:
+    """The model file a swap names, found and readable as a model (an error at its `file:` otherwise)."""
+    where = entry.loc("file", True)
+    try:
+        found = resolve_file(entry["file"], base)
+    except Unreadable as exc:
+        errors.append(InputError(f"cannot read '{entry['file']}': {exc}", where, key="file"))
+        return None
+    if found is None or found.suffix.lower() not in {".urdf", *MESH_SUFFIXES}:
+        errors.append(InputError(f"model file not found: '{entry['file']}' (looked beside the world, in the bundled "
+                                 "resources and pybullet_data)", where, key="file"))
+        return None
+    try:
+        describe_model(found)
+    except Exception as exc:  # noqa: BLE001 - any parse failure is the user's file, as in a world file
+        errors.append(InputError(f"cannot read model file {found.name}: {exc}", where, key="file"))
+        return None
+    return found
 
 
 def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots,

@@ -32,6 +32,7 @@ from ..jsonable import jsonable
 from ..limits import MAX_SCENARIO_TIMEOUT, MAX_SWEEP_RUNS, MAX_WORKERS
 from ..paths import plans_dir, worlds_dir
 from ..plan import bind_params
+from ..plan.syntax import plain
 from ..scenario import Scenario, prepare
 from ..scenario.variations import Variations, beside, read_variations, scenario_seed
 from . import ray_backend
@@ -39,6 +40,7 @@ from .local import LocalPool, SweepError
 from .results import ResultsFile, file_digest
 from .summary import summarise
 from .worker import SweepJob, Task, import_extensions
+from ..yamlsource import load_yaml_text
 
 BACKENDS = ("local", "ray")
 
@@ -86,10 +88,10 @@ def parse_compare(text: str, scenario: Scenario, variations: Variations) -> tupl
     name = name.strip()
     if not sep or not name or not values.strip():
         raise InputError(f"expected PARAM=A,B,..., got '{text}'", where, suggestion="e.g. --compare arm=left,right")
-    try:
-        parsed = yaml.safe_load(f"[{values}]")
-    except yaml.YAMLError:
-        raise InputError(f"cannot read the values '{values}' (YAML, separated by commas)", where) from None
+    try:  # with the limits of every YAML value (nesting, aliases), as -p reads its values
+        parsed = plain(load_yaml_text(f"[{values}]", "--compare"))
+    except InputError as exc:
+        raise InputError(f"cannot read the values (YAML, separated by commas): {exc.message}", where) from None
     if len(parsed) < 2:
         raise InputError("give at least two alternatives to compare", where, suggestion=f"e.g. {name}=A,B")
     if any(d.name == name for d in variations.params):

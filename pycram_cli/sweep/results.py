@@ -11,12 +11,14 @@ from __future__ import annotations
 import errno
 import hashlib
 import json
+import math
 import os
 from pathlib import Path
 from typing import Any, Iterable
 
 from ..errors import InputError, Location
-from ..files import reason, write_atomic
+from ..files import probe, read_bytes, reason, write_atomic
+from ..limits import MAX_SWEEP_META_BYTES, MAX_SWEEP_RESULTS_BYTES, MAX_SWEEP_RUNS
 
 RESULTS = "results.jsonl"
 META = "sweep.json"
@@ -35,6 +37,64 @@ def key_of(record: dict[str, Any], alternatives: list[dict[str, Any]] | None) ->
     return (int(record["index"]), alt)
 
 
+def _not_a_number(constant: str) -> Any:
+    raise ValueError(f"{constant} is not a number JSON allows")
+
+
+def _json_reason(exc: BaseException) -> str:
+    return "nested too deeply" if isinstance(exc, RecursionError) else str(exc).split(":")[0]
+
+
+def _is_int(value: Any) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_text(value: Any) -> bool:
+    return value is None or isinstance(value, str)
+
+
+def _kind(value: Any) -> str:
+    return {dict: "an object", list: "a list", str: "text", bool: "true or false", type(None): "null"}.get(
+        type(value), "a number")
+
+
+def record_problem(record: Any, alternatives: list[Any] | None) -> str | None:
+    """Why a line of results.jsonl is not an outcome a sweep writes (see worker.outcome), or None."""
+    if not isinstance(record, dict):
+        return f"expected a JSON object (a scenario's outcome), got {_kind(record)}"
+    for key in ("index", "seed", "status"):
+        if key not in record:
+            return f"the outcome has no '{key}'"
+    if not _is_int(record["index"]) or not 0 <= record["index"] < MAX_SWEEP_RUNS:
+        return f"'index' must be a whole number from 0 to {MAX_SWEEP_RUNS - 1}, got {_kind(record['index'])}"
+    if not _is_int(record["seed"]):
+        return f"'seed' must be a whole number, got {_kind(record['seed'])}"
+    if not isinstance(record["status"], str) or not record["status"]:
+        return f"'status' must be a name, got {_kind(record['status'])}"
+    failure = record.get("failure")
+    if failure is not None and (not isinstance(failure, dict)
+                                or not all(_is_text(failure.get(k)) for k in ("type", "message", "path"))):
+        return "'failure' must be null or an object of type, message and path (text)"
+    if alternatives is None and "alternative" in record:
+        return "'alternative' is given, but this sweep compares no alternatives"
+    if alternatives is not None and record.get("alternative") not in alternatives:
+        return "'alternative' must be one of the sweep's --compare values"
+    return _varied_problem(record.get("varied"))
+
+
+def _varied_problem(varied: Any) -> str | None:
+    if varied is None:
+        return None
+    if not isinstance(varied, dict) or not all(isinstance(v, dict) for v in varied.values()):
+        return "'varied' must be an object of object name to what was varied"
+    for name, change in varied.items():
+        position = change.get("position")
+        if position is not None and not (isinstance(position, list) and len(position) == 3 and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in position)):
+            return f"'varied.{name}.position' must be three finite numbers"
+    return None
+
+
 class ResultsFile:
     """The results of one sweep in `folder`; `done` holds the outcomes already there (by task key)."""
 
@@ -48,6 +108,11 @@ class ResultsFile:
         self._fd = -1
         try:  # the folder is the user's: any operating-system problem with it is an input error naming --out
             self.folder.mkdir(parents=True, exist_ok=True)
+            for path in (self.meta_path, self.path):  # a named pipe would block, a device be read without end
+                problem = probe(path)
+                if problem is not None and problem != "not found":
+                    raise InputError(f"cannot use it as part of the results folder: {problem}", Location(str(path)),
+                                     suggestion="give another --out")
             existing = self.path.is_file() and self.path.stat().st_size > 0
             if existing and not resume:
                 raise InputError(f"{self.path} holds the results of a sweep already", Location("--out"),
@@ -66,10 +131,17 @@ class ResultsFile:
                              Location("--out")) from None
 
     def _check_same_sweep(self) -> None:
+        if probe(self.meta_path) == "not found":
+            raise InputError(f"cannot resume: {self.meta_path} is missing", Location("--resume"))
+        text = read_bytes(self.meta_path, MAX_SWEEP_META_BYTES, "the sweep's settings")
         try:
-            before = json.loads(self.meta_path.read_text())
-        except (OSError, ValueError):
-            raise InputError(f"cannot resume: {self.meta_path} is missing or unreadable", Location("--resume")) from None
+            before = json.loads(text, parse_constant=_not_a_number)
+        except (ValueError, RecursionError) as exc:
+            raise InputError(f"cannot resume: not the JSON a sweep writes ({_json_reason(exc)})",
+                             Location(str(self.meta_path))) from None
+        if not isinstance(before, dict):
+            raise InputError("cannot resume: not the settings a sweep writes (expected a JSON object)",
+                             Location(str(self.meta_path)))
         differ = sorted(k for k in set(before) | set(self.meta) if k not in FREE and before.get(k) != self.meta.get(k))
         if differ:
             raise InputError(f"cannot resume: this sweep differs from the one in {self.folder} in "
@@ -78,19 +150,35 @@ class ResultsFile:
                                         "or give another --out")
 
     def _load(self) -> None:
-        text = self.path.read_bytes().decode(errors="replace")
+        """The outcomes already in the file; a damaged line is an InputError at its line (never dropped), only a
+        last line torn by an interruption is (that scenario runs again)."""
+        text = read_bytes(self.path, MAX_SWEEP_RESULTS_BYTES, "the sweep's results").decode(errors="replace")
         kept: list[str] = []
-        for line in text.splitlines(keepends=True):
+        for number, line in enumerate(text.splitlines(keepends=True), start=1):
             if not line.endswith("\n"):
                 continue  # torn by an interruption: that scenario runs again
-            try:
-                record = json.loads(line)
-            except ValueError:
-                continue
-            self.done[key_of(record, self.alternatives)] = record
             kept.append(line)
+            if not line.strip():
+                continue
+            record = self._record(line, Location(str(self.path), number, 1))
+            self.done[key_of(record, self.alternatives)] = record
         if "".join(kept) != text:
             write_atomic(self.path, "".join(kept), key="--out")
+
+    def _record(self, line: str, where: Location) -> dict[str, Any]:
+        """One line's outcome, checked to be what a sweep writes (InputError at the line otherwise)."""
+        try:
+            record = json.loads(line, parse_constant=_not_a_number)
+        except RecursionError:
+            record = []  # lists or mappings nested thousands deep: not an outcome either
+        except ValueError as exc:
+            raise InputError(f"not JSON ({_json_reason(exc)}): a damaged line of the sweep's results", where,
+                             suggestion="remove or repair the line, then --resume again") from None
+        problem = record_problem(record, self.alternatives)
+        if problem is not None:
+            raise InputError(f"{problem}: a damaged line of the sweep's results", where,
+                             suggestion="remove or repair the line, then --resume again")
+        return record
 
     def append(self, record: dict[str, Any]) -> None:
         self.done[key_of(record, self.alternatives)] = record

@@ -561,3 +561,54 @@ def test_a_broken_mesh_is_found_by_validation_not_by_the_run(tmp_path):
     assert result.exit_code == 2
     assert f"{world}:3:32: file: cannot read model file empty.obj: the mesh has no triangles" in result.stderr
     assert "a vertex needs three coordinates" in result.stderr
+
+
+# -- model files (issue 29): what PyBullet cannot load is found by validate, named; odd names load ---------------
+
+
+def world_with_model(tmp_path: Path, file: str) -> Path:
+    return write(tmp_path, "w.yaml", f"""
+        objects:
+          - {{name: floor, type: environment, file: plane.urdf}}
+          - name: thing
+            type: box
+            file: '{file}'
+    """)
+
+
+@pytest.mark.parametrize("model, message", [
+    ('<robot name="x"></robot>', "the model has no <link>"),
+    ('<model name="x"><link name="a"/></model>', "the root element is <model>, not <robot>"),
+    ('<robot name="x"><link name="a"/><link name="b"/>'
+     '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+     '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>', "the joints j1, j2 form a cycle"),
+    ('<robot name="x"><link name="a"><visual><geometry><mesh filename="package://x/../../../etc/passwd"/></geometry>'
+     '</visual></link></robot>', "mesh 'package://x/../../../etc/passwd' leaves its package 'x'"),
+])
+def test_a_model_file_pybullet_cannot_load_is_exit_2_at_validate_and_at_run_naming_file_and_element(tmp_path, model, message):
+    (tmp_path / "x").mkdir()
+    (tmp_path / "x" / "m.urdf").write_text(model)
+    world = world_with_model(tmp_path, "x/m.urdf")
+    for command in (("validate", str(world)), ("world", "show", str(world))):
+        result = run(*command)
+        assert result.exit_code == 2, result.output
+        assert f"{world}:6:11: file: cannot read model file m.urdf: {message}" in result.stderr
+
+
+def test_a_mesh_named_with_xml_metacharacters_validates_and_loads(tmp_path):
+    import shutil
+    shutil.copy(REPO / "resources" / "objects" / "milk.obj", tmp_path / 'm"i<l>k&.obj')
+    world = world_with_model(tmp_path, "m\"i<l>k&.obj")
+    assert run("validate", str(world)).exit_code == 0
+    result = run("world", "show", str(world))
+    assert result.exit_code == 0, result.output
+    assert "thing" in result.output
+
+
+def test_a_missing_mesh_is_a_validate_warning_naming_the_file(tmp_path):
+    (tmp_path / "m.urdf").write_text('<robot name="x"><link name="a"><visual><geometry><mesh filename="gone.obj"/>'
+                                     '</geometry></visual></link></robot>')
+    world = world_with_model(tmp_path, "m.urdf")
+    result = run("validate", str(world))
+    assert result.exit_code == 0
+    assert f"warning: {world}:4:5: object 'thing': mesh file not found, loaded without it: gone.obj" in result.stderr

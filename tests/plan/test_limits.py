@@ -151,3 +151,52 @@ def test_more_branch_threads_than_the_limit_at_once_stop_the_run(plans, world):
     assert result.status == "failed" and result.failure["type"] == "LimitExceeded"
     assert result.failure["message"] == "more than 256 branches running at once (the limit)"
     assert threading.active_count() == before
+
+
+# -- values that grow at run time (issue 29) ---------------------------------------------------------------
+
+
+def test_a_list_doubled_step_after_step_stops_at_the_value_limit_naming_the_step(plans, world):
+    from pycram_cli.limits import MAX_VALUE_ITEMS
+    steps = "".join(f"  - set: {{x{i + 1}: [$x{i}, $x{i}]}}\n" for i in range(40))
+    started = time.monotonic()
+    result = plans.run("body:\n  - set: {x0: [1]}\n" + steps, world)
+    assert time.monotonic() - started < 10
+    assert result.status == "failed" and result.failure["type"] == "LimitExceeded"
+    assert f"more than {MAX_VALUE_ITEMS} items" in result.failure["message"]
+    assert "(the limit" in result.failure["message"]
+    first = next(k for k in range(41) if 2 ** (k + 1) - 1 > MAX_VALUE_ITEMS)  # $xk: 2^k numbers in 2^k - 1 lists
+    assert result.failure["path"] == f"body/{first}:set"
+
+
+def test_a_string_doubled_step_after_step_stops_at_the_value_limit(plans, world):
+    from pycram_cli.limits import MAX_VALUE_CHARS
+    steps = "".join(f"  - set: {{s{i + 1}: \"$s{i}$s{i}\"}}\n" for i in range(40))
+    started = time.monotonic()
+    result = plans.run("body:\n  - set: {s0: ab}\n" + steps, world)
+    assert time.monotonic() - started < 10
+    assert result.status == "failed" and result.failure["type"] == "LimitExceeded"
+    assert f"more than {MAX_VALUE_CHARS} characters" in result.failure["message"]
+
+
+def test_a_value_nested_deeper_than_the_limit_at_run_time_stops_the_run(plans, world):
+    result = plans.run("""
+        body:
+          - set: {x: [1], n: [%s]}
+          - for_each: $n
+            as: i
+            do:
+              - set: {x: [$x]}
+                scope: plan
+    """ % ", ".join(["0"] * 500), world)
+    assert result.status == "failed" and result.failure["type"] == "LimitExceeded"
+    assert "nested more than" in result.failure["message"]
+
+
+def test_the_values_of_one_set_count_together(plans, world):
+    from pycram_cli.limits import MAX_VALUE_ITEMS
+    doubling = "".join(f"  - set: {{x{i + 1}: [$x{i}, $x{i}]}}\n" for i in range(15))  # $x15: 65 535 items
+    result = plans.run("body:\n  - set: {x0: 1}\n" + doubling + "  - set: {a: $x15, b: $x15}\n", world)
+    assert result.status == "failed" and result.failure["type"] == "LimitExceeded"
+    assert f"more than {MAX_VALUE_ITEMS} items" in result.failure["message"]
+    assert result.failure["path"] == "body/16:set"

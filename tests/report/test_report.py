@@ -103,3 +103,22 @@ def test_a_failure_recovered_from_is_marked_recovered_in_the_page_data(tmp_path)
     node = data["trace"]["root"]["children"][0]["children"][0]
     assert node["status"] == "failed" and data["trace"]["status"] == "succeeded"  # the page shows it as recovered
     assert "recovered" in out.read_text()
+
+
+def test_names_and_messages_that_look_like_html_are_embedded_so_the_page_still_starts(tmp_path):
+    # `<!--<script>` in the data made Chromium read the rest of the page as script data: the page stayed blank
+    hostile = "a</script><!--<script>x</ScRiPt>&amp;\u2028"
+    (tmp_path / "w.yaml").write_text("objects:\n  - {name: floor, type: environment, file: plane.urdf}\n"
+                                     f"  - {{name: {json.dumps(hostile)}, type: box, file: cube_small.urdf, "
+                                     "position: [0.5, 0, 0.025]}\n")
+    (tmp_path / "p.yaml").write_text(f"world: w.yaml\nbody:\n  - log: {json.dumps('<!--<script>' + hostile)}\n")
+    out = tmp_path / "r.html"
+    result = run("run", tmp_path / "p.yaml", "--report", out)
+    assert result.exit_code == 0, result.output
+    text = out.read_text(encoding="utf-8")
+    embedded = text.split('<script type="application/json" id="pycram-data">', 1)[1].split("</script>", 1)[0]
+    assert "<" not in embedded and ">" not in embedded  # nothing in the data can open or close an element
+    data = page_data(out)
+    assert hostile in json.dumps(data, ensure_ascii=False)
+    assert ('<!--<script>' + hostile) in json.dumps(data, ensure_ascii=False)
+    assert text.rstrip().endswith("</html>") and text.count("<script") == text.lower().count("</script>")

@@ -138,3 +138,62 @@ def _nodes(node: dict) -> list[dict]:
     for child in node.get("children", []):
         found.extend(_nodes(child))
     return found
+
+
+# -- values the description gives, checked against the model before anything runs (issue 29) ------------------
+
+
+@pytest.mark.parametrize("edit, line, key, message", [
+    (lambda d: d.replace("home: [0, 0.3,", "home: [5, 0.3,"), 10, "arms.arm.poses.home",
+     "pose 'home': lbr_iiwa_joint_1 is 5, outside its limits [-2.96706, 2.96706]"),
+    (lambda d: d.replace("    poses:", "    gripper: {joints: [lbr_iiwa_joint_7], open: 4, closed: 0}\n    poses:"), 9,
+     "arms.arm.gripper.open", "the gripper's open value 4 is outside lbr_iiwa_joint_7's limits [-3.05433, 3.05433]"),
+    (lambda d: d + "camera: {frame: lbr_iiwa_link_7, horizontal_fov: 100, vertical_fov: 1}\n", 13,
+     "camera.horizontal_fov", "a field of view must be an angle between 0 and pi (radians), got 100"),
+    (lambda d: d + "camera: {frame: lbr_iiwa_link_7, horizontal_fov: 1, vertical_fov: 1, near: 5, far: 2}\n", 13,
+     "camera.near", "near (5) must be less than far (2)"),
+])
+def test_values_a_description_gives_are_checked_against_its_model_at_validate(kuka_dir: Path, edit, line, key, message):
+    description = kuka_dir / "kuka.yaml"
+    description.write_text(edit(DESCRIPTION))
+    result = run("validate", str(kuka_dir / "world.yaml"))
+    assert result.exit_code == 2, result.output
+    assert message in result.stderr
+    assert f"{description}:{line}:" in result.stderr and f"{key}:" in result.stderr
+
+
+def test_a_process_module_for_an_unknown_designator_is_an_error_with_the_closest_name(kuka_dir: Path):
+    description = kuka_dir / "kuka.yaml"
+    description.write_text(DESCRIPTION + "process_modules: {pick-upp: pick-up}\n")
+    for command in (("validate", str(kuka_dir / "world.yaml")), ("validate", str(kuka_dir / "plan.yaml"))):
+        result = run(*command)
+        assert result.exit_code == 2, result.output
+        assert f"{description}:13:19: process_modules.pick-upp: no designator 'pick-upp' (did you mean 'pick-up'?)" \
+            in result.stderr
+
+
+def test_joint_values_for_the_design_slot_names_are_counted_against_the_arm(tmp_path: Path):
+    plan = tmp_path / "p.yaml"
+    plan.write_text("world: kitchen\nbody:\n  - move-arm-joints: {left-arm: [0, 0, 0]}\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2, result.output
+    assert f"{plan}:3:" in result.stderr and "the left arm has 7 joints" in result.stderr and "got 3 values" in result.stderr
+
+
+def test_locate_for_a_robot_without_arms_says_it_cannot(kuka_dir: Path):
+    (kuka_dir / "kuka.yaml").write_text("name: kuka\nbase_link: lbr_iiwa_link_0\narms: {}\n")
+    for args in (("reachable-for", "cube"), ("accessing", "lbr_iiwa_link_7"), ("reachable-for", "0.5,0,0.3")):
+        result = run("locate", *args, "--world", str(kuka_dir / "world.yaml"))
+        assert result.exit_code == 2, result.output
+        assert "Traceback" not in result.output and "internal error" not in result.stderr
+        assert "it has no arms" in result.stderr
+
+
+@pytest.mark.parametrize("step", ["action: park-arms", "action: pick-up\n    object: cube"])
+def test_an_action_for_a_robot_without_a_description_is_refused_at_validate(tmp_path: Path, step: str):
+    (tmp_path / "world.yaml").write_text(WORLD.replace(", description: kuka.yaml", "") % KUKA)
+    plan = tmp_path / "plan.yaml"
+    plan.write_text(f"world: world.yaml\nbody:\n  - {step}\n")
+    result = run("validate", str(plan))
+    assert result.exit_code == 2, result.output
+    assert f"{plan}:3:" in result.stderr and "no robot description for 'kuka' (model.urdf)" in result.stderr

@@ -3,6 +3,8 @@ are kept loaded and give byte-identical traces to freshly loaded ones."""
 from __future__ import annotations
 
 import json
+import os
+import time
 import math
 import textwrap
 from pathlib import Path
@@ -144,3 +146,31 @@ def test_worlds_kept_loaded_give_the_traces_of_fresh_worlds(kitchen):
     assert again[::-1] == fresh
     assert any(v.absent for v in variants) and any(not v.absent for v in variants)  # two structures, two worlds
     assert worlds.loads == 2
+
+
+# -- swaps checked as world objects are (issue 29) ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("entry, key, message", [
+    ("{type: milk, file: objects/milk.obj, mass: -1}", "mass", "mass must be positive (kg)"),
+    ("{type: milk, file: objects/milk.obj, mass: 0}", "mass", "mass must be positive (kg)"),
+    ("{type: '', file: objects/milk.obj}", "type", "the swapped object's type must not be empty"),
+    ("{type: milk, file: objects/milk.obj, color: [2, 0, 0]}", "color", "color values must be between 0 and 1"),
+    ("{type: milk, file: pipe.obj}", "file", "named pipe"),
+    ("{type: milk, file: zero.obj}", "file", "not a regular file"),
+    ("{type: milk, file: garbage.urdf}", "file", "cannot read model file garbage.urdf"),
+    ("{type: milk, file: nolinks.urdf}", "file", "the model has no <link>"),
+])
+def test_a_swap_is_checked_as_a_world_object_is(tmp_path, kitchen, entry, key, message):
+    os.mkfifo(tmp_path / "pipe.obj")
+    (tmp_path / "zero.obj").symlink_to("/dev/zero")
+    (tmp_path / "garbage.urdf").write_text("<robot name='x'><link name=")
+    (tmp_path / "nolinks.urdf").write_text("<robot name='x'/>")
+    world = tmp_path / "kitchen.yaml"
+    world.write_text(kitchen.world.path.read_text())  # swapped files are looked for beside the world
+    path = write(tmp_path, "set_table.vary.yaml", f"plan: set_table\nobjects:\n  milk:\n    swap:\n      - {entry}\n")
+    started = time.monotonic()
+    result = CliRunner().invoke(cli, ["validate", str(path), "--world", str(world)])
+    assert time.monotonic() - started < 30
+    assert result.exit_code == 2, result.output
+    assert f"{path}:5:" in result.stderr and f"{key}: " in result.stderr and message in result.stderr, result.stderr

@@ -290,3 +290,17 @@ def test_a_sweep_of_the_set_table_demo_and_one_scenario_replayed_alone(tmp_path)
         data = json.loads(replay.stdout)
         assert data["status"] == record["status"] and replay.exit_code == (0 if data["status"] == "succeeded" else 1)
         assert trace_digest(data["trace"]) == record["trace"]  # the very same run, step for step
+
+
+@pytest.mark.parametrize("values, message", [
+    ("[" * 10_000 + "]" * 10_000 + ",1", "nested deeper than"),
+    ("&a [1,1,1,1,1,1,1,1,1,1], " + ", ".join(f"&{b} [{', '.join([f'*{a}'] * 10)}]" for a, b in zip("abcde", "bcdef"))
+     + ", *f", "values"),
+])
+def test_compare_values_are_read_with_the_limits_of_every_yaml_value(small, values, message):
+    result = sweep(small, "out", "-n", "2", "--compare", f"wait={values}")
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output and "internal error" not in result.stderr
+    assert "--compare" in result.stderr
+    if message:
+        assert message in result.stderr
