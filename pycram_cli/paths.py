@@ -77,6 +77,11 @@ def available(kind: str) -> list[Found]:
                     for name in _names(bundled_folder)]
 
 
+def _known_names(kind: str) -> list[str]:
+    """The names a plan or world can be given by (`kind`: plans or worlds): the working folder's, then the bundled."""
+    return list(dict.fromkeys(found.name for found in available(kind)))
+
+
 def _names(folder: Path) -> list[str]:
     # variation files (`set_table.vary.yaml`) sit beside their plans but are no plans
     return sorted(p.stem for p in folder.glob("*.yaml") if not p.name.endswith(".vary.yaml")) if folder.is_dir() else []
@@ -117,9 +122,9 @@ def find_world(value: str | None, base: Path | None = None, where: Location | No
                   where or Location(value), "world" if where else None)
     if found is not None:
         return found
-    names = _names(worlds_dir())
+    names = _known_names("worlds")
     raise InputError(f"world file not found: '{value}'", where or Location(value), key="world" if where else None,
-                     suggestion=did_you_mean(value, names) or (f"bundled worlds: {', '.join(names)}" if names else None))
+                     suggestion=did_you_mean(value, names) or (f"worlds: {', '.join(names)}" if names else None))
 
 
 def find_plan(value: str, base: Path | None = None) -> Path:
@@ -127,6 +132,6 @@ def find_plan(value: str, base: Path | None = None) -> Path:
     found = _find(value, base if base is not None else Path.cwd(), plans_dir(), "plan file", Location(value))
     if found is not None:
         return found
-    names = _names(plans_dir())
+    names = _known_names("plans")
     raise InputError("plan file not found", Location(value),
-                     suggestion=did_you_mean(value, names) or (f"bundled plans: {', '.join(names)}" if names else None))
+                     suggestion=did_you_mean(value, names) or (f"plans: {', '.join(names)}" if names else None))
