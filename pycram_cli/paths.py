@@ -77,6 +77,19 @@ def available(kind: str) -> list[Found]:
                     for name in _names(bundled_folder)]
 
 
+def _not_a_folder(value: str, base: Path, what: str, where: Location, key: str | None = None) -> None:
+    """A folder where a plan or world file was named: an input error that says so, with the files in it."""
+    path = Path(value) if Path(value).is_absolute() else base / value
+    try:
+        if not path.is_dir():
+            return
+        inside = sorted(p.name for p in path.glob("*.yaml") if not p.name.endswith(".vary.yaml"))[:5]
+    except (OSError, ValueError):
+        return
+    raise InputError(f"'{value}' is a folder, not a {what} file", where, key=key,
+                     suggestion=f"name a file in it: {', '.join(inside)}" if inside else f"name a {what} file")
+
+
 def _known_names(kind: str) -> list[str]:
     """The names a plan or world can be given by (`kind`: plans or worlds): the working folder's, then the bundled."""
     return list(dict.fromkeys(found.name for found in available(kind)))
@@ -122,6 +135,8 @@ def find_world(value: str | None, base: Path | None = None, where: Location | No
                   where or Location(value), "world" if where else None)
     if found is not None:
         return found
+    _not_a_folder(value, base if base is not None else Path.cwd(), "world", where or Location(value),
+                  "world" if where else None)
     names = _known_names("worlds")
     raise InputError(f"world file not found: '{value}'", where or Location(value), key="world" if where else None,
                      suggestion=did_you_mean(value, names) or (f"worlds: {', '.join(names)}" if names else None))
@@ -132,6 +147,7 @@ def find_plan(value: str, base: Path | None = None) -> Path:
     found = _find(value, base if base is not None else Path.cwd(), plans_dir(), "plan file", Location(value))
     if found is not None:
         return found
+    _not_a_folder(value, base if base is not None else Path.cwd(), "plan", Location(value))
     names = _known_names("plans")
     raise InputError("plan file not found", Location(value),
                      suggestion=did_you_mean(value, names) or (f"plans: {', '.join(names)}" if names else None))

@@ -64,3 +64,4 @@ def test_worlds_extending_each_other_in_a_circle_are_an_input_error(tmp_path: Pa
     found = problems(tmp_path / "a.yaml")
     assert [(name, line) for name, line, _, _ in found] == [("b.yaml", 1)]
     assert "extend each other in a circle" in found[0][2]
+
