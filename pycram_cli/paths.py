@@ -77,6 +77,13 @@ def available(kind: str) -> list[Found]:
                     for name in _names(bundled_folder)]
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.resolve() == b.resolve()
+    except (OSError, RuntimeError):
+        return False
+
+
 def _not_a_folder(value: str, base: Path, what: str, where: Location, key: str | None = None) -> None:
     """A folder where a plan or world file was named: an input error that says so, with the files in it."""
     path = Path(value) if Path(value).is_absolute() else base / value
@@ -101,7 +108,7 @@ def _names(folder: Path) -> list[str]:
 
 
 def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Location,
-          key: str | None = None) -> Path | None:
+          key: str | None = None, naming: Path | None = None) -> Path | None:
     """The first regular file `value` names; None when nothing is there. Something there that cannot be
     read (a pipe, a device, a name too long) is an input error, not a reason to look further."""
     path = Path(value)
@@ -117,6 +124,8 @@ def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Locati
         candidates = [base / n for n in names] + [local / n for n in names] + [bundled_folder / n for n in names]
     for candidate in candidates:
         problem = probe(candidate)
+        if problem is None and naming is not None and _same_file(candidate, naming):
+            continue  # the file that names it is not it
         if problem is None:
             return candidate
         if problem != "not found" and not problem.startswith("it is a folder"):
@@ -124,15 +133,18 @@ def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Locati
     return None
 
 
-def find_world(value: str | None, base: Path | None = None, where: Location | None = None) -> Path:
+def find_world(value: str | None, base: Path | None = None, where: Location | None = None,
+               naming: Path | None = None) -> Path:
     """A world file: a path (relative to `base`, default the current folder) or a bundled world's name.
 
-    None means the default world. Not found: an input error at `where` with a suggestion.
+    None means the default world. Not found: an input error at `where` with a suggestion. `naming`: the
+    file that names the world (a plan), never the world itself: `world: mine` in `plans/mine.yaml` is
+    `worlds/mine.yaml`, not the plan.
     """
     if value is None:
         return default_world()
     found = _find(value, base if base is not None else Path.cwd(), worlds_dir(), "world file",
-                  where or Location(value), "world" if where else None)
+                  where or Location(value), "world" if where else None, naming)
     if found is not None:
         return found
     _not_a_folder(value, base if base is not None else Path.cwd(), "world", where or Location(value),

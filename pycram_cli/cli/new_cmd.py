@@ -22,7 +22,7 @@ from typing import Callable, TypeVar
 from ..errors import InputError, Location
 from ..files import check_writable
 from ..paths import find_plan, find_world
-from ..plan import parse_plan
+from ..plan import Plan, parse_plan
 from ..plan.params import plan_world, value_text
 from ..scenario.variations import SUFFIX
 from ..worldfile.spec import WorldSpec, parse_world
@@ -225,9 +225,15 @@ description: {object} and the robot start a little off their places
 plan: {plan_value}# the plan these variations are for
 separation: 0.1                       # varied objects start at least this far apart (m, x-y)
 objects:                              # how each object's start differs from the world file's
-  {object}: {{noise: [0.05, 0.05, 0], yaw: 0.3}}    # uniform within ± these (m, per axis); turned by up to ± yaw (rad)
+  {object}: {{noise: [0.05, 0.05, 0]}}    # uniform within ± these (m, per axis); `yaw: 0.3` turns it by up to ± 0.3 rad
 {others}robot: {{noise: [0.05, 0.05, 0], yaw: 0.1}}   # the robot's start, the same way
 {params}"""
+
+
+def plan_object_first(plan: Plan, movable: list[str]) -> list[str]:
+    """The objects to vary, the one the plan works on first: the default of its first `object` parameter."""
+    chosen = next((p.default for p in plan.params if p.type == "object" and p.default in movable), None)
+    return sorted(movable, key=lambda name: name != chosen) if chosen is not None else movable
 
 
 @new.command("vary")
@@ -239,7 +245,7 @@ def new_vary(plan: str, output: Path | None, force: bool) -> None:
     plan_path = find_plan(plan)
     parsed = parse_plan(plan_path)
     spec = parse_world(plan_world(parsed))
-    picked, *others = objects_to_pick(spec)
+    picked, *others = plan_object_first(parsed, objects_to_pick(spec))
     by_name = "/" not in plan and os.sep not in plan and Path(plan).suffix not in PLAN_FORMATS
     output = prepared_output(output, "plans", f"{plan_path.stem}{SUFFIX}", VARY_FORMATS, "variation file", force)
     found_beside = output.resolve() == plan_path.with_name(f"{plan_path.stem}{SUFFIX}").resolve()
@@ -247,7 +253,7 @@ def new_vary(plan: str, output: Path | None, force: bool) -> None:
         plan_path.resolve(), output.parent.resolve())
     lines = []
     if others:
-        lines.append(f"  # {others[0]}: {{present: 0.5}}            # in a scenario with this probability\n")
+        lines.append(f"  # {others[0]}: {{present: 0.5}}".ljust(38) + "# in a scenario with this probability\n")
         lines.append(f"  # {others[-1]}: {{region: {{box: [[X1, Y1, Z], [X2, Y2, Z]]}}}}    # anywhere in a box\n")
     params = ""
     if parsed.params:
@@ -255,7 +261,7 @@ def new_vary(plan: str, output: Path | None, force: bool) -> None:
         shown = value_text([first.default]) if not first.required else "[VALUE, ...]"
         params = (f"# params: {{{first.name}: {shown}}}    # the plan's parameters: values to choose from, "
                   "or {range: [LOW, HIGH]}\n")
-    text = VARY_TEMPLATE.format(plan=plan_path.name, path=output, plan_arg=plan, plan_value=value_text(plan_value).ljust(30),
+    text = VARY_TEMPLATE.format(plan=plan_path.name, path=output, plan_arg=plan, plan_value=value_text(plan_value).ljust(32),
                                 vary_arg="" if found_beside else f" --vary {output}", object=picked,
                                 others="".join(lines), params=params)
     write_output(output, text, "variation file")

@@ -460,7 +460,7 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
     validator.errors.extend(errors or [])
     if check_world_file and plan.world is not None:
         try:
-            find_world(plan.world, plan.path.parent, plan.world_where)
+            find_world(plan.world, plan.path.parent, plan.world_where, naming=plan.path)
         except InputError as exc:
             validator.errors.append(exc)
     validator.check()
