@@ -28,7 +28,7 @@ from ..world import BulletWorld
 from ..world.pose import yaw_quaternion
 from . import console
 from .complete import object_names
-from .options import open_world, world_option
+from .options import is_number, joined, open_world, world_option
 
 FIXED_OPTIONS = ("--world", "--json", "--help", "--at")
 
@@ -70,29 +70,6 @@ class QueryCommand(click.Command):
 VECTOR_SIZES = {"position": 3, "target": 3, "camera": 3, "quaternion": 4, "grasp": 4}
 
 
-def joined(tokens: tuple[str, ...] | list[str]) -> list[str]:
-    """Words the shell split inside one value joined again: `1.3, 0.6, 1.0` and `[1.3, 0.6, 1.0]` unquoted are
-    one value (a word ending in a comma or an open bracket goes on in the next)."""
-    values: list[str] = []
-    for token in tokens:
-        if values and (_goes_on(values[-1]) or token.startswith((",", "]", ")"))):
-            values[-1] += token
-        else:
-            values.append(token)
-    return values
-
-
-def _goes_on(text: str) -> bool:
-    return text.endswith(",") or text.count("[") > text.count("]") or text.count("(") > text.count(")")
-
-
-def _is_number(text: str) -> bool:
-    try:
-        return math.isfinite(float(text))
-    except ValueError:
-        return False
-
-
 def _grouped(positional: list[str], params: list[QueryParam]) -> list[str]:
     """`x y z` (three arguments) as one position where that is the only way the arguments fit the parameters."""
     values: list[str] = []
@@ -101,7 +78,7 @@ def _grouped(positional: list[str], params: list[QueryParam]) -> list[str]:
         size = VECTOR_SIZES.get(param.kind)
         rest = len(params) - number - 1
         words = positional[index:index + size] if size else []
-        if size and len(positional) - index - size == rest and len(words) == size and all(map(_is_number, words)):
+        if size and len(positional) - index - size == rest and len(words) == size and all(map(is_number, words)):
             values.append(",".join(words))
             index += size
         elif index < len(positional):
@@ -114,7 +91,7 @@ def _value(param: QueryParam, text: str, where: Location, name: str) -> Any:
     """A parameter's value from its text; text meant as numbers that is no vector of the kind says how one is written."""
     value = KINDS[param.kind].from_text(text)
     size = VECTOR_SIZES.get(param.kind)
-    if size and isinstance(value, str) and (looks_like_numbers(text) or _is_number(text)):
+    if size and isinstance(value, str) and (looks_like_numbers(text) or is_number(text)):
         what = "a position" if size == 3 else "a quaternion"
         forms = POSITION_FORMS if size == 3 else "0,0,0,1 or [0,0,0,1] or '0, 0, 0, 1' (or 0 0 0 1 after an option)"
         raise InputError(f"{name}: cannot read {text!r} as {what} ({size} numbers)", where, key=param.name,
@@ -146,9 +123,9 @@ def split_at(tokens: tuple[str, ...]) -> tuple[str | None, list[str]]:
             at = inline
         elif index < len(words):
             at, index = words[index], index + 1
-            if _is_number(at):  # `--at 0.8 0.95 6`: up to two numbers that follow are its own
+            if is_number(at):  # `--at 0.8 0.95 6`: up to two numbers that follow are its own
                 count = 0
-                while count < 2 and index + count < len(words) and _is_number(words[index + count]):
+                while count < 2 and index + count < len(words) and is_number(words[index + count]):
                     count += 1
                 at = ",".join([at, *words[index:index + count]])
                 index += count
@@ -201,7 +178,7 @@ def build_args(query: str, tokens: tuple[str, ...]) -> dict[str, Any]:
         token = words[index]
         index += 1
         if not token.startswith("--") or parse_vector(token, 3) is not None or parse_vector(token, 4) is not None:
-            if token.startswith("-") and not _is_number(token) and not looks_like_numbers(token):
+            if token.startswith("-") and not is_number(token) and not looks_like_numbers(token):
                 raise InputError(f"no such option: {token}", where, suggestion=_option_hint(token, spec))
             positional.append(token)
             continue
@@ -219,8 +196,8 @@ def build_args(query: str, tokens: tuple[str, ...]) -> dict[str, Any]:
         else:
             raise InputError(f"option {name} needs a value ({KINDS[param.kind].doc})", where, key=param.name)
         size = VECTOR_SIZES.get(param.kind)
-        following = words[index:index + size - 1] if size and _is_number(text) else []
-        if size and len(following) == size - 1 and all(map(_is_number, following)):
+        following = words[index:index + size - 1] if size and is_number(text) else []
+        if size and len(following) == size - 1 and all(map(is_number, following)):
             text = ",".join([text, *following])  # `--from 1 2 3`: a number alone is no value of the kind
             index += size - 1
         value = _value(param, text, where, name)
