@@ -67,7 +67,7 @@ body:
 """
 
 
-@click.group("new")
+@click.group("new", short_help="Write a starting file: a commented plan, a world made from another, variations for sweeps.")
 def new() -> None:
     """Write a starting file: a commented plan (pycram new plan NAME), a world made from another one
     (pycram new world NAME --from kitchen) or a plan's variations for sweeps (pycram new vary PLAN)."""

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..designators import DESIGNATORS
 from ..failures import ALIASES, FAILURES, failure_class
-from ..kinds import KINDS, Robots
+from ..kinds import KINDS, Robots, param_kind
 from ..reasoning import QUERIES
 from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
@@ -128,7 +128,7 @@ class Validator:
     def world_value(self, param: Param, value: Any, where: Location, key: str, prefix: str = "",
                     origin: str = "") -> None:
         """A value of a typed parameter that names an object (type `object`) must name one of the world's."""
-        kind = KINDS.get(param.type or "")
+        kind = param_kind(param.type)
         facts = self.facts
         if kind is None or not kind.names_object or facts is None or not isinstance(value, str) or references(value):
             return

@@ -43,12 +43,12 @@ def merged(data: LMap, path: Path, errors: list[InputError], chain: tuple[Path, 
     where = data.loc(EXTENDS, True)
     base_path = _base(data[EXTENDS], path, where, chain, errors)
     if base_path is None:
-        return _without_base(data)
+        return data  # its own objects alone are still checked
     base = load_yaml(base_path)
     if not isinstance(base, LMap):
         errors.append(InputError("the world it extends is not a world file (a mapping with 'objects')", where,
                                  key=EXTENDS))
-        return _without_base(data)
+        return data
     base = merged(base, base_path, errors, (*chain, path.resolve()))
     result = _copy(data)
     for key in ("gravity", "description"):
@@ -153,7 +153,3 @@ def _empty_list(where: Location) -> LList:
     result.where, result.item_where = where, []
     return result
 
-
-def _without_base(data: LMap) -> LMap:
-    """`data` as it stands when its base cannot be read (its own objects alone are still checked)."""
-    return data
