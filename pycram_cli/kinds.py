@@ -80,8 +80,16 @@ class Robots:
 NOTHING_KNOWN = Robots()
 
 
+#: how a position is written on the command line (shown when one cannot be read)
+POSITION_FORMS = "1.3,0.6,1.0 or [1.3,0.6,1.0] or '1.3, 0.6, 1.0' or 1.3 0.6 1.0 (three arguments, where that is unambiguous)"
+
+
 def parse_vector(text: str, size: int) -> list[float] | None:
-    """`"1.3,0.6,1.0"` -> [1.3, 0.6, 1.0]; None unless `text` is `size` comma-separated finite numbers."""
+    """`"1.3,0.6,1.0"` (also `[1.3, 0.6, 1.0]`, `(1.3, 0.6, 1.0)`) -> [1.3, 0.6, 1.0]; None unless `text` is `size`
+    comma-separated finite numbers."""
+    text = text.strip()
+    if len(text) >= 2 and (text[0], text[-1]) in (("[", "]"), ("(", ")")):
+        text = text[1:-1]
     parts = [s.strip() for s in text.split(",")]
     if len(parts) != size:
         return None
@@ -343,6 +351,16 @@ def location_names(value: Any) -> list[tuple[str, str, str]]:
 
 def _text(text: str) -> Any:
     return text
+
+
+def looks_like_numbers(text: str) -> bool:
+    """Text meant as numbers (`1.3,0.6`, `[1, 2, x]`), never an object's name: a bracket, or commas between
+    items that start like numbers."""
+    stripped = text.strip()
+    if stripped[:1] in "[(" and stripped:
+        return True
+    parts = [part.strip() for part in stripped.split(",")]
+    return len(parts) > 1 and all(part[:1].isdigit() or part[:1] in "+-." for part in parts if part)
 
 
 def _vector_or_name(size: int) -> Callable[[str], Any]:

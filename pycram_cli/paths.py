@@ -77,13 +77,38 @@ def available(kind: str) -> list[Found]:
                     for name in _names(bundled_folder)]
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return a.resolve() == b.resolve()
+    except (OSError, RuntimeError):
+        return False
+
+
+def _not_a_folder(value: str, base: Path, what: str, where: Location, key: str | None = None) -> None:
+    """A folder where a plan or world file was named: an input error that says so, with the files in it."""
+    path = Path(value) if Path(value).is_absolute() else base / value
+    try:
+        if not path.is_dir():
+            return
+        inside = sorted(p.name for p in path.glob("*.yaml") if not p.name.endswith(".vary.yaml"))[:5]
+    except (OSError, ValueError):
+        return
+    raise InputError(f"'{value}' is a folder, not a {what} file", where, key=key,
+                     suggestion=f"name a file in it: {', '.join(inside)}" if inside else f"name a {what} file")
+
+
+def _known_names(kind: str) -> list[str]:
+    """The names a plan or world can be given by (`kind`: plans or worlds): the working folder's, then the bundled."""
+    return list(dict.fromkeys(found.name for found in available(kind)))
+
+
 def _names(folder: Path) -> list[str]:
     # variation files (`set_table.vary.yaml`) sit beside their plans but are no plans
     return sorted(p.stem for p in folder.glob("*.yaml") if not p.name.endswith(".vary.yaml")) if folder.is_dir() else []
 
 
 def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Location,
-          key: str | None = None) -> Path | None:
+          key: str | None = None, naming: Path | None = None) -> Path | None:
     """The first regular file `value` names; None when nothing is there. Something there that cannot be
     read (a pipe, a device, a name too long) is an input error, not a reason to look further."""
     path = Path(value)
@@ -99,6 +124,8 @@ def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Locati
         candidates = [base / n for n in names] + [local / n for n in names] + [bundled_folder / n for n in names]
     for candidate in candidates:
         problem = probe(candidate)
+        if problem is None and naming is not None and _same_file(candidate, naming):
+            continue  # the file that names it is not it
         if problem is None:
             return candidate
         if problem != "not found" and not problem.startswith("it is a folder"):
@@ -106,20 +133,25 @@ def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Locati
     return None
 
 
-def find_world(value: str | None, base: Path | None = None, where: Location | None = None) -> Path:
+def find_world(value: str | None, base: Path | None = None, where: Location | None = None,
+               naming: Path | None = None) -> Path:
     """A world file: a path (relative to `base`, default the current folder) or a bundled world's name.
 
-    None means the default world. Not found: an input error at `where` with a suggestion.
+    None means the default world. Not found: an input error at `where` with a suggestion. `naming`: the
+    file that names the world (a plan), never the world itself: `world: mine` in `plans/mine.yaml` is
+    `worlds/mine.yaml`, not the plan.
     """
     if value is None:
         return default_world()
     found = _find(value, base if base is not None else Path.cwd(), worlds_dir(), "world file",
-                  where or Location(value), "world" if where else None)
+                  where or Location(value), "world" if where else None, naming)
     if found is not None:
         return found
-    names = _names(worlds_dir())
+    _not_a_folder(value, base if base is not None else Path.cwd(), "world", where or Location(value),
+                  "world" if where else None)
+    names = _known_names("worlds")
     raise InputError(f"world file not found: '{value}'", where or Location(value), key="world" if where else None,
-                     suggestion=did_you_mean(value, names) or (f"bundled worlds: {', '.join(names)}" if names else None))
+                     suggestion=did_you_mean(value, names) or (f"worlds: {', '.join(names)}" if names else None))
 
 
 def find_plan(value: str, base: Path | None = None) -> Path:
@@ -127,6 +159,7 @@ def find_plan(value: str, base: Path | None = None) -> Path:
     found = _find(value, base if base is not None else Path.cwd(), plans_dir(), "plan file", Location(value))
     if found is not None:
         return found
-    names = _names(plans_dir())
+    _not_a_folder(value, base if base is not None else Path.cwd(), "plan", Location(value))
+    names = _known_names("plans")
     raise InputError("plan file not found", Location(value),
-                     suggestion=did_you_mean(value, names) or (f"bundled plans: {', '.join(names)}" if names else None))
+                     suggestion=did_you_mean(value, names) or (f"plans: {', '.join(names)}" if names else None))

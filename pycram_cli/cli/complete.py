@@ -17,6 +17,7 @@ from click.shell_completion import CompletionItem
 
 from ..errors import PycramError
 from ..paths import available, find_world
+from ..worldfile.extends import merged
 from ..yamlsource import LMap, load_yaml
 
 #: what a file name looks like, as opposed to a plan's or world's name: complete files
@@ -83,6 +84,7 @@ def world_objects(ctx: click.Context) -> list[tuple[str, str]]:
         return []
     try:
         data = load_yaml(path)
+        data = merged(data, path, []) if isinstance(data, LMap) else data  # a world it extends: its objects too
     except (PycramError, OSError):
         return []
     objects = data.get("objects") if isinstance(data, LMap) else None

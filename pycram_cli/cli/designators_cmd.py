@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 from click.shell_completion import CompletionItem
 
-from ..designators import DESIGNATORS, Designator
+from ..designators import DESIGNATORS, Designator, Slot
 from ..designators.actions import ACTIONS, Action
 from ..errors import InputError, Location, did_you_mean
 from ..kinds import KINDS
@@ -76,16 +76,27 @@ def designators(type_name: str | None, only: str | None, as_json: bool) -> None:
         console.emit_json([_as_dict(s, robots) for s in specs])
         return
     for spec in specs:
-        rows = []
-        for slot in spec.slots:
-            need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
-            value = KINDS[slot.kind].doc
-            per_robot = _per_robot(slot.kind, robots)
-            if per_robot:
-                value += "; " + "; ".join(f"{robot}: {', '.join(names) or 'none'}" for robot, names in per_robot.items())
-            rows.append((slot.name, need, value, slot.default or "-", slot.doc))
+        rows = [_slot_row(spec, slot, robots) for slot in spec.slots]
         title = f"action {spec.name} — {spec.doc}" if isinstance(spec, Action) else f"{spec.name} — {spec.doc}"
-        console.table(title, ["slot", "", "value", "default", "meaning"], rows)
+        if console.out.is_terminal:
+            console.table(title, ["slot", "", "value", "default", "meaning"], rows)
+        else:  # piped: one field a line, as `pycram plans` and `pycram worlds` print
+            console.plain(title)
+            for name, need, value, default, meaning in rows:
+                console.plain(f"  {name}  {need}: {meaning}")
+                console.plain(f"    value: {value}")
+                if default != "-":
+                    console.plain(f"    default: {default}")
         if spec.one_of:
             console.plain(f"  give at least one of: {', '.join(spec.one_of)}")
         console.plain("")
+
+
+def _slot_row(spec: Designator | Action, slot: Slot, robots: list[RobotDescription]) -> tuple[str, str, str, str, str]:
+    """(name, required/optional/one of, what value it takes, default, meaning) of one slot."""
+    need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
+    value = KINDS[slot.kind].doc
+    per_robot = _per_robot(slot.kind, robots)
+    if per_robot:
+        value += "; " + "; ".join(f"{robot}: {', '.join(names) or 'none'}" for robot, names in per_robot.items())
+    return (slot.name, need, value, slot.default or "-", slot.doc)

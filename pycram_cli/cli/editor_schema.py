@@ -131,12 +131,15 @@ SUBPLAN_VALUES: dict[str, Schema] = {
 }
 _COLOR = _numbers((3, 4), _number(0, 1), "r, g, b[, a], each from 0 to 1")
 _VECTOR3 = _numbers((3,), _number(), "[x, y, z]")
+_NONBLANK = {"type": "string", "pattern": r"\S"}
 WORLD_VALUES: dict[str, Schema] = {
     "description": _text("what the world holds"),
+    "extends": _with(_NONBLANK, "the world this one is made from: a world's name (pycram worlds) or a file relative "
+                                "to this one; `objects` then add new objects and change its own (by name)"),
     "gravity": _with(_VECTOR3, "gravity [x, y, z] in m/s² (default [0, 0, -9.81])"),
-    "objects": {"type": "array", "items": ref("object"), "description": "the bodies of the world"},
+    "objects": {"type": "array", "description": "the bodies of the world (of a world that extends another: "
+                                                "the objects it adds or changes)"},
 }
-_NONBLANK = {"type": "string", "pattern": r"\S"}
 OBJECT_VALUES: dict[str, Schema] = {
     "name": _with(_NONBLANK, "the object's name, unique in the world"),
     "type": _with(_NONBLANK, "its type (milk, robot, environment, ...): detecting finds objects by type"),
@@ -372,7 +375,15 @@ class Schemas:
         defs = {"object": self.mapping("a world object", world.OBJECT_KEYS, world.OBJECT_REQUIRED, OBJECT_VALUES,
                                        "a body: its name, type and model file, where it starts"),
                 "attach": self.mapping("attach", world.ATTACH_KEYS, world.ATTACH_REQUIRED, ATTACH_VALUES)}
-        root = self.mapping("the world", world.WORLD_KEYS, world.WORLD_REQUIRED, WORLD_VALUES)
+        defs["object-change"] = {**self.mapping("a change to an object of the world it extends", world.OBJECT_KEYS,
+                                                ("name",), OBJECT_VALUES,
+                                                "an object the extended world has (the keys given replace its own), "
+                                                "or a new one (name, type and file)")}
+        root = self.mapping("the world", world.WORLD_KEYS, (), WORLD_VALUES)
+        # a world that extends another may leave `objects` out, and names its objects' changes by name alone
+        root["if"] = {"required": ["extends"]}
+        root["then"] = {"properties": {"objects": {"items": ref("object-change")}}}
+        root["else"] = {"required": list(world.WORLD_REQUIRED), "properties": {"objects": {"items": ref("object")}}}
         return self.document("world", root, defs)
 
     # -- variations -------------------------------------------------------------------------------------------

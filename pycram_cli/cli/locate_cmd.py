@@ -21,14 +21,14 @@ from click.shell_completion import CompletionItem
 from ..errors import InputError, Location
 from ..failures import LocationFailure
 from ..jsonable import jsonable
-from ..kinds import LOCATION_GOALS, parse_vector
+from ..kinds import LOCATION_GOALS, POSITION_FORMS, looks_like_numbers, parse_vector
 from ..locations import BasePose, locate
 from ..locations.plot import COLOURS, draw
 from ..world.camera import write_png
 from . import console
 from .complete import link_names, object_names
 from .files import check_plot
-from .options import open_world, world_option
+from .options import is_number, joined, open_world, world_option
 
 EXIT_FAILED = 1
 
@@ -44,9 +44,23 @@ def _location(goal: str, target: str, arm: str | None, grasp: str | None, visibl
     if near is not None:
         vector = parse_vector(near, 3)
         if vector is None:
-            raise InputError(f"expected x,y,z, got {near!r}", Location("--near"), key="near")
+            raise InputError(f"expected a position x,y,z, got {near!r}", Location("--near"), key="near",
+                             suggestion=f"a position is written {POSITION_FORMS}")
         location["near"] = vector
     return location
+
+
+def target_text(words: tuple[str, ...]) -> str:
+    """TARGET from its words: one name or position, or a position split by the shell (`1.3, 0.6, 1.0`) or written
+    as three numbers (`1.3 0.6 1.0`); anything else is an input error that shows how a position is written."""
+    values = joined(words)
+    if len(values) == 3 and all(map(is_number, values)):
+        return ",".join(values)
+    if len(values) != 1 or (looks_like_numbers(values[0]) and parse_vector(values[0], 3) is None):
+        shown = " ".join(words)
+        raise InputError(f"expected one TARGET (an object, a link or a position), got {shown!r}", Location("TARGET"),
+                         suggestion=f"a position is written {POSITION_FORMS}")
+    return values[0]
 
 
 def target_names(ctx: click.Context, param: click.Parameter, incomplete: str) -> list[CompletionItem]:
@@ -71,7 +85,7 @@ def _row(rank: int, found: Any) -> tuple[str, ...]:
 
 @click.command("locate", short_help="Resolve a location designator: where to stand, or a free spot on a surface.")
 @click.argument("goal", metavar="GOAL", type=click.Choice(LOCATION_GOALS))
-@click.argument("target", metavar="TARGET", shell_complete=target_names)
+@click.argument("target_words", metavar="TARGET", nargs=-1, required=True, shell_complete=target_names)
 @click.option("--arm", metavar="ARM", help="reachable-for, accessing: the arm that must reach.")
 @click.option("--grasp", metavar="GRASP", help="reachable-for: the grasp (front, top, ... or x,y,z,w).")
 @click.option("--visible-for", "visible_for", metavar="OBJECT", shell_complete=object_names,
@@ -88,14 +102,15 @@ def _row(rank: int, found: Any) -> tuple[str, ...]:
 @world_option
 @click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")
 @click.pass_context
-def locate_cmd(ctx: click.Context, goal: str, target: str, arm: str | None, grasp: str | None,
+def locate_cmd(ctx: click.Context, goal: str, target_words: tuple[str, ...], arm: str | None, grasp: str | None,
                visible_for: str | None, reachable_for: str | None, for_object: str | None, near: str | None,
                count: int, plot: str | None, world_file: str | None, as_json: bool) -> None:
     """Resolve a location designator in a world (default: the bundled kitchen) and show the poses found.
 
     \b
-    GOAL is reachable-for, visible-for, on or accessing; TARGET an object, a position x,y,z
-    (reachable-for), a surface link or object (on), or a handle link (accessing).
+    GOAL is reachable-for, visible-for, on or accessing; TARGET an object, a position (reachable-for:
+    1.3,0.6,1.0, [1.3,0.6,1.0], '1.3, 0.6, 1.0' or 1.3 0.6 1.0), a surface link or object (on), or a
+    handle link (accessing).
 
     \b
     Examples:
@@ -107,6 +122,7 @@ def locate_cmd(ctx: click.Context, goal: str, target: str, arm: str | None, gras
     Exit status: 0 found, 1 cannot be satisfied, 2 bad input.
     """
     check_plot(Path(plot) if plot is not None else None)
+    target = target_text(target_words)
     location = _location(goal, target, arm, grasp, visible_for, reachable_for, for_object, near)
     found: list[Any] = []
     failure: LocationFailure | None = None

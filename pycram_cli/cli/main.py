@@ -33,7 +33,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
               "List the plans: the working folder's plans/ first, then the bundled ones, with descriptions and parameters."),
     "worlds": ("worlds_cmd", "worlds",
                "List the worlds: the working folder's worlds/ first, then the bundled ones, with their robot and objects."),
-    "new": ("new_cmd", "new", "Write a starting file: a commented plan (pycram new plan NAME)."),
+    "new": ("new_cmd", "new", "Write a starting file: a commented plan, a world made from another, variations for sweeps."),
     "query": ("query_cmd", "query", "Ask a reasoning question (stable, visible, reachable, ...) about a world."),
     "locate": ("locate_cmd", "locate_cmd", "Resolve a location designator: where to stand, or a free spot on a surface."),
     "world": ("world_cmd", "world", "Inspect and render world files."),

@@ -60,6 +60,31 @@ def wait_for_window(world: "BulletWorld") -> None:
         pass
 
 
+def joined(tokens: tuple[str, ...] | list[str]) -> list[str]:
+    """Words the shell split inside one value joined again: `1.3, 0.6, 1.0` and `[1.3, 0.6, 1.0]` unquoted are
+    one value (a word ending in a comma or an open bracket goes on in the next)."""
+    values: list[str] = []
+    for token in tokens:
+        if values and (_goes_on(values[-1]) or token.startswith((",", "]", ")"))):
+            values[-1] += token
+        else:
+            values.append(token)
+    return values
+
+
+def _goes_on(text: str) -> bool:
+    """A word that says the value goes on in the next one: a trailing comma, an open bracket."""
+    return text.endswith(",") or text.count("[") > text.count("]") or text.count("(") > text.count(")")
+
+
+def is_number(text: str) -> bool:
+    """A finite number, as a command-line word."""
+    try:
+        return math.isfinite(float(text))
+    except ValueError:
+        return False
+
+
 def world_option(func: F) -> F:
     return click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
                         help="World file or bundled world name (default: kitchen).")(func)  # type: ignore[return-value]

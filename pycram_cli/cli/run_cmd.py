@@ -140,6 +140,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     if camera is not None and render_file is None:
         raise InputError("sets the camera of the --render image, but no --render FILE is given",
                          Location("--camera"))
+    if not follow and not gui:
+        raise InputError("keeps the first view of the --gui window, but no --gui is given", Location("--no-follow"),
+                         suggestion="add --gui, or leave --no-follow out")
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
                    (report_file, REPORT_FORMATS, "report")])
     distinct_outputs([(trace_file, "trace"), (render_file, "image"), (report_file, "report")])

@@ -70,11 +70,12 @@ class _Progress:
 @click.option("--timeout", type=click.FloatRange(min=0.0, min_open=True), default=None, metavar="SECONDS",
               help="Record a scenario that runs longer as a timeout and go on.")
 @click.option("--resume", is_flag=True, help="Go on with the sweep in --out: skip the scenarios already in it.")
+@click.option("--force", is_flag=True, help="Run the sweep again from the start in --out, replacing the results there.")
 @json_option
 @click.pass_context
 def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file: str | None, count: int, seed: int,
           workers: int | None, backend: str, address: str | None, out_dir: Path | None, plot_file: Path | None,
-          compare: str | None, timeout: float | None, resume: bool, as_json: bool) -> None:
+          compare: str | None, timeout: float | None, resume: bool, force: bool, as_json: bool) -> None:
     """Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails.
 
     Each scenario's outcome is a line of OUT/results.jsonl, written as it finishes (Ctrl-C keeps
@@ -85,7 +86,7 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     check_plot(plot_file)
     out = out_dir if out_dir is not None else Path(f"sweep-{Path(plan_file).stem}")
     settings = SweepSettings(plan_file, vary_file, world_file, count, seed, workers, backend, address, out, compare,
-                             timeout, resume)
+                             timeout, resume, force)
     prepared = prepare_sweep(settings)
     done = len(prepared.results.done)
     succeeded = sum(1 for r in prepared.results.done.values() if r["status"] == "succeeded")

@@ -17,13 +17,13 @@ concurrent branches like any leaf; every action it performs in turn is a node of
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from ..designators import robot_resources
 from ..designators.actions import ACTIONS, Actor, check_action
 from ..errors import Location, did_you_mean
 from ..failures import Failure
-from ..kinds import KINDS, Robots
+from ..kinds import KINDS, Kind, Robots, location_mapping
 from ..robots import description_for
 from ..yamlsource import LMap
 from .context import is_reference, jsonable, references
@@ -107,27 +107,27 @@ class ActionStep(Node):
             value = self.slots.get(slot.name)
             if value is None:
                 continue
-            names: list[tuple[str, str, str]] = []
-            kind = KINDS[slot.kind]
-            if kind.names_object and isinstance(value, str) and not references(value):
-                names.append((slot.name, value, "object"))
-            elif kind.names_in is not None:
-                names.extend(kind.names_in(value))
             where = self.slots.loc(slot.name, True)
-            for key, name, what in names:
-                self._known(v, key or slot.name, name, what, where, objects)
+            v.known_values(slot.name, slot.kind, value, where)
+            if slot.kind == "object-type":
+                v.object_type(slot.name, value, where)
+            for key, name, what, origin in _slot_names(v, slot.name, KINDS[slot.kind], value):
+                self._known(v, key or slot.name, name, what, where, objects, origin)
         v.action_parts(self.slots, [(s.name, s.kind, s.of) for s in spec.slots])
 
-    def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str]) -> None:
+    def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str],
+               origin: str = "") -> None:
         facts = v.facts
         assert facts is not None
         links = {link for name, names in facts.links.items() if name != facts.robot for link in names}
         if what == "object" and name not in objects:
-            v.error(f"'{key}': the world has no object '{name}'", where, key=key, suggestion=did_you_mean(name, objects))
+            v.error(f"'{key}': the world has no object '{name}'{origin}", where, key=key,
+                    suggestion=did_you_mean(name, objects))
         elif what == "link" and links is not None and name not in links:
-            v.error(f"'{key}': the world has no link '{name}'", where, key=key, suggestion=did_you_mean(name, sorted(links)))
+            v.error(f"'{key}': the world has no link '{name}'{origin}", where, key=key,
+                    suggestion=did_you_mean(name, sorted(links)))
         elif what == "object or link" and name not in objects and links is not None and name not in links:
-            v.error(f"'{key}': the world has no object or link '{name}'", where, key=key,
+            v.error(f"'{key}': the world has no object or link '{name}'{origin}", where, key=key,
                     suggestion=did_you_mean(name, [*objects, *sorted(links)]))
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
@@ -141,6 +141,32 @@ class ActionStep(Node):
             raise Failure(f"action {self.name}: " + "; ".join(
                 p.message + (f" ({p.suggestion})" if p.suggestion else "") for p in problems))
         return ACTIONS[self.name].run(PlanActor(ex, tn, self.where), values)
+
+
+def _slot_names(v: "Validator", slot_name: str, kind: Kind, value: Any) -> list[tuple[str, str, str, str]]:
+    """(key, name, what, origin) for every object or link name an action slot gives, literally or through a
+    `$variable` whose values are known before the run (a parameter's, a `for_each` item); `origin` says which
+    variable (` ($object)`), empty for a literal."""
+    found: list[tuple[str, str, str, str]] = []
+    if isinstance(value, Mapping) and kind.names_in is not None:  # a location: each key's values
+        for key, item in location_mapping(value).items():
+            for known, origin in _known_items(v, item):
+                found.extend((k, name, what, origin) for k, name, what in kind.names_in({key: known}))
+        return found
+    for known, origin in _known_items(v, value):
+        if kind.names_object and isinstance(known, str) and known:
+            found.append((slot_name, known, "object", origin))
+        elif kind.names_in is not None:
+            found.extend((k, name, what, origin) for k, name, what in kind.names_in(known))
+    return found
+
+
+def _known_items(v: "Validator", value: Any) -> list[tuple[Any, str]]:
+    """The values `value` has before the run, each with where it came from (` ($object)`, or '' for a literal)."""
+    if not isinstance(value, str) or not references(value):
+        return [(value, "")]
+    return [(item, f" ({value})") for item in v.possible(value) or []
+            if not (isinstance(item, str) and references(item))]
 
 
 def _on_key(mapping: LMap) -> LMap:

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import InputError
+from ..paths import find_plan
 from ..world import BulletWorld
 from . import actions, composites, decorators, leaves  # noqa: F401  (importing them registers their node types)
 from .syntax import NODE_TYPES, Plan, read_plan
@@ -27,7 +28,10 @@ def parse_plan(path: str | Path, errors: list[InputError] | None = None) -> Plan
 
 
 def load_plan(path: str | Path, world: BulletWorld | None = None, check_world_file: bool = True) -> Plan:
-    """Parse and check a plan file; every problem is reported together with file, line and column."""
+    """Parse and check a plan file; every problem is reported together with file, line and column.
+
+    `path` is a file, or a plan's name as the command line takes it (`set_table`: the working folder's `plans/`
+    first, then the bundled plans)."""
     errors: list[InputError] = []
-    plan = parse_plan(path, errors)
+    plan = parse_plan(find_plan(str(path)), errors)
     return check_plan(plan, world, check_world_file, errors)

@@ -106,6 +106,6 @@ def plan_world(plan: Plan, override: str | None = None) -> Path:
     """The world a run uses: `--world` (relative to the current folder) or else the plan's own `world:`."""
     if override is not None:
         return find_world(override, Path.cwd(), Location("--world"))
-    return find_world(plan.world, plan.path.parent, plan.world_where)
+    return find_world(plan.world, plan.path.parent, plan.world_where, naming=plan.path)
 
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Mapping
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..designators import DESIGNATORS, process_module_problems
 from ..failures import ALIASES, FAILURES, failure_class
-from ..kinds import KINDS, Robots
+from ..kinds import KINDS, Robots, param_kind
 from ..reasoning import QUERIES
 from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
@@ -49,6 +49,7 @@ class WorldFacts:
     description: RobotDescription | None = None
     links: Mapping[str, tuple[str, ...]] = field(default_factory=dict)  # by object name (unknown: absent)
     joints: Mapping[str, tuple[str, ...]] = field(default_factory=dict)  # movable joints, by object name
+    types: tuple[str, ...] = ()  # the objects' types (what `object-type` slots name)
 
     @classmethod
     def of_spec(cls, spec: "WorldSpec") -> "WorldFacts":
@@ -57,7 +58,7 @@ class WorldFacts:
         joints = {name: tuple(j for j, info_joint in info.joints.items() if info_joint.movable)
                   for name, info in spec.models.items()}
         return cls(tuple(spec.object_names), robot.name if robot else None, robot.file.name if robot else "",
-                   spec.robot_description, links, joints)
+                   spec.robot_description, links, joints, _unique(o.type for o in spec.objects))
 
     @classmethod
     def of_world(cls, world: "BulletWorld") -> "WorldFacts":
@@ -65,11 +66,16 @@ class WorldFacts:
         return cls(tuple(o.name for o in world.objects), robot.name if robot else None,
                    robot.path.name if robot else "", description_for(robot) if robot is not None else None,
                    {o.name: tuple(o.link_names) for o in world.objects},
-                   {o.name: tuple(j.name for j in o.movable_joints) for o in world.objects})
+                   {o.name: tuple(j.name for j in o.movable_joints) for o in world.objects},
+                   _unique(o.type for o in world.objects))
 
     @property
     def robots(self) -> Robots:
         return Robots((self.description,), True) if self.description is not None else Robots()
+
+
+def _unique(names: Iterable[str]) -> tuple[str, ...]:
+    return tuple(dict.fromkeys(names))
 
 
 def _robots(facts: WorldFacts | None) -> Robots:
@@ -110,12 +116,44 @@ class Validator:
         self._body(self.plan.body, {})
 
     def _defaults(self, params: list[Param]) -> None:
-        """The defaults of typed parameters must fit their types."""
+        """The defaults of typed parameters must fit their types (and name what the world has)."""
         for param in params:
             if not param.required:
                 problem = type_problem(param, param.default, self.robots)
                 if problem:
                     self.error(f"the default of {problem}", param.default_where, key=param.name)
+                else:
+                    self.world_value(param, param.default, param.default_where, param.name, "the default of ")
+
+    def world_value(self, param: Param, value: Any, where: Location, key: str, prefix: str = "",
+                    origin: str = "") -> None:
+        """A value of a typed parameter that names an object (type `object`) must name one of the world's."""
+        kind = param_kind(param.type)
+        facts = self.facts
+        if kind is None or not kind.names_object or facts is None or not isinstance(value, str) or references(value):
+            return
+        if value not in facts.objects:
+            self.error(f"{prefix}parameter '{param.name}' is an object: the world has no object '{value}'{origin}",
+                       where, key=key, suggestion=did_you_mean(value, facts.objects))
+
+    def object_type(self, slot_name: str, value: Any, where: Location) -> None:
+        """With a world: an object type that is not the world's but close to one of them is a misspelling.
+
+        A type far from every type of the world is let pass: a plan may look for what is not there
+        (a `PerceptionFailure` it catches at run time), and a sweep's variations may bring it in.
+        """
+        facts = self.facts
+        if facts is None or not facts.types:
+            return
+        values = self.possible(value) or []
+        origin = "" if values == [value] else f" ({value})"
+        for item in values:
+            if not isinstance(item, str) or references(item) or item in facts.types:
+                continue
+            close = did_you_mean(item, facts.types)
+            if close:
+                self.error(f"'{slot_name}': the world has no object of type '{item}'{origin}", where,
+                           key=str(slot_name), suggestion=close)
 
     def _body(self, steps: list[Node], params: dict[str, Location]) -> None:
         self.defined = dict(params)
@@ -249,10 +287,16 @@ class Validator:
                                suggestion=did_you_mean(str(key), names))
             given = [k for k in args if k in names]
         for param, value, at in _arguments(sub.params, args, args_where):
-            if not references(value):  # a literal argument; values of variables are only known when the call runs
-                problem = type_problem(param, plain(value), self.robots)
+            values = self.possible(value) if references(value) else [value]  # a variable's, when known now
+            origin = "" if values == [value] else f" ({value})"
+            for item in values or []:
+                if isinstance(item, str) and references(item):
+                    continue
+                problem = type_problem(param, plain(item), self.robots)
                 if problem:
-                    self.error(f"{signature}: {problem}", at, key="args")
+                    self.error(f"{signature}: {problem}{origin}", at, key="args")
+                else:
+                    self.world_value(param, plain(item), at, "args", f"{signature}: ", origin)
         missing = [param for param in required if param not in given]
         if missing:
             self.error(f"missing argument{'s' if len(missing) > 1 else ''} {', '.join(missing)}: "
@@ -326,6 +370,9 @@ class Validator:
                 if KINDS[kind].names_object and item not in names:
                     self.error(f"'{slot_name}': the world has no object '{item}'{origin}", where, key=str(slot_name),
                                suggestion=did_you_mean(item, names))
+                elif kind == "object-type":
+                    self.object_type(slot_name, value, where)
+                    break  # every value of the slot is checked at once
                 elif kind == "camera" and facts.robot is not None and facts.robot in facts.links:
                     links = facts.links[facts.robot]
                     if item not in links:
@@ -420,7 +467,7 @@ def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file:
         validator.errors.extend(process_module_problems(facts.description))
     if check_world_file and plan.world is not None:
         try:
-            find_world(plan.world, plan.path.parent, plan.world_where)
+            find_world(plan.world, plan.path.parent, plan.world_where, naming=plan.path)
         except InputError as exc:
             validator.errors.append(exc)
     validator.check()

@@ -123,7 +123,7 @@ def prepare(plan: str | Path, world: str | Path | None = None, params: Mapping[s
         if world is not None:
             world_path = find_world(str(world), Path.cwd())
         else:
-            world_path = find_world(parsed.world, parsed.path.parent, parsed.world_where)
+            world_path = find_world(parsed.world, parsed.path.parent, parsed.world_where, naming=parsed.path)
         spec = parse_world(world_path)
     except PycramError as exc:
         errors.extend(as_list(exc))

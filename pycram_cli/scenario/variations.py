@@ -46,8 +46,9 @@ from typing import Any, Mapping
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..files import probe
 from ..jsonable import jsonable
-from ..kinds import Robots
+from ..kinds import Robots, param_kind
 from ..plan import Plan, WorldFacts
+from ..plan.syntax import Param
 from ..plan.params import type_problem
 from ..world import BulletWorld
 from ..world.pose import quat_multiply, yaw_quaternion
@@ -355,7 +356,7 @@ def parse_variations(path: str | Path, world: WorldSpec, plan: Plan | None = Non
                                          data.loc("robot", True), key="region"))
     if "params" in data:
         result.params = _parse_params(data["params"], data.loc("params", True), plan, WorldFacts.of_spec(world).robots,
-                                      errors)
+                                      errors, world.object_names)
     for item in result.objects + ([result.robot] if result.robot else []):
         if item.region is not None and item.region.on is not None:
             owner = item.region.on[0]
@@ -548,8 +549,16 @@ def _swap_model(entry: LMap, base: Path, errors: list[InputError]) -> Path | Non
     return found
 
 
+def _no_such_object(declared: Param, value: Any, objects: list[str] | None) -> str | None:
+    """A drawn value of an `object` parameter that names no object of the world: why, else None."""
+    kind = param_kind(declared.type)
+    if objects is None or kind is None or not kind.names_object or not isinstance(value, str) or value in objects:
+        return None
+    return f"parameter '{declared.name}' is an object: the world has no object '{value}'"
+
+
 def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots,
-                  errors: list[InputError]) -> list[ParamDraw]:
+                  errors: list[InputError], objects: list[str] | None = None) -> list[ParamDraw]:
     if not isinstance(value, LMap):
         errors.append(InputError("expected a mapping of parameter name to [choices] or {range: [lo, hi]}", where,
                                  key="params"))
@@ -569,6 +578,10 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
             """The drawn values fit the parameter's declared type (as `-p` values must)."""
             problems = [(type_problem(declared, v, robots), at) for v, at in zip(values, places)] if declared else []
             errors.extend(InputError(problem, at, key=str(name)) for problem, at in problems if problem)
+            if declared is not None and not any(problem for problem, _ in problems):
+                problems = [(_no_such_object(declared, v, objects), at) for v, at in zip(values, places)]
+                errors.extend(InputError(problem, at, key=str(name), suggestion=did_you_mean(str(v), objects or []))
+                              for (problem, at), v in zip(problems, values) if problem)
             return not any(problem for problem, _ in problems)
 
         if isinstance(spec, LList):

@@ -62,6 +62,7 @@ class SweepSettings:
     compare: str | None = None        # PARAM=A,B,...
     timeout: float | None = None
     resume: bool = False
+    force: bool = False               # start again in a results folder that holds a sweep, replacing its results
     imports: tuple[str, ...] = ()     # extensions every worker imports first
 
 
@@ -118,6 +119,9 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
             ray_backend.reachable(settings.address)  # before the results folder is made
         except InputError as exc:
             errors.append(exc)
+    if settings.force and settings.resume:
+        errors.append(InputError("--force starts the sweep again and --resume goes on with it: give one of them",
+                                 Location("--force")))
     if settings.n < 1:
         errors.append(InputError("the number of scenarios must be at least 1", Location("-n")))
     elif settings.n > MAX_SWEEP_RUNS:
@@ -133,8 +137,13 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
     scenario = prepare(settings.plan, settings.world)
     vary = Path(settings.vary).resolve() if settings.vary is not None else beside(scenario.plan.path)
     if vary is None:
-        raise InputError(f"no variation file: give --vary (none named {scenario.plan.path.stem}.vary.yaml is beside "
-                         "the plan)", Location("--vary"))
+        stem = scenario.plan.path.stem
+        local = (Path.cwd() / "plans").resolve() == scenario.plan.path.parent.resolve()
+        raise InputError(f"no variation file: give --vary (none named {stem}.vary.yaml is beside the plan)",
+                         Location("--vary"),
+                         suggestion=f"write one with `pycram new vary {stem}` (plans/{stem}.vary.yaml"
+                                    + (", found beside the plan" if local else f", then --vary plans/{stem}.vary.yaml")
+                                    + ")")
     variations: Variations | None = None
     try:
         variations = read_variations(vary, scenario.world, scenario.plan)
@@ -161,7 +170,7 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
             "n": settings.n, "timeout": settings.timeout, "workers": settings.workers, "backend": settings.backend}
     job = SweepJob(str(scenario.plan.path), str(vary), str(scenario.world_path), settings.timeout,
                    tuple(str(Path(i).resolve()) if i.endswith(".py") else i for i in settings.imports))
-    results = ResultsFile(settings.out, meta, settings.resume)
+    results = ResultsFile(settings.out, meta, settings.resume, settings.force)
     prepared = PreparedSweep(settings, scenario, variations, job, meta, jsonable(alternatives) if alternatives else None,
                              results)
     for index in range(settings.n):

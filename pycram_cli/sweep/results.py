@@ -98,7 +98,7 @@ def _varied_problem(varied: Any) -> str | None:
 class ResultsFile:
     """The results of one sweep in `folder`; `done` holds the outcomes already there (by task key)."""
 
-    def __init__(self, folder: Path, meta: dict[str, Any], resume: bool) -> None:
+    def __init__(self, folder: Path, meta: dict[str, Any], resume: bool, force: bool = False) -> None:
         self.folder = Path(folder)
         self.path = self.folder / RESULTS
         self.meta_path = self.folder / META
@@ -114,9 +114,13 @@ class ResultsFile:
                     raise InputError(f"cannot use it as part of the results folder: {problem}", Location(str(path)),
                                      suggestion="give another --out")
             existing = self.path.is_file() and self.path.stat().st_size > 0
+            if existing and force:  # asked for: the sweep starts again, its earlier results replaced
+                self.path.unlink()
+                existing = False
             if existing and not resume:
                 raise InputError(f"{self.path} holds the results of a sweep already", Location("--out"),
-                                 suggestion="add --resume to go on with it, or give another --out")
+                                 suggestion="add --resume to go on with it, --force to run it again from the start "
+                                            "(its results are replaced), or give another --out")
             if existing:
                 self._check_same_sweep()
                 self._load()

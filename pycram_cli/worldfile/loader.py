@@ -6,7 +6,7 @@ from pathlib import Path
 from typing import Iterator
 
 from ..errors import InputError, Location, raise_if_any
-from ..paths import default_world
+from ..paths import default_world, find_world
 from ..robots import assign_description
 from ..world import BulletWorld, Object
 from .spec import WorldSpec, parse_world
@@ -95,5 +95,6 @@ def starting_inside(world: BulletWorld, spec: WorldSpec) -> list[InputError]:
 
 
 def load_world(path: str | Path | None = None, mode: str = "direct") -> BulletWorld:
-    """A BulletWorld built from `path` (default: the bundled kitchen world)."""
-    return load_spec(parse_world(Path(path) if path is not None else default_world()), mode=mode)
+    """A BulletWorld built from `path` (default: the bundled kitchen world): a world file, or a name as the command
+    line takes it (`kitchen_fetch`: the working folder's `worlds/` first, then the bundled worlds)."""
+    return load_spec(parse_world(find_world(str(path)) if path is not None else default_world()), mode=mode)

@@ -1,5 +1,6 @@
 """The YAML world format, checked without starting a simulation.
 
+    extends: kitchen                  # optional: a world's name or file; `objects` then add to and change its own
     gravity: [0, 0, -9.81]
     objects:
       - name: milk
@@ -30,8 +31,9 @@ from ..schema import check_keys, describe, expect, is_number, names_only, number
 from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
 from ..world.pose import UP_TURNS, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
+from .extends import EXTENDS, folder_of, merged
 
-WORLD_KEYS = ("description", "gravity", "objects")
+WORLD_KEYS = ("description", "extends", "gravity", "objects")
 WORLD_REQUIRED = ("objects",)
 OBJECT_KEYS = ("name", "type", "file", "position", "orientation", "up", "color", "joints", "attach", "fixed", "mass",
                "description")
@@ -135,7 +137,8 @@ def parse_world(path: Path) -> WorldSpec:
     errors: list[InputError] = []
     if not isinstance(data, LMap):
         raise InputError("a world file must be a mapping with 'objects' (and optionally 'gravity')", Location(fname, 1, 1))
-    check_keys(data, WORLD_KEYS, WORLD_REQUIRED, "the world", errors)
+    check_keys(data, WORLD_KEYS, () if EXTENDS in data else WORLD_REQUIRED, "the world", errors)
+    data = merged(data, path, errors)
     gravity = [0.0, 0.0, -9.81]
     if "gravity" in data:
         gravity = number_list(data["gravity"], 3, data.loc("gravity", True), "gravity", errors) or gravity
@@ -152,7 +155,8 @@ def parse_world(path: Path) -> WorldSpec:
     models: dict[str, ModelInfo] = {}
     first_seen: dict[str, Location] = {}
     for index, item in enumerate(raw):
-        spec = _parse_object(item, raw.loc(index), path.parent, errors, models)
+        folder = folder_of(item, path.parent) if isinstance(item, LMap) else path.parent
+        spec = _parse_object(item, raw.loc(index), folder, errors, models)
         if spec is None:
             continue
         if spec.name in first_seen:

@@ -78,3 +78,9 @@ def test_link_names_for_locations_on_surfaces_and_handles():
     handles = complete("locate accessing sink_area_left_")
     assert handles[0] == "sink_area_left_upper_drawer_handle" and all("handle" in h for h in handles[:3])
     assert "kitchen_island_surface" in complete("locate on kitchen_island")
+
+
+def test_the_objects_of_a_world_that_extends_another_are_its_and_its_bases(folder: Path):
+    (folder / "worlds" / "mine.yaml").write_text(
+        "extends: kitchen\nobjects:\n  - {name: mug, type: mug, file: objects/mug.urdf}\n")
+    assert complete("query stable --world mine ") == [*KITCHEN_OBJECTS, "mug"]

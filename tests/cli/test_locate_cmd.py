@@ -72,3 +72,17 @@ def test_unknown_objects_and_surfaces_are_input_errors():
     result = locate("reachable-for", "milk", "--arm", "middle", "--json")
     assert result.exit_code == 2 and json.loads(result.stdout)["status"] == "error"
     assert locate("behind", "milk").exit_code == 2
+
+
+def test_a_position_target_is_read_in_the_forms_a_user_writes():
+    for words in (["1.3,0.6,1.0"], ["[1.3, 0.6, 1.0]"], ["1.3,", "0.6,", "1.0"], ["1.3", "0.6", "1.0"]):
+        result = locate("reachable-for", *words, "-n", "1", "--json")
+        assert json.loads(result.stdout)["location"]["reachable-for"] == [1.3, 0.6, 1.0], words
+
+
+def test_a_target_that_cannot_be_read_shows_how_a_position_is_written():
+    for words in (["1.3", "0.6"], ["1.3,0.6"], ["milk", "bowl"]):
+        result = locate("reachable-for", *words)
+        assert result.exit_code == 2, words
+        assert "expected one TARGET (an object, a link or a position)" in result.stderr
+        assert "a position is written 1.3,0.6,1.0 or [1.3,0.6,1.0]" in result.stderr

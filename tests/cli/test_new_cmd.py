@@ -1,4 +1,5 @@
-"""`pycram new plan NAME` writes a commented starting plan that validates (and runs) on its world."""
+"""`pycram new plan|world|vary` writes a commented starting file that validates: a plan (that runs on its world),
+a world extending another, a plan's variations for sweeps."""
 from __future__ import annotations
 
 import json
@@ -79,8 +80,66 @@ def test_a_missing_folder_a_bad_name_or_an_unknown_world_is_exit_2(folder: Path)
     assert not (folder / "plans" / "x.yaml").exists()
 
 
-def test_without_a_plans_folder_it_says_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+def test_without_a_plans_folder_it_makes_one_and_says_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
     monkeypatch.chdir(tmp_path)
     result = run("new", "plan", "x")
-    assert result.exit_code == 2
-    assert "plans/x.yaml: cannot write the plan: folder 'plans' does not exist (create it with mkdir plans" in result.stderr
+    assert result.exit_code == 0, result.output
+    assert "made the folder plans/ (it did not exist)" in result.stderr
+    assert (tmp_path / "plans" / "x.yaml").is_file()
+    (tmp_path / "worlds").write_text("not a folder\n")
+    blocked = run("new", "world", "x")
+    assert blocked.exit_code == 2 and "worlds/x.yaml: 'worlds' is not a folder" in blocked.stderr
+
+
+def test_a_folder_is_not_made_when_the_command_fails(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.chdir(tmp_path)
+    assert run("new", "plan", "x", "--world", "kitchn").exit_code == 2
+    assert run("new", "world", "x", "--from", "kitchn").exit_code == 2
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_new_world_extends_the_one_it_is_made_from_and_validates(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.chdir(tmp_path)
+    result = run("new", "world", "my_kitchen", "--from", "kitchen")
+    assert result.exit_code == 0, result.output
+    path = tmp_path / "worlds" / "my_kitchen.yaml"
+    text = path.read_text()
+    assert "\nextends: kitchen " in text and "# - name: mug" in text
+    checked = run("validate", "my_kitchen")
+    assert checked.exit_code == 0, checked.output
+    listed = run("worlds", "--json")
+    [mine] = [w for w in json.loads(listed.stdout) if w["name"] == "my_kitchen"]
+    assert [o["name"] for o in mine["objects"]] == ["floor", "pr2", "kitchen", "milk", "cereal", "bowl", "spoon",
+                                                    "bottle"]
+    uncommented = text.replace("  # - name: mug", "  - name: mug").replace("  #   ", "    ")
+    path.write_text(uncommented)
+    assert run("validate", str(path)).exit_code == 0
+    assert run("world", "show", "my_kitchen", "--json").exit_code == 0
+
+
+def test_the_new_world_from_another_file_names_it_relative_to_itself(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.chdir(tmp_path)
+    assert run("new", "world", "base", "--from", "kitchen_fetch").exit_code == 0
+    result = run("new", "world", "mine", "--from", "worlds/base.yaml")
+    assert result.exit_code == 0, result.output
+    assert "\nextends: base.yaml " in (tmp_path / "worlds" / "mine.yaml").read_text()
+    assert run("validate", "worlds/mine.yaml").exit_code == 0
+
+
+def test_the_new_variation_file_goes_beside_its_plan_and_validates(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    monkeypatch.chdir(tmp_path)
+    assert run("new", "plan", "fetch_it").exit_code == 0
+    result = run("new", "vary", "fetch_it")
+    assert result.exit_code == 0, result.output
+    text = (tmp_path / "plans" / "fetch_it.vary.yaml").read_text()
+    assert "\nplan: fetch_it " in text and "pycram sweep fetch_it -n 20 " in text and "# params: {object: [milk]}" in text
+    checked = run("validate", "plans/fetch_it.vary.yaml")
+    assert checked.exit_code == 0, checked.output
+    again = run("new", "vary", "fetch_it")
+    assert again.exit_code == 2 and "give --force to overwrite it" in again.stderr
+    bundled = run("new", "vary", "set_table", "-o", "mine.vary.yaml")
+    assert bundled.exit_code == 0, bundled.output
+    assert "\nplan: set_table " in (tmp_path / "mine.vary.yaml").read_text()
+    assert run("validate", "mine.vary.yaml").exit_code == 0
+    missing = run("new", "vary", "fetch_itt")
+    assert missing.exit_code == 2 and "did you mean 'fetch_it'?" in missing.stderr

@@ -112,3 +112,51 @@ def test_end_to_end_bad_object_exits_2():
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
     assert "no object 'botle' (did you mean 'bottle'?)" in done.stderr
+
+
+@pytest.mark.parametrize("words", [
+    ["[1.3,0.6,1.0]"], ["1.3,0.6,1.0"], ["1.3, 0.6, 1.0"], ["1.3,", "0.6,", "1.0"], ["[1.3,", "0.6,", "1.0]"],
+    ["1.3", "0.6", "1.0"], ["(1.3, 0.6, 1.0)"],
+])
+def test_a_position_is_read_in_every_form_a_user_writes(words):
+    assert query_json("reachable", *words, "--arm", "left")["args"]["target"] == [1.3, 0.6, 1.0]
+
+
+def test_a_position_after_an_option_may_be_three_numbers():
+    assert query_json("visible", "bottle", "--from", "1.35", "0.4", "1.8")["args"]["from"] == [1.35, 0.4, 1.8]
+
+
+@pytest.mark.parametrize("words, message", [
+    (["1.3,0.6"], "cannot read '1.3,0.6' as a position (3 numbers) (write a position as 1.3,0.6,1.0 or [1.3,0.6,1.0]"),
+    (["1.3", "0.6"], "too many arguments: expected 1 (target), got 2 (usage: pycram query reachable TARGET"),
+])
+def test_a_position_that_cannot_be_read_shows_the_forms_it_may_take(words, message):
+    result = query("reachable", *words)
+    assert result.exit_code == 2, result.output
+    assert message in result.stderr and "'1.3, 0.6, 1.0'" in result.stderr
+
+
+def test_at_stands_the_robot_where_it_is_asked_before_answering():
+    assert query_json("reachable", "milk")["result"] is False  # 1.3 m from the counter
+    placed = query_json("reachable", "milk", "--at", "0.8,0.95,6")  # where `pycram locate reachable-for milk` says
+    assert placed["result"] is True
+    assert query_json("reachable", "milk", "--at", "0.8", "0.95", "6") == placed
+    assert query_json("blocking", "milk", "--at", "0.8,0.95,6", "--exclude-type", "environment")["result"] == []
+    seen = query_json("visible", "spoon", "--at", "0.8,0.95")
+    assert seen["result"] is False  # the spoon is in the drawer wherever it stands
+
+
+def test_at_that_cannot_be_read_or_does_not_apply_is_exit_2():
+    bad = query("reachable", "milk", "--at", "0.8")
+    assert bad.exit_code == 2 and "cannot read '0.8' as a base pose (give X,Y or X,Y,YAW (metres, yaw in degrees" in bad.stderr
+    other = query("stable", "milk", "--at", "1,1")
+    assert other.exit_code == 2 and "option --at does not apply to 'stable'" in other.stderr
+
+
+def test_at_inside_something_says_so():
+    result = query("reachable", "milk", "--at", "1.3,1.0")
+    assert result.exit_code == 0 and "warning: --at 1.3,1: pr2 stands inside" in result.stderr
+
+
+def test_at_is_in_the_help():
+    assert "--at X,Y[,YAW]" in query("--help").stdout and "YAW degrees" in query("--help").stdout

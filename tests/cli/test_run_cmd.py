@@ -227,3 +227,20 @@ def test_a_camera_without_render_is_an_input_error():
 
     result = CliRunner().invoke(cli, ["run", "set_table", "--camera", "robot"])
     assert result.exit_code == 2 and "no --render FILE is given" in result.stderr
+
+
+def test_a_folder_given_as_the_plan_or_world_says_it_is_a_folder(tmp_path, monkeypatch):
+    (tmp_path / "plans").mkdir()
+    (tmp_path / "plans" / "mine.yaml").write_text("body: [{log: hi}]\n")
+    monkeypatch.chdir(tmp_path)
+    result = run("run", "plans")
+    assert result.exit_code == 2
+    assert "'plans' is a folder, not a plan file (name a file in it: mine.yaml)" in result.stderr
+    world = run("run", "plans/mine.yaml", "--world", "plans")
+    assert world.exit_code == 2 and "'plans' is a folder, not a world file" in world.stderr
+
+
+def test_no_follow_needs_the_gui():
+    result = run("run", "set_table", "--no-follow")
+    assert result.exit_code == 2
+    assert "--no-follow: keeps the first view of the --gui window, but no --gui is given (add --gui" in result.stderr

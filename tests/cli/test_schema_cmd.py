@@ -104,6 +104,8 @@ def test_every_declared_key_has_its_value_shape(kind):
     ("world", "objects:\n  - {name: milk, type: milk, file: objects/milk.obj, positon: [1, 0, 0]}\n"),
     ("world", "objects:\n  - {name: milk, type: milk, file: objects/milk.obj, position: [1, 0]}\n"),
     ("world", "objects:\n  - {name: milk, file: objects/milk.obj}\n"),
+    ("world", "description: no objects and no world it extends\n"),
+    ("world", "extends: kitchen\nobjects:\n  - {name: milk, positon: [1, 0, 0]}\n"),
     ("vary", "objects:\n  milk: {nosie: 0.1}\n"),
     ("vary", "objects:\n  milk: {region: {box: [[0, 0, 0], [1, 1, 1]], on: kitchen/sink_area_surface}}\n"),
     ("vary", "params:\n  arm: {range: [0, 1], choose: [1]}\n"),
@@ -126,6 +128,15 @@ def test_files_validation_rejects_do_not_validate(validators, kind, text):
 ])
 def test_variables_and_every_form_validation_accepts_validate(validators, text):
     assert problems(validators["plan"], text) == []
+
+
+@pytest.mark.parametrize("text", [
+    "extends: kitchen\n",
+    "extends: kitchen\nobjects:\n  - {name: milk, position: [1.3, 1.1, 0.851]}\n"
+    "  - {name: mug, type: mug, file: objects/mug.urdf}\n",
+])
+def test_a_world_that_extends_another_names_its_objects_changes_by_name_alone(validators, text):
+    assert problems(validators["world"], text) == []
 
 
 def _yaml_blocks(path: Path) -> list[str]:

@@ -66,3 +66,14 @@ def test_a_parameter_value_naming_no_object_of_the_world_is_found_where_the_plan
 def test_p_without_a_plan_to_set_it_for_is_an_input_error():
     result = run("validate", "kitchen", "-p", "target=[1, 2, 3]")
     assert result.exit_code == 2 and "-p: sets a plan parameter, but no plan or variation file is given" in result.stderr
+
+
+def test_a_plans_world_of_the_same_name_is_the_world_not_the_plan(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    (tmp_path / "plans").mkdir()
+    (tmp_path / "worlds").mkdir()
+    (tmp_path / "worlds" / "mine.yaml").write_text("extends: kitchen\n")
+    (tmp_path / "plans" / "mine.yaml").write_text("world: mine\nbody:\n  - stable: {object: milk}\n")
+    monkeypatch.chdir(tmp_path)
+    result = run("validate", "plans/mine.yaml")
+    assert result.exit_code == 0, result.output
+    assert run("run", "mine").exit_code == 0

@@ -79,6 +79,14 @@ def test_drawn_parameter_values_must_fit_the_parameters_declared_types(tmp_path)
                      (3, 18, "table", "parameter 'table' is a link: expected a name, got 0")]
 
 
+def test_drawn_values_of_an_object_parameter_must_name_objects_of_the_world(tmp_path):
+    plan = write(tmp_path, "fetch.yaml", "world: kitchen\nparams: {object: {type: object, default: milk}}\n"
+                                         "body: [{log: $object}]\n")
+    path = write(tmp_path, "fetch.vary.yaml", "params:\n  object: [milk, bowwl]\n")
+    found = [(e.location.line, e.message, e.suggestion) for e in problems(path, prepare(plan))]
+    assert found == [(2, "parameter 'object' is an object: the world has no object 'bowwl'", "did you mean 'bowl'?")]
+
+
 def test_bad_variation_files_exit_2_in_validate_and_sweep(tmp_path):
     path = write(tmp_path, "set_table.vary.yaml", "plan: set_table\nobjects:\n  milk: {noise: -1}\n")
     result = CliRunner().invoke(cli, ["validate", str(path)])

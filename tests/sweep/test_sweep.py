@@ -129,6 +129,26 @@ def test_resume_runs_only_what_is_missing_and_checks_it_is_the_same_sweep(small)
     assert other.exit_code == 2 and "differs from the one in" in other.stderr and "seed" in other.stderr
 
 
+def test_the_same_sweep_again_is_refused_naming_resume_and_force_and_force_runs_it_again(small):
+    assert sweep(small, "out", "-n", "2", "--workers", "1").exit_code == 0
+    before = untimed(small / "out")
+    again = sweep(small, "out", "-n", "2", "--workers", "1")
+    assert again.exit_code == 2 and "add --resume to go on with it, --force to run it again" in again.stderr
+    forced = sweep(small, "out", "-n", "3", "--workers", "1", "--seed", "0", "--force", "--json")
+    assert forced.exit_code == 0, forced.output
+    assert json.loads(forced.stdout)["throughput"]["runs"] == 3  # from the start, not resumed
+    assert untimed(small / "out")[:2] == before and len(records(small / "out")) == 3
+    both = sweep(small, "out", "-n", "3", "--force", "--resume")
+    assert both.exit_code == 2 and "--force starts the sweep again and --resume goes on with it" in both.stderr
+
+
+def test_without_a_variation_file_the_error_says_how_to_write_one(small):
+    (small / "drop.vary.yaml").unlink()
+    result = sweep(small, "out", "-n", "2")
+    assert result.exit_code == 2
+    assert "no variation file" in result.stderr and "write one with `pycram new vary drop`" in result.stderr
+
+
 def test_a_scenario_past_the_timeout_is_recorded_and_the_sweep_goes_on(small):
     vary = write(small, "slow.vary.yaml", """\
         params:

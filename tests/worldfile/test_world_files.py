@@ -144,3 +144,15 @@ def test_the_robot_descriptions_defaults_apply_where_the_world_sets_no_value(tmp
 
     assert torso("") == pytest.approx(0.3)
     assert torso(", joints: {torso_lift_joint: 0.1}") == pytest.approx(0.1)
+
+
+def test_the_python_loaders_take_the_names_the_command_line_takes():
+    from pycram_cli import load_world
+    from pycram_cli.plan import load_plan
+
+    world = load_world("kitchen_fetch")
+    try:
+        assert world.robot is not None and world.robot.name == "fetch"
+    finally:
+        world.exit()
+    assert load_plan("fetch_spoon").path.name == "fetch_spoon.yaml"
