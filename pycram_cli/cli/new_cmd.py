@@ -52,19 +52,44 @@ params:                               # typed parameters: checked before anythin
     default: {object_value}
     description: the object to pick up
 body:
-  - par:                              # at the same time: park the arms while driving
+{body}"""
+
+#: the steps of a new plan, each kept only when the robot has what it needs (its description says)
+DRIVE_AND_LOOK = """  - par:                              # at the same time: park the arms while driving
       - action: park-arms
       - action: navigate              # to where the camera sees the object and an arm reaches it
-        target: {{reachable-for: $object, visible-for: $object}}
-  - action: look-at                   # turn the head to it
+        target: {reachable-for: $object, visible-for: $object}
+"""
+DRIVE = """  - par:                              # at the same time: park the arms while driving
+      - action: park-arms
+      - action: navigate              # to where an arm reaches the object
+        target: {reachable-for: $object}
+"""
+LOOK = """  - action: look-at                   # point the camera at it
     target: $object
   - action: detect                    # see it (a PerceptionFailure when it is not in sight)
     object: $object
     as: seen                          # what was detected, as $seen
-  - action: pick-up                   # grasp it with an arm that reaches it and lift it
-    object: $seen
-  - log: "holding $seen"
 """
+TAKE = """  - action: pick-up                   # grasp it with an arm that reaches it and lift it
+    object: {what}
+  - log: "holding {what}"
+"""
+
+
+def plan_body(spec: WorldSpec) -> str:
+    """What the world's robot can do of driving, looking and taking: a robot bolted down does not drive, one without a
+    camera does not look; one without arms takes nothing (an input error)."""
+    desc = spec.robot_description
+    mobile = desc is None or desc.mobile
+    camera = desc is None or desc.camera is not None
+    if desc is not None and not desc.arms:
+        raise InputError(f"the robot '{desc.name}' has no arms: a plan cannot pick anything up with it",
+                         Location(str(desc.path)), suggestion="describe its arms (docs/robots.md), or choose another "
+                                                              "world (pycram worlds)")
+    body = (DRIVE_AND_LOOK if camera else DRIVE) if mobile else ""
+    body += LOOK if camera else ""
+    return body + TAKE.format(what="$seen" if camera else "$object")
 
 
 @click.group("new", short_help="Write a starting file: a commented plan, a world made from another, variations for sweeps.")
@@ -156,7 +181,7 @@ def new_plan(name: str, world_file: str | None, output: Path | None, force: bool
     line = world_line(world_file, world, output)
     text = TEMPLATE.format(name=stem, path=output, object=picked, object_value=value_text(picked),
                            other=value_text(others[0]) if others else "NAME",
-                           world_row=f"world: {value_text(line)} ".ljust(38))
+                           world_row=f"world: {value_text(line)} ".ljust(38), body=plan_body(spec))
     write_output(output, text, "plan")
     console.success(f"{output}: a new plan on {spec.path.name}; check it with `pycram validate {output}`, "
                     f"run it with `pycram run {output}`")

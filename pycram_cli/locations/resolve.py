@@ -53,6 +53,8 @@ from .spec import LocationSpec
 if TYPE_CHECKING:
     from ..world import BulletWorld
 
+#: spots on a surface are looked for within this distance (m, along x and y) of `near` or of the robot
+SPOT_REACH = 3.0
 #: candidate base positions: a lattice of the floor with this spacing (m)
 STEP = 0.05
 #: turns tried at every position, besides facing the target (rad)
@@ -512,6 +514,10 @@ class BasePoseResolution(_Resolution):
         todo = outcome == 0
         core = self.map.core_collides(xs[todo], ys[todo], yaws[todo])
         outcome[np.flatnonzero(todo)[core]] = CODE["collides"]
+        if not robot.description.mobile:  # a base that cannot drive: only where it stands
+            xs, ys, yaws, scores = (np.zeros(0) for _ in range(4))
+            outcome, self.arm_order = np.zeros(0, dtype=np.int8), np.zeros((0, len(arms)), dtype=np.int8)
+            self.here = True
         if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
             rx, ry = robot.body.get_position()[:2]
             ryaw = _yaw_of(robot.body.get_orientation())
@@ -916,11 +922,14 @@ class SpotResolution(_Resolution):
         self.radius = float(np.max(np.hypot(corners[:, 0], corners[:, 1])))
         self.height = float(ohi[2] - olo[2])
         inset = self.radius + SPOT_MARGIN
+        reference = np.asarray(spec.near[:2]) if spec.near is not None else np.asarray(self.robot.body.get_position()[:2])
+        # a surface as large as a floor: only the part within SPOT_REACH of the reference (millions of spots else)
+        lo = (max(lo[0], reference[0] - SPOT_REACH), max(lo[1], reference[1] - SPOT_REACH), lo[2])
+        hi = (min(hi[0], reference[0] + SPOT_REACH), min(hi[1], reference[1] + SPOT_REACH), hi[2])
         ix = np.arange(math.ceil((lo[0] + inset) / SPOT_STEP - 1e-9), math.floor((hi[0] - inset) / SPOT_STEP + 1e-9) + 1)
         iy = np.arange(math.ceil((lo[1] + inset) / SPOT_STEP - 1e-9), math.floor((hi[1] - inset) / SPOT_STEP + 1e-9) + 1)
         gx, gy = np.meshgrid(ix * SPOT_STEP, iy * SPOT_STEP, indexing="ij")
         xs, ys = gx.ravel(), gy.ravel()
-        reference = np.asarray(spec.near[:2]) if spec.near is not None else np.asarray(self.robot.body.get_position()[:2])
         scores = np.hypot(xs - reference[0], ys - reference[1])
         outcome = np.zeros(len(xs), dtype=np.int8)
         detail: dict[int, str] = {}

@@ -196,6 +196,8 @@ def _say_reachable(answer: QueryAnswer) -> str:
             return f"{target} is reachable: pick-up takes it with {arm_phrase(d['arm'])} and a {_place(d['grasp'])} grasp"
         why = {"blocked": f"blocked by {d['detail']}", "cannot hold": "no gripper can hold it"}.get(d["reason"],
                                                                                                   d["reason"])
+        if d["reason"] == "out of reach" and d.get("position_error") is not None:
+            why += f": the nearest grasp stays {_mm(d['position_error'])} away"
         arms = ", ".join(arm_phrase(arm) for arm in d["arms_tried"])
         return f"{target} is NOT reachable from here: pick-up with {arms} finds no grasp ({why})"
     grasp = f", {_place(a['grasp'])} grasp" if a.get("grasp") is not None else ""

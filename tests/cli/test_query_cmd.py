@@ -27,7 +27,8 @@ def query_json(*args: str) -> dict:
     (["contact", "kitchen", "milk"], "kitchen and milk are in contact"),
     (["stable", "milk"], "milk is stable"),
     (["supporting", "kitchen", "milk"], "kitchen supports milk (at sink_area_surface)"),
-    (["reachable", "milk", "--arm", "right", "--grasp", "front"], "milk is NOT reachable (best: the right arm, front grasp"),
+    (["reachable", "milk", "--arm", "right", "--grasp", "front"],
+     "milk is NOT reachable from here: pick-up with the right arm finds no grasp (out of reach: the nearest grasp stays"),
     (["reachable", "1.3,0.6,1.0", "--arm", "left"], "(1.3, 0.6, 1) is NOT reachable (best: the left arm"),
     (["blocking", "milk", "--arm", "left", "--exclude-type", "environment"], "nothing blocks the left arm reaching milk"),
 ])

@@ -197,3 +197,34 @@ def test_an_action_for_a_robot_without_a_description_is_refused_at_validate(tmp_
     result = run("validate", str(plan))
     assert result.exit_code == 2, result.output
     assert f"{plan}:3:" in result.stderr and "no robot description for 'kuka' (model.urdf)" in result.stderr
+
+
+def test_actions_run_on_a_bolted_down_robot_from_where_it_stands(kuka_dir: Path):
+    """Action designators need no mobile base: where to stand is where the robot stands (the floor it is bolted to
+    holds it up), and a spot on the floor, a plane hundreds of metres wide, is looked for near where it is asked."""
+    plan = kuka_dir / "actions.yaml"
+    plan.write_text("world: world.yaml\nbody:\n  - action: pick-up\n    object: cube\n"
+                    "  - action: place\n    object: cube\n    target: {on: floor, near: [0.0, 0.55, 0.0]}\n")
+    assert run("validate", str(plan)).exit_code == 0
+    result = run("run", str(plan), "--json")
+    assert result.exit_code == 0, result.output
+    assert "(1 of 1 tried)" in run("run", str(plan)).output  # one pose: its own
+
+
+def test_a_bolted_down_robot_that_cannot_reach_says_so(kuka_dir: Path):
+    (kuka_dir / "far.yaml").write_text((kuka_dir / "world.yaml").read_text().replace("[0.55, 0.0, 0.026]",
+                                                                                     "[2.0, 0.0, 0.026]"))
+    plan = kuka_dir / "far_plan.yaml"
+    plan.write_text("world: far.yaml\nbody:\n  - action: pick-up\n    object: cube\n")
+    result = run("run", str(plan))
+    assert result.exit_code == 1, result.output
+    assert "no pose for reachable-for cube: 1 candidate: 1 out of reach" in " ".join(result.output.split())
+
+
+def test_new_plan_writes_only_what_a_bolted_down_robot_without_a_camera_can_do(kuka_dir: Path, monkeypatch):
+    monkeypatch.chdir(kuka_dir)
+    assert run("new", "plan", "mine", "--world", "world.yaml").exit_code == 0
+    text = (kuka_dir / "plans" / "mine.yaml").read_text()
+    assert "navigate" not in text and "look-at" not in text and "detect" not in text
+    assert run("validate", "plans/mine.yaml").exit_code == 0
+    assert run("run", "plans/mine.yaml").exit_code == 0

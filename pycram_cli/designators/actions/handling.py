@@ -57,7 +57,7 @@ declare_action(Action(
         Slot("object", "object", True, "the object to pick up"),
         Slot("arm", "arm", False, "the arm to use", "found with where to stand: the arm that reaches"),
         Slot("grasp", "grasp", False, "the grasp", "found with where to stand: the first grasp that works"),
-    ), run=_pick_up, uses=EVERYTHING, needs=("mobile base", "arms"), returns="the object"))
+    ), run=_pick_up, uses=EVERYTHING, needs=("arms",), returns="the object"))
 
 
 # -- place -------------------------------------------------------------------------------------------------------
@@ -95,7 +95,7 @@ declare_action(Action(
         Slot("object", "object", True, "the held object"),
         Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?} (for: the object, inferred)"),
         Slot("arm", "arm", False, "the arm holding it", "the arm that holds it"),
-    ), run=_place, uses=EVERYTHING, needs=("mobile base", "arms"), returns="the object",
+    ), run=_place, uses=EVERYTHING, needs=("arms",), returns="the object",
     check=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")))
 
 
@@ -164,12 +164,12 @@ declare_action(Action(
     "open", "Open a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
             "open, pull it open, park the arm.",
     (*_HANDLE, Slot("distance", "distance", False, "how far to open, in metres", "0.3, or the joint's range if smaller"),
-     _ARM), run=_open, uses=EVERYTHING, one_of=("handle", "joint"), needs=("mobile base", "arms")))
+     _ARM), run=_open, uses=EVERYTHING, one_of=("handle", "joint"), needs=("arms",)))
 
 declare_action(Action(
     "close", "Close a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
              "closed, push it shut, park the arm.",
-    (*_HANDLE, _ARM), run=_close, uses=EVERYTHING, one_of=("handle", "joint"), needs=("mobile base", "arms")))
+    (*_HANDLE, _ARM), run=_close, uses=EVERYTHING, one_of=("handle", "joint"), needs=("arms",)))
 
 
 # -- transport ---------------------------------------------------------------------------------------------------
@@ -194,5 +194,5 @@ declare_action(Action(
         Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),
         Slot("arm", "arm", False, "the arm to carry it with", "found when picking it up"),
         Slot("grasp", "grasp", False, "the grasp", "found when picking it up"),
-    ), run=_transport, uses=EVERYTHING, one_of=("object", "object-type"), needs=("mobile base", "arms", "camera"),
+    ), run=_transport, uses=EVERYTHING, one_of=("object", "object-type"), needs=("arms", "camera"),
     returns="the object", check=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")))

@@ -90,4 +90,4 @@ declare_action(Action(
         Slot("object-type", "object-type", False, "the type to look for"),
         Slot("object", "object", False, "the object to look for"),
     ), run=_search, uses=drives("base", "head", ANY_ARM), one_of=("object-type", "object"),
-    needs=("mobile base", "camera"), returns="the object detected"))
+    needs=("camera",), returns="the object detected"))
