@@ -35,6 +35,7 @@ from typing import Sequence
 import numpy as np
 
 from ..robots.objects import object_knowledge
+from ..robots.tool import tool_axes as model_tool_axes
 from ..world import Object
 from ..world.pose import Quat, Vec3, invert, matrix_to_quat, quat_to_matrix, compose
 from .base import Robot
@@ -59,53 +60,13 @@ class Grasp:
 _AXES: "weakref.WeakKeyDictionary[Object, dict[str, np.ndarray]]" = weakref.WeakKeyDictionary()
 
 
-def _nearest_axis(v: np.ndarray, avoid: np.ndarray | None = None) -> np.ndarray:
-    """The unit axis (±x, ±y, ±z) nearest `v` (and across `avoid`, if given)."""
-    axes = [s * e for e in np.eye(3) for s in (1.0, -1.0)]
-    if avoid is not None:
-        axes = [a for a in axes if abs(float(a @ avoid)) < 0.5]
-    return max(axes, key=lambda a: float(a @ v))
-
-
 def tool_axes(robot: Robot, arm: str) -> np.ndarray:
-    """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame.
-
-    The approach is the axis of the arm's last joint (its wrist roll), pointing away from the arm, towards the
-    tool's own links; the fingers close along the tool axis across it that the gripper's links are most spread along.
-    """
+    """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame
+    (robots/tool.py reads them from the model), kept per robot body."""
     cache = _AXES.setdefault(robot.body, {})
-    if arm in cache:
-        return cache[arm]
-    desc = robot.description.arm(arm)
-    body = robot.body
-    tool_position, tool_orientation = body.get_link_position_and_orientation(desc.tool_frame)
-    to_tool = quat_to_matrix(tool_orientation).T
-    last = body.joint(desc.joints[-1])
-    joint_position, joint_orientation = body.get_link_position_and_orientation(last.index)
-    axis = quat_to_matrix(joint_orientation) @ quat_to_matrix(last.inertial_frame[1]) @ np.asarray(last.axis, dtype=float)
-    below = [j.index for j in body.joints if _hangs_below(body, j.index, last.index)]
-    boxes = [body.get_aabb(index) for index in below] or [body.get_aabb(desc.tool_frame)]
-    centre = (np.min([b[0] for b in boxes], axis=0) + np.max([b[1] for b in boxes], axis=0)) / 2.0
-    outward = centre - np.asarray(joint_position)
-    if float(outward @ axis) < 0:
-        axis = -axis
-    approach = _nearest_axis(to_tool @ axis)
-    fingers = [body.get_aabb(body.joint(name).index) for name in desc.gripper.joints]
-    spread = np.zeros(3)
-    if len(fingers) >= 2:
-        centres = [to_tool @ ((np.asarray(lo) + np.asarray(hi)) / 2.0) for lo, hi in fingers]
-        spread = np.max(centres, axis=0) - np.min(centres, axis=0)
-    closing = _nearest_axis(spread + np.array([0.0, 1e-6, 0.0]), avoid=approach)
-    cache[arm] = np.column_stack([approach, closing, np.cross(approach, closing)])
+    if arm not in cache:
+        cache[arm] = model_tool_axes(robot.body, robot.description.arm(arm))
     return cache[arm]
-
-
-def _hangs_below(body: Object, link: int, joint_index: int) -> bool:
-    while link != -1:
-        if link == joint_index:
-            return True
-        link = body.joints[link].parent_index
-    return False
 
 
 def wanted_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:

@@ -15,6 +15,7 @@ A broken description is an input error naming its file, line and key.
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import weakref
@@ -30,6 +31,7 @@ from ..schema import check_keys, describe, expect, is_number, names_only, number
 from ..world.model_files import ModelInfo, describe_model
 from ..world.pose import check_quaternion, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
+from .tool import model_grasps
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -106,6 +108,9 @@ class RobotDescription:
     urdf: Path | None = None
     resources: dict[str, str] = field(default_factory=dict)  # role -> the resource it drives
     process_modules: dict[str, str] = field(default_factory=dict)  # designator -> process module name
+    #: no `grasps:` in the file: the named grasps (front, top, left, right) are computed from the model when the robot
+    #: is loaded (robots/tool.py); until then they stand as names
+    grasps_from_model: bool = False
     places: dict[str, Location] = field(default_factory=dict, compare=False, repr=False)  # key -> where in the file
 
     def where(self, key: str) -> Location:
@@ -329,6 +334,9 @@ class _Reader:
                 torso_joint = self.name(torso, "joint") or None
                 torso_default = self.number(torso, "default", 0.0)
         grasps: dict[str, tuple[float, float, float, float]] = {}
+        from_model = "grasps" not in data and bool(arms)
+        if from_model:  # named now, computed for the tool frame when the robot is loaded (assign_description)
+            grasps = {name: (0.0, 0.0, 0.0, 1.0) for name in ("front", "top", "left", "right")}
         if "grasps" in data:
             raw_grasps = data["grasps"]
             if not isinstance(raw_grasps, LMap):
@@ -344,7 +352,8 @@ class _Reader:
         raise_if_any(self.errors)
         return RobotDescription(name=name, path=self.path, base_link=base_link, arms=arms, grasps=grasps, camera=camera,
                                 head=head, torso_joint=torso_joint, torso_default=torso_default, mobile=mobile,
-                                urdf=urdf, resources=resources, process_modules=modules, places=self.places)
+                                urdf=urdf, resources=resources, process_modules=modules, places=self.places,
+                                grasps_from_model=from_model)
 
     def camera(self, cam: LMap) -> CameraDescription:
         """The camera: fields of view are angles in (0, pi), and near comes before far."""
@@ -500,7 +509,10 @@ _ASSIGNED: "weakref.WeakKeyDictionary[Object, RobotDescription | None]" = weakre
 
 
 def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
-    """Give a robot object its description (the world loader does, for `description:` in a world file)."""
+    """Give a robot object its description (the world loader does, for `description:` in a world file); a description
+    without `grasps:` gets the named grasps of its first arm's tool frame as the model has it."""
+    if desc is not None and desc.grasps_from_model and desc.arms:
+        desc = dataclasses.replace(desc, grasps=model_grasps(obj, next(iter(desc.arms.values()))))
     _ASSIGNED[obj] = desc
 
 
@@ -508,6 +520,5 @@ def description_for(obj: "Object") -> RobotDescription | None:
     """The description of a robot object: assigned by the loader, else found by `find_description`."""
     if obj in _ASSIGNED:
         return _ASSIGNED[obj]
-    desc = find_description(obj.path)
-    _ASSIGNED[obj] = desc
-    return desc
+    assign_description(obj, find_description(obj.path))
+    return _ASSIGNED[obj]
