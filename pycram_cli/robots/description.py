@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import warnings
 import math
 import weakref
 import xml.etree.ElementTree as ET
@@ -31,7 +32,7 @@ from ..schema import check_keys, describe, expect, is_number, names_only, number
 from ..world.model_files import ModelInfo, describe_model
 from ..world.pose import check_quaternion, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
-from .tool import model_grasps
+from .tool import astray_grasps, model_grasps
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -45,6 +46,10 @@ HEAD_KEYS = ("pan_joint", "tilt_joint", "pan_link", "tilt_link")
 TORSO_KEYS = ("joint", "default")
 #: the roles a step can drive besides the arms (each arm is a role of its own: `arm:<name>`)
 ROLES = ("base", "head")
+
+
+class GraspWarning(UserWarning):
+    """A hand-written named grasp approaches from elsewhere than its name says (for the model's tool frame)."""
 
 
 @dataclass(frozen=True)
@@ -513,6 +518,13 @@ def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
     without `grasps:` gets the named grasps of its first arm's tool frame as the model has it."""
     if desc is not None and desc.grasps_from_model and desc.arms:
         desc = dataclasses.replace(desc, grasps=model_grasps(obj, next(iter(desc.arms.values()))))
+    elif desc is not None and desc.arms and desc.grasps:
+        for name, where, better in astray_grasps(obj, next(iter(desc.arms.values())), desc.grasps):
+            warnings.warn(GraspWarning(
+                f"{desc.where(f'grasps.{name}')}: grasps.{name}: the tool approaches {where}, not as '{name}' says, "
+                f"for the tool frame of {obj.path.name} (its approach axis is the wrist's roll axis); "
+                f"[{', '.join(f'{v:.4g}' for v in better)}] would, or leave grasps: out to have them computed"),
+                stacklevel=2)
     _ASSIGNED[obj] = desc
 
 

@@ -76,3 +76,24 @@ def model_grasps(body: Object, arm: "ArmDescription") -> dict[str, Quat]:
         wanted = np.column_stack([a, c, np.cross(a, c)])
         grasps[name] = matrix_to_quat(wanted @ tool.T)
     return grasps
+
+
+#: a hand-written named grasp whose approach is farther than this from its name's direction is reported (rad)
+ASTRAY = 0.8
+
+
+def astray_grasps(body: Object, arm: "ArmDescription", grasps: dict[str, Quat]) -> list[tuple[str, str, Quat]]:
+    """Hand-written named grasps (front, top, left, right) that do not approach from where their name says, for this
+    arm's tool frame as the model has it: (name, where it approaches from, the orientation that would)."""
+    tool = tool_axes(body, arm)
+    computed = model_grasps(body, arm)
+    astray = []
+    for name, orientation in grasps.items():
+        if name not in NAMED_GRASPS:
+            continue
+        approach = quat_to_matrix(orientation) @ tool[:, 0]
+        wanted = np.asarray(NAMED_GRASPS[name][0])
+        if float(np.arccos(np.clip(approach @ wanted, -1.0, 1.0))) > ASTRAY:
+            direction = ", ".join(f"{v:.2g}" for v in np.round(approach, 2) + 0.0)
+            astray.append((name, f"along ({direction}) in the base's frame", computed[name]))
+    return astray

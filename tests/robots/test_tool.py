@@ -58,3 +58,15 @@ def test_a_description_without_grasps_gets_the_named_grasps_of_its_tool_frame(tm
         assert quat_to_matrix(grasps["front"])[:, 2] == pytest.approx([1, 0, 0], abs=1e-9)
     finally:
         world.exit()
+
+
+def test_a_hand_written_grasp_that_approaches_from_elsewhere_is_warned_of_with_the_one_that_would_not(
+        tmp_path: Path) -> None:
+    """The PR2's grasps copied onto a robot whose tool frame points out of the hand along z: 'front' would approach
+    from below. The warning names the file, the key and the orientation that approaches forward."""
+    (tmp_path / "kuka.yaml").write_text(DESCRIPTION + "grasps:\n  front: [0, 0, 0, 1]\n")
+    (tmp_path / "world.yaml").write_text(
+        f"objects:\n  - {{name: kuka, type: robot, file: {KUKA}, description: kuka.yaml}}\n")
+    with pytest.warns(UserWarning, match=r"kuka.yaml:\d+:\d+: grasps.front: the tool approaches along \(0, 0, 1\)"
+                                         r".*\[0, 0.7071, 0, 0.7071\] would"):
+        load_world(tmp_path / "world.yaml").exit()
