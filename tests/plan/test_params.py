@@ -152,7 +152,7 @@ def test_the_shipped_plans_declare_their_parameters_types():
     kinds = {name: {p.name: p.type for p in parse_plan(plans_dir() / f"{name}.yaml").params}
              for name in ("fetch_spoon", "set_table_actions", "fetch_milk")}
     assert kinds["fetch_spoon"] == {"target": "position"}
-    assert kinds["set_table_actions"] == {"objects": "list", "table": "link"}
+    assert kinds["set_table_actions"] == {"objects": "list", "table": "link", "furniture": "object"}
     assert kinds["fetch_milk"]["target"] == "position" and kinds["fetch_milk"]["look"] == "position"
     for name in kinds:
         load_plan(plans_dir() / f"{name}.yaml")  # their defaults fit
