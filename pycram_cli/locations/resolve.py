@@ -40,7 +40,7 @@ from ..process_modules import Robot
 from ..process_modules import motion
 from ..process_modules.accessing import drawer_pushes_into
 from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
-from ..process_modules.head import Mount, camera_mount, camera_yaw, look_at
+from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place, resting_on
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
@@ -63,6 +63,8 @@ TURNS = (0.0, math.radians(20), -math.radians(20))
 REACH_FRACTION = 0.6
 #: visible-for: horizontal distances from the camera to the object (m): comfortable, least, most
 VIEW_DISTANCE = (1.0, 0.45, 2.5)
+#: a camera fixed on the body: how much of half its vertical view the target may be off its axis
+VIEW_FILL = 0.8
 #: score weights: per radian turned away, per metre driven, per metre off the comfortable view distance
 TURN_WEIGHT = 0.15
 TRAVEL_WEIGHT = 0.02
@@ -509,6 +511,11 @@ class BasePoseResolution(_Resolution):
             cy = ys + s * camera[0] + c * camera[1] if camera is not None else ys
             distance = np.hypot(view_target[0] - cx, view_target[1] - cy)
             out = (distance < VIEW_DISTANCE[1]) | (distance > VIEW_DISTANCE[2])
+            if fixed_camera and camera is not None and robot.description.camera is not None:
+                # a camera that cannot tilt sees the target only from the distances that put it in its view's height
+                off = np.abs(np.arctan2(view_target[2] - (self.floor_z + camera[2]), distance) - camera_pitch(robot))
+                out |= off > VIEW_FILL * robot.description.camera.vertical_fov / 2
+                scores = scores + VIEW_WEIGHT * off
             outcome[(outcome == 0) & out] = CODE["out of view"]
             scores = scores + VIEW_WEIGHT * np.abs(distance - VIEW_DISTANCE[0])
         todo = outcome == 0

@@ -152,15 +152,25 @@ def _turn_head(robot: Robot, target: Sequence[float]) -> None:
             target=list(target))
 
 
-def camera_yaw(robot: Robot) -> float:
-    """How far the camera's optical axis, seen from above, is turned from the base's forward axis (rad)."""
+def _optical_axis(robot: Robot) -> tuple[float, float, float]:
+    """The camera's optical axis (+z of its frame) in the base's frame."""
     camera = robot.description.camera
     assert camera is not None
     relative = compose(invert(robot.body.get_pose()), robot.body.get_link_position_and_orientation(camera.frame))[1]
     x, y, z, w = relative
-    # the optical axis (+z of the camera frame) in the base frame
-    forward = (2 * (x * z + w * y), 2 * (y * z - w * x))
-    return math.atan2(forward[1], forward[0]) if math.hypot(*forward) > 1e-6 else 0.0
+    return 2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)
+
+
+def camera_yaw(robot: Robot) -> float:
+    """How far the camera's optical axis, seen from above, is turned from the base's forward axis (rad)."""
+    fx, fy, _ = _optical_axis(robot)
+    return math.atan2(fy, fx) if math.hypot(fx, fy) > 1e-6 else 0.0
+
+
+def camera_pitch(robot: Robot) -> float:
+    """How far the camera's optical axis points above the base's horizontal plane (rad; negative: down)."""
+    fx, fy, fz = _optical_axis(robot)
+    return math.atan2(fz, math.hypot(fx, fy))
 
 
 def _turn_base(robot: Robot, target: Sequence[float]) -> None:

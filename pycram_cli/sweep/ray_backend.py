@@ -30,6 +30,16 @@ START = ("start one on this machine with `ray start --head` and give --address a
          "or leave --address out for a Ray of this sweep's own")
 #: seconds to wait for a cluster's address to answer before Ray is asked to join it (Ray itself retries for minutes)
 CONNECT_TIMEOUT = 5.0
+#: seconds between two checks that the cluster is still there while scenarios run (Ray's own wait has no bound)
+HEARTBEAT = 5.0
+
+
+def cluster_alive(ray: Any) -> bool:
+    """Whether the cluster answers and has a node alive (a cluster that dropped after connecting does not)."""
+    try:
+        return any(node.get("Alive") for node in ray.nodes())
+    except Exception:  # noqa: BLE001 - whatever Ray raises for a lost cluster, it is lost
+        return False
 
 
 def reachable(address: str) -> None:
@@ -109,8 +119,12 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
                 submit(actor)
         while running:
             deadlines = [sent + job.timeout + grace for _, _, sent in running.values()] if job.timeout else []
-            wait = max(0.0, min(deadlines) - time.monotonic()) if deadlines else None
+            wait = min(max(0.0, min(deadlines) - time.monotonic()), HEARTBEAT) if deadlines else HEARTBEAT
             done, _ = ray.wait(list(running), num_returns=1, timeout=wait)
+            if not done and not cluster_alive(ray):
+                where = f"at '{address}'" if address is not None else "of this sweep"
+                raise SweepError(f"lost the Ray cluster {where} while {len(running)} scenario(s) ran: what finished "
+                                 "is kept (--resume runs the rest)")
             for ref in done:
                 actor, task, _ = running.pop(ref)
                 try:

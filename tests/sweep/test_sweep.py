@@ -324,3 +324,45 @@ def test_compare_values_are_read_with_the_limits_of_every_yaml_value(small, valu
     assert "--compare" in result.stderr
     if message:
         assert message in result.stderr
+
+
+def test_a_ray_cluster_lost_after_connecting_ends_the_sweep_with_a_clear_error(monkeypatch):
+    """Ray's own wait for a result has no bound: a cluster that drops once scenarios run would hang the sweep. The
+    backend checks every HEARTBEAT that a node is alive and ends with an error naming the address."""
+    from pycram_cli.sweep import ray_backend
+    from pycram_cli.sweep.local import SweepError
+
+    class Lost:  # connected, actors started, then the cluster is gone: nothing ever finishes and nodes() fails
+        @staticmethod
+        def is_initialized() -> bool:
+            return True
+
+        @staticmethod
+        def remote(**options):
+            class Handle:
+                def __init__(self, *args):
+                    self.ready = self.run = type("M", (), {"remote": staticmethod(lambda *a: object())})
+
+                @classmethod
+                def remote(cls, *args):
+                    return cls()
+            return lambda worker_class: Handle
+
+        @staticmethod
+        def get(refs, timeout=None):
+            return refs
+
+        @staticmethod
+        def wait(refs, num_returns=1, timeout=None):
+            assert timeout is not None and timeout <= ray_backend.HEARTBEAT  # never an unbounded wait
+            return [], refs
+
+        @staticmethod
+        def nodes():
+            raise ConnectionError("GCS lost")
+
+    monkeypatch.setattr(ray_backend, "load_ray", lambda: Lost)
+    monkeypatch.setattr(ray_backend, "HEARTBEAT", 0.01)
+    with pytest.raises(SweepError, match="lost the Ray cluster at '10.0.0.1:6379' while 2 scenario"):
+        job = type("Job", (), {"timeout": None})()  # no --timeout: before, the wait had no bound at all
+        ray_backend.run(job, [object(), object(), object()], 2, lambda outcome: None, address="10.0.0.1:6379")

@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ...errors import InputError, Location, did_you_mean
-from ...failures import ManipulationFailure, ReasoningFailure
+from ...failures import Failure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
 from ..declaration import ANY_ARM, Slot, drives
@@ -178,12 +178,33 @@ declare_action(Action(
 def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
     wanted = {"object": slots["object"]} if slots.get("object") is not None else {"object-type": slots["object-type"]}
     found = actor.action("search", wanted)
+    was = list(found.get_position())
     actor.action("pick-up", {"object": found, "arm": slots.get("arm"), "grasp": slots.get("grasp")})
-    actor.action("place", {"object": found, "target": slots["target"]})
+    taken_from = actor.robot.body.get_pose()
+    try:
+        actor.action("place", {"object": found, "target": slots["target"]})
+    except Failure:
+        _put_back(actor, found, was, taken_from)
+        raise
     actor.action("park-arms", {})
     if not actor.query("stable", {"object": found}):
         raise ReasoningFailure(f"{found.name} is not stable where it was placed", object=found.name)
     return found
+
+
+def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None:
+    """When the object cannot be placed where it should go, the robot puts it back where it took it from (driving
+    back to where it stood then), so that a plan that tries again later finds the world as it was and its gripper
+    free; when even that fails, it keeps holding the object (the place's failure is what the plan sees)."""
+    arm = actor.robot.arm_holding(obj)
+    if arm is None:
+        return
+    try:
+        actor.motion("moving", {"target": list(taken_from[0]), "orientation": list(taken_from[1])})
+        actor.motion("place", {"object": obj, "target": was, "arm": arm})
+        actor.action("park-arms", {})
+    except Failure:
+        pass
 
 
 declare_action(Action(
