@@ -39,7 +39,7 @@ from ..kinds import arm_phrase, arm_words
 from ..process_modules import Robot
 from ..process_modules import motion
 from ..process_modules.accessing import drawer_pushes_into
-from ..process_modules.arms import arm_configuration, move_over, reach, rest_pose
+from ..process_modules.arms import move_over, reach, rest_configuration, rest_pose
 from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
 from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place, resting_on
 from ..reasoning import stable, visible
@@ -786,8 +786,8 @@ class BasePoseResolution(_Resolution):
                               straight=legs.get("pre"), **tier)
                     legs["pre"] = True
                 if rest is not None and legs.get("rest") is not True:
-                    body.reset_joints(solution.joint_positions)
-                    move_over(robot, arm, arm_configuration(robot, arm, rest),
+                    body.reset_joints(solution.joint_positions)  # holding it as grasped: the way to rest holding it so
+                    move_over(robot, arm, rest_configuration(robot, arm, holding=True) or {},
                               f"the {arm_words(arm)}'s motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
                               straight=legs.get("rest"), **tier)
                     legs["rest"] = True

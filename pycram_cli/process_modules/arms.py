@@ -12,7 +12,7 @@ from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution, Query, solve, solve_each
 from ..world import JointLimitError, Object
-from ..world.pose import quat_to_matrix
+from ..world.pose import quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
 from .base import ProcessModule, Robot
 from .grasping import tool_axes
@@ -332,6 +332,36 @@ def rest_pose(robot: Robot, arm: str, holding: bool | None = None) -> str | None
     if full and CARRY in poses:
         return CARRY
     return PARK if PARK in poses else None
+
+
+#: an arm that holds something and has no carry pose carries it as it was grasped: its tool where the park pose
+#: puts it, raised by the first of these that the arm reaches (m), turned as it holds the object now
+CARRY_RAISE = (0.1, 0.0, 0.2)
+
+
+def rest_configuration(robot: Robot, arm: str, holding: bool | None = None) -> dict[str, float] | None:
+    """The joint values an arm rests in (`rest_pose`'s, None when it has none). An arm that holds something (or will:
+    `holding`) and has no `carry` pose keeps it as it was grasped — a milk carton taken from the front stays upright —
+    its tool where `park` puts it (raised a little) and turned relative to the base as it is now; when the arm
+    cannot hold it so, it parks."""
+    pose = rest_pose(robot, arm, holding)
+    if pose is None:
+        return None
+    config = arm_configuration(robot, arm, pose)
+    full = bool(robot.held_objects(arm)) if holding is None else holding
+    if pose != PARK or not full:
+        return config
+    body, tool = robot.body, robot.description.arm(arm).tool_frame
+    turned = quat_multiply(quat_inverse(body.get_orientation()), body.get_link_orientation(tool))
+    with body.joints_kept(list(config)):
+        body.reset_joints(config)
+        parked = body.get_link_position(tool)
+    orientation = quat_multiply(body.get_orientation(), turned)
+    for raise_ in CARRY_RAISE:
+        solution = reach(robot, arm, (parked[0], parked[1], parked[2] + raise_), orientation)
+        if solution.success:
+            return {name: solution.joint_positions[name] for name in config}
+    return config
 
 
 def move_from_above(robot: Robot, arm: str, solution: IKSolution, what: str) -> None:

@@ -8,7 +8,7 @@ from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure
 from ...kinds import KINDS, Robots, location_goals
 from ...process_modules import Robot
-from ...process_modules.arms import CARRY, PARK, rest_pose  # noqa: F401 (re-exported to the actions)
+from ...process_modules.arms import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...world import Object
 from ..declaration import SlotProblem
 from .actor import Actor, Finder, as_failure
@@ -30,18 +30,31 @@ def object_of(actor: Actor, value: Any, slot: str) -> Object:
     return found
 
 
-def resting(robot: Robot, arms: list[str] | None = None) -> dict[str, str]:
+def rest_of(robot: Robot, arm: str, holding: bool | None = None) -> str | list[float] | None:
+    """What an arm rests in, as move-arm-joints takes it: its pose's name, or joint values when it carries something
+    as it was grasped (`rest_configuration`); None when it has no resting pose."""
+    pose = rest_pose(robot, arm, holding)
+    config = rest_configuration(robot, arm, holding)
+    if pose is None or config is None:
+        return None
+    desc = robot.description.arm(arm)
+    if all(abs(_wrap(config[j] - v)) < 1e-9 for j, v in zip(desc.joints, desc.poses[pose])):
+        return pose
+    return [round(config[j], 6) for j in desc.joints]
+
+
+def resting(robot: Robot, arms: list[str] | None = None) -> dict[str, str | list[float]]:
     """The resting pose of each arm (given, or every arm) that is not in it already."""
-    moves = {}
+    moves: dict[str, str | list[float]] = {}
     for arm in arms if arms is not None else list(robot.description.arms):
-        pose = rest_pose(robot, arm)
-        if pose is None:
+        rest = rest_of(robot, arm)
+        if rest is None:
             continue
         desc = robot.description.arm(arm)
-        target = dict(zip(desc.joints, desc.poses[pose]))
+        target = dict(zip(desc.joints, desc.poses[rest] if isinstance(rest, str) else rest))
         current = robot.body.get_joint_positions(list(target))
         if any(abs(_wrap(current[j] - v)) > 1e-3 for j, v in target.items()):
-            moves[arm] = pose
+            moves[arm] = rest
     return moves
 
 

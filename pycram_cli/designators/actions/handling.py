@@ -14,7 +14,7 @@ from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
 from ..declaration import ANY_ARM, Slot, drives
 from .actor import Actor, Finder, as_failure
-from .common import PARK, go, location_slot, object_of, rest_pose, resting, try_choices
+from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, resting, try_choices
 from .declaration import Action, declare_action
 
 EVERYTHING = drives("base", "head", ANY_ARM)
@@ -38,7 +38,7 @@ def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
         go(a, pose)
         was = list(obj.get_position())
         a.motion("pick-up", {"object": obj, "arm": pose.arm, "grasp": pose.grasp})
-        lift = rest_pose(a.robot, pose.arm)
+        lift = rest_of(a.robot, pose.arm)
         if lift is not None:
             try:
                 a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
@@ -139,7 +139,7 @@ def _access(actor: Actor, slots: Mapping[str, Any], distance: float | None, verb
         go(a, pose)
         a.motion("accessing", {"drawer-handle": handle.link, "drawer-joint": handle.joint, "part-of": handle.obj,
                                "distance": distance if distance is not None else slots.get("distance"), "arm": pose.arm})
-        lift = rest_pose(a.robot, pose.arm)
+        lift = rest_of(a.robot, pose.arm)
         if lift is not None:
             a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
 
