@@ -71,6 +71,8 @@ TRAVEL_WEIGHT = 0.02
 VIEW_WEIGHT = 0.3
 #: candidates that get the expensive tests (inverse kinematics, rendering) before the resolution gives up
 EXPENSIVE_LIMIT = 40
+#: ... times this many while none of them was blocked by something (see BasePoseResolution._patience)
+REACH_PATIENCE = 3
 #: how hard the ways of an arm and grasp are tried (`move_over`'s options), cheapest first: every arm and grasp is
 #: tried straight before any goes around what is in the way, and that before any joint-space search
 STRAIGHT = {"around": False, "search": False}
@@ -603,7 +605,7 @@ class BasePoseResolution(_Resolution):
         with world.lock, world.snapshot():
             self._prepared_inside()
             order = self.candidates.order
-            while self.cursor < len(order) and self.expensive < self.limit:
+            while self.cursor < len(order) and self.expensive < self._patience():
                 chunk = order[self.cursor:self.cursor + CHUNK]
                 self._map_test(chunk)
                 for i in chunk:
@@ -615,7 +617,7 @@ class BasePoseResolution(_Resolution):
                         self.candidates.outcome[i] = CODE["ok"]
                         self.found.append(pose)
                         return pose
-                    if self.expensive >= self.limit:
+                    if self.expensive >= self._patience():
                         break
         raise self._fail(self.failure_message())
 
@@ -653,6 +655,14 @@ class BasePoseResolution(_Resolution):
                 return None
         return BasePose((x, y, self.floor_z), yaw_quaternion(yaw), yaw, float(cand.scores[i]), arm, grasp, look,
                         len(self.found))
+
+    def _patience(self) -> int:
+        """How many candidates get the expensive tests: the limit, or REACH_PATIENCE times it while nothing was found
+        blocked (an arm that is merely short of the geometric estimate, as a user's weaker arm is, finds its pose
+        farther down the list; something in the way is the plan's to move, and waits for no more tries)."""
+        if CODE["blocked"] in self.candidates.outcome:
+            return self.limit
+        return self.limit * REACH_PATIENCE
 
     def _opened_collides(self, i: int) -> bool:
         handle = self.spec.accessing

@@ -81,9 +81,11 @@ def go(actor: Actor, pose: Any) -> None:
 
 
 def try_choices(actor: Actor, finder: Finder, attempt: Callable[[Actor, Any], Any], what: str,
-                retry_on: tuple[type[Failure], ...] = (Failure,)) -> Any:
+                retry_on: tuple[type[Failure], ...] = (Failure,), past_locations: bool = False) -> Any:
     """CPL-style: the next pose of a location, then `attempt(actor, pose)` in a child of its own; when it fails,
-    the next pose, up to `CHOICES`. No pose left: the location's failure; all tried: the last failure."""
+    the next pose, up to `CHOICES`. No pose left: the location's failure; all tried: the last failure. An attempt's
+    own LocationFailure ends the choosing (what is in the way is the plan's to handle), unless `past_locations`:
+    then it is one more choice that failed (a spot no place to stand reaches: the next spot)."""
     failures: list[Failure] = []
     for number in range(1, CHOICES + 1):
         try:
@@ -95,7 +97,7 @@ def try_choices(actor: Actor, finder: Finder, attempt: Callable[[Actor, Any], An
         try:
             return actor.attempt(number, lambda a, c=choice: attempt(a, c))
         except Failure as exc:
-            if isinstance(exc, LocationFailure) or not isinstance(exc, retry_on):
+            if (isinstance(exc, LocationFailure) and not past_locations) or not isinstance(exc, retry_on):
                 raise
             failures.append(exc)
     raise _gave_up(what, failures, None)

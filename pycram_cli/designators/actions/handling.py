@@ -86,7 +86,7 @@ def _place(actor: Actor, slots: Mapping[str, Any]) -> Any:
         return try_choices(a, stand, release, f"place {obj.name}")
 
     _rest_first(actor)
-    return try_choices(actor, spots, put, f"place {obj.name}")
+    return try_choices(actor, spots, put, f"place {obj.name}", past_locations=True)
 
 
 declare_action(Action(
