@@ -25,6 +25,7 @@ randomness, no clock; the same world gives the same answer.
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import threading
 import weakref
@@ -840,13 +841,32 @@ class BasePoseResolution(_Resolution):
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                     free = False
             body.move_attached()  # what it holds back with the arm (joints_kept puts only the joints back)
-            if free:
+            if free and self._way_back_free(arm, obj, solution.joint_positions, blocked):
                 return arm, None
         if blocked:
             cand.mark(i, "blocked", ", ".join(blocked))
         else:
             cand.mark(i, "out of reach")
         return None
+
+    def _way_back_free(self, arm: str, obj: Object, placed: Mapping[str, float], blocked: list[str]) -> bool:
+        """Whether the arm, having let `obj` go at the place (`placed`: its joint values there), finds a way back to the
+        pose it rests in empty (an arm that cannot get away from what stands around the place would be stuck there);
+        the object itself is not in the way (the arm backs off it first). What is in the way is added to `blocked`."""
+        robot = self.robot
+        body = robot.body
+        rest = rest_configuration(robot, arm, holding=False)
+        if rest is None:
+            return True
+        with _let_go_for_now(obj), body.joints_kept(list(placed)):
+            body.reset_joints(placed)
+            try:
+                move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the place", down_onto_goal=False,
+                          ignore=[obj])
+            except ManipulationFailure as failure:
+                blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                return False
+        return True
 
     def _reach_targets(self, arm: str) -> Iterator[tuple[Any, Any, Any]]:
         """(grasp, tool position or None when the gripper cannot hold it so, tool orientation) to try, in order."""
@@ -1035,6 +1055,24 @@ class SpotResolution(_Resolution):
         if not len(self.candidates):
             return f"{what}: the surface is smaller than the object with its margins ({self.radius * 200:.0f} cm across)"
         return f"{what}: {self.summary()}"
+
+
+@contextlib.contextmanager
+def _let_go_for_now(obj: Object) -> Iterator[None]:
+    """`with _let_go_for_now(obj):` the object stops following what holds it (no events), and follows it again after,
+    at exactly the same offset; where the object stands is put back too."""
+    pose = obj.get_pose()
+    held = {other: att for other, att in obj.attachments.items() if att.child is obj}
+    for other in held:
+        del obj.attachments[other]
+        other.attachments.pop(obj, None)
+    try:
+        yield
+    finally:
+        obj.set_position_and_orientation(*pose)
+        for other, att in held.items():
+            obj.attachments[other] = att
+            other.attachments[obj] = att
 
 
 def _quiet_let_go(obj: Object) -> None:

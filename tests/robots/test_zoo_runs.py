@@ -1,0 +1,33 @@
+"""The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo.py).
+
+Seed 2 is a wheeled robot with a 6-joint arm, a one-finger gripper and its camera on the wrist:
+wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 6's arm is too
+short for the counter: the run ends with a location failure saying the object is out of reach —
+a plan failure (exit 1), never an internal error.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from pycram_cli.cli.main import cli
+from pycram_cli.robots.zoo import generate, write_world
+
+
+def run_demo(seed: int, folder: Path):
+    world = write_world(generate(seed), folder)
+    return CliRunner().invoke(cli, ["run", "plans/set_table_actions.yaml", "--world", str(world)])
+
+
+def test_a_wrist_camera_robot_on_wheels_sets_the_table(tmp_path: Path) -> None:
+    result = run_demo(2, tmp_path)
+    assert result.exit_code == 0, result.output
+    assert "succeeded" in result.output
+
+
+def test_a_robot_whose_arm_is_too_short_says_it_cannot_reach(tmp_path: Path) -> None:
+    result = run_demo(6, tmp_path)
+    assert result.exit_code == 1, result.output
+    text = " ".join(result.output.split())
+    assert "LocationFailure" in text and "out of reach" in text
