@@ -40,7 +40,7 @@ SKIPPED = {
     "head -1": "not a pycram command",
     "--gui": "needs a display",
     "python -m pycram_cli.scenario.golden": "rewrites the golden traces",
-    "/tmp/zoo/": "a robot the reader generated with the zoo (tests/robots/test_zoo_runs.py runs zoo robots)",
+    "/tmp/zoo": "robots the reader generates with the zoo (tests/robots/test_zoo_runs.py runs zoo robots)",
 }
 TIMING = r"-?\d+(?:\.\d+)?"
 BOX = str.maketrans({c: " " for c in "│┃║"})

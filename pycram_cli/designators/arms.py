@@ -58,6 +58,8 @@ def _check_design_slots(slots: Mapping[str, Any], robots: Robots) -> list[SlotPr
             problems.append(SlotProblem(f"slot '{key}': {problem}", key, "use arms: {ARM: CONFIGURATION} for the "
                                         "robot's own arm names" if "has no arm" in problem else None))
             continue
+        if isinstance(slots[key], str):
+            continue  # a pose's name: the slot's own kind checks it against the robot's poses
         problem = KINDS["arm-configs"].check({arm: slots[key]}, robots)  # joint values counted against the arm
         if problem:
             problems.append(SlotProblem(f"slot '{key}': {problem.split(': ', 1)[1]}", key))

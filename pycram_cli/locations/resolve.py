@@ -960,9 +960,11 @@ class SpotResolution(_Resolution):
         self.height = float(ohi[2] - olo[2])
         inset = self.radius + SPOT_MARGIN
         reference = np.asarray(spec.near[:2]) if spec.near is not None else np.asarray(self.robot.body.get_position()[:2])
-        # a surface as large as a floor: only the part within SPOT_REACH of the reference (millions of spots else)
-        lo = (max(lo[0], reference[0] - SPOT_REACH), max(lo[1], reference[1] - SPOT_REACH), lo[2])
-        hi = (min(hi[0], reference[0] + SPOT_REACH), min(hi[1], reference[1] + SPOT_REACH), hi[2])
+        # a surface as large as a floor: only the part within SPOT_REACH of its point nearest the reference (millions
+        # of spots else); a table across the room is searched whole
+        nearest = np.clip(reference, np.asarray(lo[:2]), np.asarray(hi[:2]))
+        lo = (max(lo[0], nearest[0] - SPOT_REACH), max(lo[1], nearest[1] - SPOT_REACH), lo[2])
+        hi = (min(hi[0], nearest[0] + SPOT_REACH), min(hi[1], nearest[1] + SPOT_REACH), hi[2])
         ix = np.arange(math.ceil((lo[0] + inset) / SPOT_STEP - 1e-9), math.floor((hi[0] - inset) / SPOT_STEP + 1e-9) + 1)
         iy = np.arange(math.ceil((lo[1] + inset) / SPOT_STEP - 1e-9), math.floor((hi[1] - inset) / SPOT_STEP + 1e-9) + 1)
         gx, gy = np.meshgrid(ix * SPOT_STEP, iy * SPOT_STEP, indexing="ij")
