@@ -36,14 +36,6 @@ def _nearest_axis(v: np.ndarray, avoid: np.ndarray | None = None) -> np.ndarray:
     return max(axes, key=lambda a: float(a @ v))
 
 
-def _below(body: Object, link: int, joint_index: int) -> bool:
-    while link != -1:
-        if link == joint_index:
-            return True
-        link = body.joints[link].parent_index
-    return False
-
-
 def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
     """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame."""
     _, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
@@ -51,7 +43,7 @@ def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
     last = body.joint(arm.joints[-1])
     joint_position, joint_orientation = body.get_link_position_and_orientation(last.index)
     axis = quat_to_matrix(joint_orientation) @ quat_to_matrix(last.inertial_frame[1]) @ np.asarray(last.axis, dtype=float)
-    below = [j.index for j in body.joints if _below(body, j.index, last.index)]
+    below = sorted(body.links_below([last.name]))
     boxes = [body.get_aabb(index) for index in below] or [body.get_aabb(arm.tool_frame)]
     centre = (np.min([b[0] for b in boxes], axis=0) + np.max([b[1] for b in boxes], axis=0)) / 2.0
     outward = centre - np.asarray(joint_position)
