@@ -179,7 +179,8 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
     wanted = {"object": slots["object"]} if slots.get("object") is not None else {"object-type": slots["object-type"]}
     found = actor.action("search", wanted)
     was = list(found.get_position())
-    actor.action("pick-up", {"object": found, "arm": slots.get("arm"), "grasp": slots.get("grasp")})
+    if actor.robot.arm_holding(found) is None:  # already in hand when a place failed earlier and nothing took it back
+        actor.action("pick-up", {"object": found, "arm": slots.get("arm"), "grasp": slots.get("grasp")})
     taken_from = actor.robot.body.get_pose()
     try:
         actor.action("place", {"object": found, "target": slots["target"]})

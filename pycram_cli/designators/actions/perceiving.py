@@ -58,6 +58,8 @@ def _search(actor: Actor, slots: Mapping[str, Any]) -> Object:
         obj = object_of(actor, slots["object"], "object")
     else:  # where the robot's belief (the world state) puts an object of the type
         obj = actor.motion("world-state-detecting", {"object-type": slots["object-type"]})
+    if actor.robot.arm_holding(obj) is not None:  # in the robot's own hand (a place failed earlier): found
+        return obj
     inside = container_of(obj)
     if inside is not None:  # all the way: what lies inside is seen, and taken, best from above the open drawer
         container, joint, handle = inside
