@@ -300,9 +300,10 @@ def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: flo
     skip = set(held) | set(ignore)
     robot.set_position_and_orientation((x, y, robot.get_position()[2]), yaw_quaternion(yaw))
     hits = sorted(o.name for o in collisions(robot, ignore=skip))
+    ground = ground_z(robot) if held else 0.0
     for obj in held:
         for other in robot.world.objects:
-            if other is robot or other in skip or supports_from_below(robot, other):
+            if other is robot or other in skip or supports_from_below(robot, other, ground):
                 continue
             if robot.world.distance(obj, other, 0.0) < -PENETRATION and other.name not in hits:
                 hits.append(other.name)

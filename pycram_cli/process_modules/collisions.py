@@ -48,11 +48,12 @@ def collisions(robot: Object, ignore: set[Object] | None = None, links: set[int]
         if other is robot or other in ignore:
             continue
         if not supports_from_below(robot, other, ground):
-            floor = support_links(robot, other, ground)
-            points = robot.world.closest_points(robot, other, 0.0)
+            points = [pt for pt in robot.world.closest_points(robot, other, 0.0)
+                      if pt.distance < -PENETRATION and (links is None or pt.link_a in links)]
+            floor = support_links(robot, other, ground) if points else frozenset()  # only asked when it matters
             found.setdefault(other, set()).update(
                 (robot.get_link_name(pt.link_a), other.get_link_name(pt.link_b)) for pt in points
-                if pt.distance < -PENETRATION and (links is None or pt.link_a in links) and pt.link_b not in floor)
+                if pt.link_b not in floor)
         for obj in held:  # what the robot carries must not go through anything either (the floor included)
             points = robot.world.closest_points(obj, other, 0.0)
             found.setdefault(other, set()).update(
