@@ -158,12 +158,6 @@ def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolu
     return replace(candidate, position=position), pre, solution
 
 
-def grasp_pose(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> tuple[Vec3, Quat] | None:
-    """Where the tool frame goes to hold `obj` with `grasp` (the first holdable way), or None if the gripper cannot."""
-    candidates, _ = holdable_grasps(robot, arm, obj, grasp)
-    return (candidates[0].position, candidates[0].orientation) if candidates else None
-
-
 def finger_links(robot: Robot, arm: str) -> list[int]:
     """The links the arm's gripper joints move (the fingers)."""
     return motion.Motion(robot, robot.description.arm(arm).gripper.joints).links
