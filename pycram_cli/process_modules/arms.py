@@ -12,7 +12,7 @@ from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution, Query, solve, solve_each
 from ..world import JointLimitError, Object
-from ..world.pose import quat_inverse, quat_multiply, quat_to_matrix
+from ..world.pose import angle_between, quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
 from .base import ProcessModule, Robot
 from .grasping import tool_axes
@@ -134,14 +134,75 @@ def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation:
     return reach_from(robot, arm, _middle(robot, arm), position, orientation)
 
 
+#: a short straight move of the tool (`reach_from`) may stray this far from the straight line between its two poses
+#: anywhere on its joint-space path (m, rad); it is checked at LINE_SAMPLES points, and when a solution strays (an
+#: arm that was nearly stretched out flips its elbow or wrist to the other branch on the way) the move is solved
+#: again in LINE_STEPS steps along the line, each from the last
+LINE_SLACK = (0.03, math.radians(15.0))
+LINE_SAMPLES = 4
+LINE_STEPS = 5
+
+
 def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
                orientation: Sequence[float] | None) -> IKSolution:
-    """`reach`, starting from the arm configuration `joints` (the pose before a short straight move: the solution is
-    then on the same branch, and the joint-space path between the two stays close to the straight line)."""
+    """`reach`, starting from the arm configuration `joints`, for a short straight move from there: the solution is on
+    the same branch, so that the joint-space path between the two keeps the tool near the straight line between its
+    poses (`strays`). When the first solution strays, the move is solved in steps along the line; when that strays
+    too, the answer is a failure whose `position_error` is how far the tool would stray."""
     body = robot.body
+    tool = robot.description.arm(arm).tool_frame
     with body.joints_kept(joints):
         body.reset_joints(joints)
-        return reach(robot, arm, position, orientation)
+        start = body.get_link_position(tool)
+        solution = reach(robot, arm, position, orientation)
+        if not solution.success:
+            return solution
+        off = strays(robot, arm, joints, solution.joint_positions, start, position, orientation)
+        if off == 0.0:
+            return solution
+        current: Mapping[str, float] = joints
+        for step in range(1, LINE_STEPS + 1):
+            along = np.asarray(start) + (np.asarray(position, dtype=float) - np.asarray(start)) * step / LINE_STEPS
+            body.reset_joints(current)
+            stepped = reach(robot, arm, tuple(float(v) for v in along), orientation)
+            if not stepped.success:
+                break
+            current = stepped.joint_positions
+        else:
+            if strays(robot, arm, joints, current, start, position, orientation) == 0.0:
+                return stepped
+    return IKSolution(False, solution.joint_positions, off, solution.orientation_error)
+
+
+def strays(robot: Robot, arm: str, start: Mapping[str, float], end: Mapping[str, float], line_start: Sequence[float],
+           line_end: Sequence[float], orientation: Sequence[float] | None) -> float:
+    """How far (m) the tool strays beyond LINE_SLACK from the straight line between two positions (holding
+    `orientation`, when given) as the arm moves from `start` to `end` straight in joint space (continuous joints the
+    short way); 0 when it keeps to the line. It moves the arm's joints: call it inside `joints_kept`."""
+    body = robot.body
+    tool = robot.description.arm(arm).tool_frame
+    names = list(end)
+    a = np.array([float(start.get(n, end[n])) for n in names])
+    b = np.array([float(end[n]) for n in names])
+    for i, name in enumerate(names):
+        if body.joint(name).type == "continuous":
+            b[i] = a[i] + math.remainder(b[i] - a[i], 2 * math.pi)
+    p0, p1 = np.asarray(line_start, dtype=float), np.asarray(line_end, dtype=float)
+    span = p1 - p0
+    length2 = float(span @ span)
+    worst = 0.0
+    for k in range(1, LINE_SAMPLES + 1):
+        values = a + (b - a) * k / (LINE_SAMPLES + 1)
+        body.reset_joints(dict(zip(names, (float(v) for v in values))))
+        where, turned = body.get_link_position_and_orientation(tool)
+        p = np.asarray(where)
+        t = 0.0 if length2 == 0.0 else min(1.0, max(0.0, float((p - p0) @ span) / length2))
+        off = float(np.linalg.norm(p - (p0 + t * span)))
+        if off > LINE_SLACK[0]:
+            worst = max(worst, off)
+        elif orientation is not None and angle_between(turned, orientation) > LINE_SLACK[1]:
+            worst = max(worst, LINE_SLACK[0])
+    return worst
 
 
 def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
@@ -300,10 +361,12 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
 BACK_OFF = (0.08, 0.05, 0.03)
 
 
-def back_off(robot: Robot, arm: str, what: str) -> float:
+def back_off(robot: Robot, arm: str, what: str, released: Object | None = None) -> float:
     """Back the (open) tool straight out along its approach after letting go of something: `BACK_OFF[0]`, or the
     longest of the shorter distances the arm reaches and the way to which is free. The distance backed off (0 when
-    none: the hand stays where it let go, and the next motion starts from there)."""
+    none: the hand stays where it let go, and the next motion starts from there). The object just let go of
+    (`released`) is not in the way: the hand leaves it the way it came in, and an opened finger that still touches
+    it (a box that turned a little as it came to rest) must not keep the hand there, leaning on it while it settles."""
     tool_frame = robot.description.arm(arm).tool_frame
     position, orientation = robot.body.get_link_position_and_orientation(tool_frame)
     approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
@@ -313,7 +376,8 @@ def back_off(robot: Robot, arm: str, what: str) -> float:
         if not solution.success:
             continue
         try:
-            motion.move(robot, solution.joint_positions, f"the {arm_words(arm)}'s retreat from {what}")
+            motion.move(robot, solution.joint_positions, f"the {arm_words(arm)}'s retreat from {what}",
+                        ignore=() if released is None else (released,))
         except ManipulationFailure:
             continue
         return distance
