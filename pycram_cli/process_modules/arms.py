@@ -418,9 +418,10 @@ def arm_configs(slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 #: the joint-space search's budget (legs checked) for a commanded arm configuration (`move-arm-joints`): it has no
-#: other goal to fall back on, so it searches longer than a motion to a tool pose (`motion.SEARCH_EDGES`). Six random
-#: PR2 arm configurations beside the bundled kitchen's oven whose straight way to park is blocked, and which the
-#: poses `move_over` tries first do not clear, needed 341 to 2416 legs (tests/process_modules/test_arm_joints.py)
+#: other goal to fall back on, so it searches longer than a motion to a tool pose (`motion.SEARCH_EDGES`). Measured
+#: once, for issue 23: of 22 random PR2 arm configurations beside the bundled kitchen's oven whose straight way to
+#: park brushes the oven, the 6 that the ways `move_over` tries first did not clear needed 341 to 2416 legs (about
+#: 4 to 28 s on the 2-core machine); tests/process_modules/test_arm_joints.py keeps one of them
 ARM_JOINTS_SEARCH_EDGES = 2500
 
 
