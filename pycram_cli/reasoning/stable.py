@@ -86,21 +86,21 @@ SWING = 0.5
 #: and it rocks when its offset turned back at least this often while watched, grew no larger in the second half
 #: of the watch than this many times its largest in the first half (a tipping or falling object's keeps growing),
 #: and its centre of mass never sank more than DROP (m) below where it stood: rocking about a rest lifts it (a
-#: tumbling or fallen object bounces too, but centimetres lower; the design's spoon sinks about 2 mm as it settles)
-ROCKS = 2
+#: tumbling or fallen object bounces too, but centimetres lower; the design's spoon shifts about 2 mm as it settles)
+TURNS = 2
 GROWTH = 1.5
 DROP = 0.005
 
 #: what an object does (`StableAnswer.motion`): stays put; went past the limits (not watched further); came to rest
 #: elsewhere; keeps moving away (falls, tips, slides, rolls); keeps rocking back and forth about where it stood
-AT_REST, MOVED, SETTLED, MOVING, ROCKS_ = "at rest", "moved", "settled", "moving", "rocks"
+AT_REST, MOVED, SETTLED, MOVING, ROCKS = "at rest", "moved", "settled", "moving", "rocks"
 
 
 @dataclass(frozen=True)
 class StableAnswer:
     """Truthy when stable. `displacement` (m) and `rotation` (rad): the largest reached while simulating;
     `simulated`: seconds simulated before the verdict was certain. An unstable object is watched OBSERVE s
-    longer (`observed`: how long) and `motion` says what it does then (SETTLED, MOVING or ROCKS_; MOVED when
+    longer (`observed`: how long) and `motion` says what it does then (SETTLED, MOVING or ROCKS; MOVED when
     it was not watched); `amplitude` (m, rad): how far a rocking object's offset from where it stood swings
     (largest minus smallest over the second half of the watch)."""
 
@@ -195,7 +195,7 @@ class _Watch:
 
     def _observe(self, verdict: StableAnswer, start: tuple, steps: int) -> StableAnswer:
         """Watch an object that went past the limits `steps` steps longer: SETTLED when it moves slower than the
-        rest speeds for CALM_WINDOWS windows, ROCKS_ when its offset from `start` keeps turning back without
+        rest speeds for CALM_WINDOWS windows, ROCKS when its offset from `start` keeps turning back without
         growing, else MOVING."""
         obj, window_time = self.obj, WINDOW / STEP_HZ
         self._window(window_time)  # the windows count from here
@@ -219,9 +219,9 @@ class _Watch:
         half = len(offsets) // 2
         if half and lowest >= start[0][2] - DROP:
             for limit, series in ((self.distance, [o[0] for o in offsets]), (self.angle, [o[1] for o in offsets])):
-                if _turns(series, SWING * limit) >= ROCKS and max(series[half:]) <= GROWTH * max(series[:half]):
+                if _turns(series, SWING * limit) >= TURNS and max(series[half:]) <= GROWTH * max(series[:half]):
                     tail_d, tail_a = [o[0] for o in offsets[half:]], [o[1] for o in offsets[half:]]
-                    return replace(watched, motion=ROCKS_,
+                    return replace(watched, motion=ROCKS,
                                    amplitude=(max(tail_d) - min(tail_d), max(tail_a) - min(tail_a)))
         return replace(watched, motion=MOVING)
 
