@@ -67,7 +67,8 @@ def _check_design_slots(slots: Mapping[str, Any], robots: Robots) -> list[SlotPr
 
 
 declare_designator(Designator(
-    "move-arm-joints", "Set the joints of arms to a named pose (park) or to joint values.", (
+    "move-arm-joints", "Set the joints of arms to a named pose (park) or to joint values, along a collision-free "
+    "path: straight in joint space, else around what is in the way.", (
         Slot("arms", "arm-configs", False, "configuration by arm name, e.g. {left: park, right: [0, 0, ...]}"),
         Slot("left-arm", "arm-config", False, "configuration of the left arm (the design's slot name)"),
         Slot("right-arm", "arm-config", False, "configuration of the right arm (the design's slot name)"),

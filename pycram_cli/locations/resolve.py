@@ -1027,7 +1027,7 @@ class SpotResolution(_Resolution):
                 if hits:
                     cand.mark(i, "collides", ", ".join(hits))
                     continue
-                answer = stable(obj)
+                answer = stable(obj, observe=0.0)  # the verdict only: how it moves on is not asked
                 if not answer.stable:
                     cand.mark(i, "unstable", f"moved {answer.displacement * 1000:.1f} mm")
                     continue

@@ -267,7 +267,7 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
 
 def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True,
               around: bool = True, search: bool = True, ignore: Sequence[Object] = (),
-              straight: ManipulationFailure | None = None) -> None:
+              straight: ManipulationFailure | None = None, edges: int = motion.SEARCH_EDGES) -> None:
     """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
     what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
     or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
@@ -277,7 +277,7 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
     free; then nothing has moved. `around=False`: the straight path only (a cheap first test); `search=False`: no
     joint-space search (the dearest test: about 0.4 s when no way exists). `ignore`: what the arm may pass through.
     `straight`: the straight path's failure, when it is already known (from the same configuration): it is not
-    walked again."""
+    walked again. `edges`: the search's budget (legs checked)."""
     if straight is not None:
         if not around:
             raise straight
@@ -345,7 +345,7 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
             except ManipulationFailure:
                 body.reset_joints(start)  # back where it was, along legs that were free
                 body.move_attached()
-    way = motion.search_path(robot, goal, ignore) if search else None  # last: a search through the joint space
+    way = motion.search_path(robot, goal, ignore, edges) if search else None  # last: a search in the joint space
     if way:
         try:
             for leg in way:
@@ -481,8 +481,20 @@ def arm_configs(slots: Mapping[str, Any]) -> dict[str, Any]:
     return configs
 
 
+#: the joint-space search's budget (legs checked) for a commanded arm configuration (`move-arm-joints`): it has no
+#: other goal to fall back on, so it searches longer than a motion to a tool pose (`motion.SEARCH_EDGES`). Measured
+#: once, for issue 23: of 22 random PR2 arm configurations beside the bundled kitchen's oven whose straight way to
+#: park brushes the oven, the 6 that the ways `move_over` tries first did not clear needed 341 to 2416 legs (about
+#: 4 to 28 s on the 2-core machine); tests/process_modules/test_arm_joints.py keeps one of them
+ARM_JOINTS_SEARCH_EDGES = 2500
+
+
 @process_module("arm-joints")
 class MoveArmJoints(ProcessModule):
+    """Arms to joint values (a named pose of the description, a list in joint order, or a mapping): all at once
+    along the straight path in joint space when it is free, else one arm after the other around what is in the way
+    (`move_over`, then a longer joint-space search). A goal that is itself inside something fails at once, naming
+    it; when no way is found the failure names what blocks the straight path. Either way nothing has moved."""
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
         values: dict[str, float] = {}
@@ -498,15 +510,31 @@ class MoveArmJoints(ProcessModule):
                                           f"[{joint.lower:g}, {joint.upper:g}]")
         arms = list(arm_configs(slots))
         what = f"moving the {', '.join(arms)} arm{'s' if len(arms) > 1 else ''}"
+        hits = motion.hits_at_goal(robot, values)
+        if hits:  # no path ends there: said at once, not after a search
+            raise motion.collision_failure(what, hits, 1.0, at_goal=True)
         try:
             motion.move(robot, values, what)
+            return
         except JointLimitError as exc:
             raise ManipulationFailure(str(exc)) from None
         except ManipulationFailure:
-            # one arm after the other, each up and over what is in its way if need be
+            pass
+        # one arm after the other, each around what is in its way if need be; all or nothing
+        body = robot.body
+        start = body.get_joint_positions(list(values))
+        try:
             for arm in arms:
                 goal = {name: values[name] for name in robot.description.arm(arm).joints if name in values}
-                move_over(robot, arm, goal, what, down_onto_goal=False)
+                try:  # the failure names the arm that is blocked
+                    move_over(robot, arm, goal, f"moving the {arm} arm", down_onto_goal=False,
+                              edges=ARM_JOINTS_SEARCH_EDGES)
+                except ManipulationFailure as exc:
+                    raise ManipulationFailure(f"{exc}; no way around it was found", **exc.details) from None
+        except BaseException:
+            body.reset_joints(start)
+            body.move_attached()
+            raise
 
 
 @process_module("tcp")

@@ -375,6 +375,19 @@ def hits_at(robot: Robot, joints: Mapping[str, float], ignore: Iterable[Object] 
         motion._put(start)
 
 
+def hits_at_goal(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> list[Hit]:
+    """What the moving part would be inside at `goal` (then put back), contacts that exist now allowed as a motion
+    allows them: a goal with hits is reached by no path, so no search for one is worth its time."""
+    motion = Motion(robot, _moving(robot, goal), ignore)
+    start, end = motion._endpoints(goal)
+    motion.allow_current()
+    try:
+        motion._put(end)
+        return motion.scan()[1]
+    finally:
+        motion._put(start)
+
+
 def move(robot: Robot, goal: Mapping[str, float], what: str, ignore: Iterable[Object] = (),
          ignore_links: Iterable[tuple[Object, int]] = ()) -> None:
     """Move joints to `goal` if the path is free (held objects follow); else raise a ManipulationFailure naming the
@@ -396,11 +409,13 @@ def advance(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = 
     return fraction, hits
 
 
-def collision_failure(what: str, hits: Sequence[Hit], fraction: float) -> ManipulationFailure:
+def collision_failure(what: str, hits: Sequence[Hit], fraction: float, at_goal: bool = False) -> ManipulationFailure:
+    """The failure of a motion whose path is blocked `fraction` of the way (`at_goal`: whose goal itself is)."""
     hit = hits[0]
     others = sorted({h.obstacle.name for h in hits[1:]} - {hit.obstacle.name})
     also = f" (and {', '.join(others)})" if others else ""
-    return ManipulationFailure(f"{what} would collide: {hit}{also}, {fraction:.0%} of the way",
+    where = "at its goal: no way leads there" if at_goal else f"{fraction:.0%} of the way"
+    return ManipulationFailure(f"{what} would collide: {hit}{also}, {where}",
                                colliding=[hit.obstacle.name, *others], link=hit.link, part=hit.mover,
                                depth=round(hit.depth, 4))
 
@@ -413,9 +428,10 @@ SEARCH_EDGES = 300
 SEARCH_SEED = 20191028
 
 
-def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> list[dict[str, float]] | None:
+def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = (),
+                edges: int = SEARCH_EDGES) -> list[dict[str, float]] | None:
     """Joint values to pass through, from the current ones to `goal`, every leg between them free (checked as `move`
-    checks a path), or None when none is found within SEARCH_EDGES checks.
+    checks a path), or None when none is found within `edges` checks of a leg.
 
     RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
     configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
@@ -438,7 +454,7 @@ def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object
             highs.append(value + math.pi)
     low, high = np.array(lows), np.array(highs)
     rng = np.random.default_rng(SEARCH_SEED)
-    budget = [SEARCH_EDGES]
+    budget = [edges]
 
     motion._prune(motion._levers())
     motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else

@@ -14,7 +14,7 @@ from ..world import Object
 from .contact import contact
 from .query import Call, QueryAnswer, QueryParam, QuerySpec, declare_query, finite
 from .reachability import ReachableAnswer, can_take, reachable, touching_at
-from .stable import stable
+from .stable import OBSERVE, stable
 from .supporting import support_points
 from .visibility import occluding, visible
 
@@ -53,19 +53,36 @@ def _place(value: Any) -> str:
 
 def _stable(call: Call) -> QueryAnswer:
     answer = stable(call.object("object"))
-    return QueryAnswer("stable", call.resolved, answer.stable,
-                       {"displacement": answer.displacement, "rotation": answer.rotation,
-                        "simulated": answer.simulated}, answer.stable)
+    details: dict[str, Any] = {"displacement": answer.displacement, "rotation": answer.rotation,
+                               "simulated": answer.simulated}
+    if not answer.stable:  # what it does once past the limits (a stable answer's is "at rest")
+        details.update(motion=answer.motion, observed=answer.observed)
+        if answer.amplitude is not None:
+            details["amplitude"] = {"displacement": answer.amplitude[0], "rotation": answer.amplitude[1]}
+    return QueryAnswer("stable", call.resolved, answer.stable, details, answer.stable)
 
 
 def _say_stable(answer: QueryAnswer) -> str:
     a, d = answer.args, answer.details
-    moved = f"moved {_mm(d['displacement'])} and {_deg(d['rotation'])} in {d['simulated']:.2f} s simulated"
-    return f"{a['object']} is stable ({moved})" if answer.result else f"{a['object']} is NOT stable: it {moved}"
+    moved = f"moved {_mm(d['displacement'])} and {_deg(d['rotation'])}"
+    if answer.result:
+        return f"{a['object']} is stable ({moved} in {d['simulated']:.2f} s simulated)"
+    total = f"{d['simulated'] + d.get('observed', 0.0):.2f} s simulated"
+    motion = d.get("motion")
+    if motion == "rocks":
+        swing = d["amplitude"]
+        return (f"{a['object']} is NOT stable: it is not at rest, it rocks back and forth by {_deg(swing['rotation'])} "
+                f"and {_mm(swing['displacement'])} and is still moving ({total})")
+    if motion == "settled":
+        return f"{a['object']} is NOT stable: it {moved}, then came to rest ({total})"
+    if motion == "moving":
+        return f"{a['object']} is NOT stable: it {moved} and is still moving ({total})"
+    return f"{a['object']} is NOT stable: it {moved} in {total}"
 
 
 declare_query(QuerySpec(
-    "stable", "Does the object stay put (within 1 mm and 1°) while the world is simulated for 2 s?",
+    "stable", "Does the object stay put (within 1 mm and 1°) while the world is simulated for 2 s? When not, it is "
+              f"watched {OBSERVE:g} s longer: it came to rest elsewhere, is still moving, or rocks (and by how much).",
     (QueryParam("object", "object", True, _OBJECT, positional=True),), _stable, _say_stable))
 
 

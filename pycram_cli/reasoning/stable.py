@@ -19,6 +19,16 @@ Three things differ here:
   over the last window — and the object's own motion, extrapolated with its current speed
   and acceleration to the end of the 2 s, stays under half the limits, and its motion is not
   growing (a slowly tipping object speeds up from window to window).
+* It says what an unstable object does. Past the limits, the object is watched OBSERVE (1 s)
+  longer: it `settled` (came to rest elsewhere), is still `moving` (falls, tips, slides, rolls),
+  or `rocks` — its offset from where it stood keeps turning back without growing and its centre
+  of mass stays up — with the amplitude of the swing, rather than a misleading "moved N mm" for
+  an object that goes nowhere (a half cylinder on its round side; the design's open spoon). The
+  verdict and `simulated` are the same watched or not (`displacement` and `rotation` then cover
+  the watch too); `observe=0` skips the watch (location search only needs the verdict).
+
+The tolerance (1 mm, 1°): objects at rest in a plain simulation of the bundled world drift at
+most 0.103 mm and tilt at most 0.208° over 5 s (bench/stable_tolerance.py; README's stable section).
 
 The simulation runs on the world's prospection copy (`world.prospection()`), brought in sync
 with the world first: the world itself is only read, so everything it holds — poses,
@@ -33,7 +43,7 @@ depend on every contact it solves together.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -68,15 +78,39 @@ NEAR_MOTION = 1e-4
 FALLING = 1e-3
 
 
+#: after an object has gone past the limits it is watched this much longer (s), so that the answer says what it does:
+#: comes to rest elsewhere, keeps moving away, or rocks (a 5° rocker on the island swings with a period of 0.55 s)
+OBSERVE = 1.0
+#: a rock is counted when the object's offset from where it stood turns back by more than this fraction of the limits
+SWING = 0.5
+#: and it rocks when its offset turned back at least this often while watched, grew no larger in the second half
+#: of the watch than this many times its largest in the first half (a tipping or falling object's keeps growing),
+#: and its centre of mass never sank more than DROP (m) below where it stood: rocking about a rest lifts it (a
+#: tumbling or fallen object bounces too, but centimetres lower; the design's spoon shifts about 2 mm as it settles)
+TURNS = 2
+GROWTH = 1.5
+DROP = 0.005
+
+#: what an object does (`StableAnswer.motion`): stays put; went past the limits (not watched further); came to rest
+#: elsewhere; keeps moving away (falls, tips, slides, rolls); keeps rocking back and forth about where it stood
+AT_REST, MOVED, SETTLED, MOVING, ROCKS = "at rest", "moved", "settled", "moving", "rocks"
+
+
 @dataclass(frozen=True)
 class StableAnswer:
-    """Truthy when stable. `displacement` (m) and `rotation` (rad): the largest reached while
-    simulating; `simulated`: seconds actually simulated before the answer was certain."""
+    """Truthy when stable. `displacement` (m) and `rotation` (rad): the largest reached while simulating;
+    `simulated`: seconds simulated before the verdict was certain. An unstable object is watched OBSERVE s
+    longer (`observed`: how long) and `motion` says what it does then (SETTLED, MOVING or ROCKS; MOVED when
+    it was not watched); `amplitude` (m, rad): how far a rocking object's offset from where it stood swings
+    (largest minus smallest over the second half of the watch)."""
 
     stable: bool
     displacement: float
     rotation: float
     simulated: float = 0.0
+    motion: str = AT_REST
+    amplitude: tuple[float, float] | None = None
+    observed: float = 0.0
 
     def __bool__(self) -> bool:
         return self.stable
@@ -87,8 +121,9 @@ def _moved(a: tuple, b: tuple) -> tuple[float, float]:
 
 
 def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = SECONDS,
-           distance: float = DISTANCE, angle: float = ANGLE) -> StableAnswer:
-    """Whether `obj` moves less than `distance` (m) and `angle` (rad) while the world runs for `seconds`."""
+           distance: float = DISTANCE, angle: float = ANGLE, observe: float = OBSERVE) -> StableAnswer:
+    """Whether `obj` moves less than `distance` (m) and `angle` (rad) while the world runs for `seconds`; an object
+    that does not is watched `observe` s longer to say what it does (0: the verdict only, as fast as it comes)."""
     world = world_of(obj, world)
     if obj.fixed:
         return StableAnswer(True, 0.0, 0.0, 0.0)  # fixed objects are kinematic: simulation never moves them
@@ -104,7 +139,7 @@ def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = S
                 if other.id in hood.loose:
                     parking.loosen(other, hood.loose[other.id])
             copy.wake(hood.members + hood.kept)
-            return _Watch(copy, target, hood, parking, distance, angle).run(total)
+            return _Watch(copy, target, hood, parking, distance, angle).run(total, int(round(observe * STEP_HZ)))
         finally:
             parking.put_back()
 
@@ -119,7 +154,7 @@ class _Watch:
         self.watched = [o for o in hood.members if _loose(o)]
         self.last = {o.id: o.get_com_pose() for o in self.watched}
 
-    def run(self, total: int) -> StableAnswer:
+    def run(self, total: int, observe: int = 0) -> StableAnswer:
         obj, world = self.obj, self.world
         start = obj.get_com_pose()  # watched at the centre of mass: one cheap call per step
         min_steps = int(MIN_SECONDS * STEP_HZ)
@@ -132,7 +167,8 @@ class _Watch:
             d, a = _moved(start, obj.get_com_pose())
             worst_d, worst_a = max(worst_d, d), max(worst_a, a)
             if d > self.distance or a > self.angle:
-                return StableAnswer(False, worst_d, worst_a, step / STEP_HZ)
+                verdict = StableAnswer(False, worst_d, worst_a, step / STEP_HZ, MOVED)
+                return self._observe(verdict, start, observe) if observe > 0 else verdict
             if step % WINDOW:
                 continue
             # -- a rest check every window, over the neighbourhood ---------------------------------------
@@ -156,6 +192,38 @@ class _Watch:
             if calm >= CALM_WINDOWS:
                 return StableAnswer(True, worst_d, worst_a, step / STEP_HZ)
         return StableAnswer(True, worst_d, worst_a, total / STEP_HZ)
+
+    def _observe(self, verdict: StableAnswer, start: tuple, steps: int) -> StableAnswer:
+        """Watch an object that went past the limits `steps` steps longer: SETTLED when it moves slower than the
+        rest speeds for CALM_WINDOWS windows, ROCKS when its offset from `start` keeps turning back without
+        growing, else MOVING."""
+        obj, window_time = self.obj, WINDOW / STEP_HZ
+        self._window(window_time)  # the windows count from here
+        offsets: list[tuple[float, float]] = []
+        worst_d, worst_a, lowest = verdict.displacement, verdict.rotation, start[0][2]
+        calm = 0
+        for step in range(1, steps + 1):
+            self.world.step()
+            pose = obj.get_com_pose()
+            d, a = _moved(start, pose)
+            worst_d, worst_a, lowest = max(worst_d, d), max(worst_a, a), min(lowest, pose[0][2])
+            if step % WINDOW and step != steps:
+                continue
+            offsets.append((d, a))
+            _, (md, ma) = self._window(window_time)
+            calm = calm + 1 if md <= REST_SPEED * window_time and ma <= REST_SPIN * window_time else 0
+            if calm >= CALM_WINDOWS:
+                return replace(verdict, displacement=worst_d, rotation=worst_a, motion=SETTLED,
+                               observed=step / STEP_HZ)
+        watched = replace(verdict, displacement=worst_d, rotation=worst_a, observed=steps / STEP_HZ)
+        half = len(offsets) // 2
+        if half and lowest >= start[0][2] - DROP:
+            for limit, series in ((self.distance, [o[0] for o in offsets]), (self.angle, [o[1] for o in offsets])):
+                if _turns(series, SWING * limit) >= TURNS and max(series[half:]) <= GROWTH * max(series[:half]):
+                    tail_d, tail_a = [o[0] for o in offsets[half:]], [o[1] for o in offsets[half:]]
+                    return replace(watched, motion=ROCKS,
+                                   amplitude=(max(tail_d) - min(tail_d), max(tail_a) - min(tail_a)))
+        return replace(watched, motion=MOVING)
 
     def _window(self, window_time: float) -> tuple[bool, tuple[float, float]]:
         """Whether every watched body moved less than the creep speed over the last window, and the object's
@@ -200,6 +268,17 @@ class _Watch:
             if _loose(other):
                 self.watched.append(other)
                 self.last[other.id] = other.get_com_pose()
+
+
+def _turns(series: list[float], swing: float) -> int:
+    """How often `series` turns back by more than `swing` from its last extreme (a rock to one side and back)."""
+    turns, rising, extreme = 0, True, series[0] if series else 0.0
+    for value in series[1:]:
+        if (value > extreme) == rising:
+            extreme = value
+        elif abs(value - extreme) > swing:
+            turns, rising, extreme = turns + 1, not rising, value
+    return turns
 
 
 def _loose(obj: "Object") -> bool:

@@ -161,3 +161,26 @@ def test_at_inside_something_says_so():
 
 def test_at_is_in_the_help():
     assert "--at X,Y[,YAW]" in query("--help").stdout and "YAW degrees" in query("--help").stdout
+
+
+def test_stable_says_an_object_that_never_comes_to_rest_rocks_in_words_and_in_json(tmp_path):
+    """A half cylinder on its round side, tilted 5° on the island (bench/stable_tolerance.py's rocker)."""
+    import importlib.util
+    import math
+    from pathlib import Path
+
+    bench = Path(__file__).resolve().parents[2] / "bench" / "stable_tolerance.py"
+    spec = importlib.util.spec_from_file_location("stable_tolerance", bench)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    mesh = module.rocker_mesh(tmp_path)
+    tilt = math.radians(5.0)
+    z = 0.861 + 0.05 * (1 - math.cos(tilt)) + 0.001  # its lowest point 1 mm above the island, as worlds stand things
+    world = tmp_path / "rocking.yaml"
+    world.write_text("extends: kitchen\nobjects:\n"
+                     f"  - {{name: rocker, type: rocker, file: {mesh}, position: [-1.1, 1.0, {z:.6f}], "
+                     f"orientation: [{math.sin(tilt / 2):.7f}, 0, 0, {math.cos(tilt / 2):.7f}]}}\n")
+    said = query("stable", "rocker", "--world", str(world))
+    assert said.exit_code == 0 and "rocker is NOT stable: it is not at rest, it rocks back and forth by" in said.stdout
+    details = query_json("stable", "rocker", "--world", str(world))["details"]
+    assert details["motion"] == "rocks" and math.radians(5) < details["amplitude"]["rotation"] < math.radians(15)

@@ -193,3 +193,18 @@ def test_pycram_designators_lists_the_actions_with_their_slots():
     target = next(s for s in transport["slots"] if s["name"] == "target")
     assert target["kind"] == "location" and target["required"]
     assert CliRunner().invoke(cli, ["designators", "transprt"]).exit_code == 2
+
+
+def test_transport_says_what_the_placed_object_does_when_it_is_not_stable(world, monkeypatch):
+    """The failure names the motion `stable` saw (here made to rock: the query's answer is replaced)."""
+    import math
+
+    from pycram_cli.failures import ReasoningFailure
+    from pycram_cli.reasoning import StableAnswer, queries
+
+    rocking = StableAnswer(False, 0.003, 0.17, 0.06, "rocks", (0.003, math.radians(9.5)), 1.0)
+    monkeypatch.setattr(queries, "stable", lambda obj: rocking)
+    with pytest.raises(ReasoningFailure, match=r"milk is not stable where it was placed: it is not at rest, it rocks "
+                                               r"back and forth by 9\.50° and 3\.00 mm") as failure:
+        perform_action(world, "transport", {"object-type": "milk", "target": ISLAND})
+    assert failure.value.details["motion"] == "rocks"

@@ -12,6 +12,7 @@ from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
+from ...reasoning import QUERIES
 from ..declaration import ANY_ARM, Slot, drives
 from .actor import Actor, Finder, as_failure
 from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, resting, try_choices
@@ -188,8 +189,11 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
         _put_back(actor, found, was, taken_from)
         raise
     actor.action("park-arms", {})
-    if not actor.query("stable", {"object": found}):
-        raise ReasoningFailure(f"{found.name} is not stable where it was placed", object=found.name)
+    answer = actor.query("stable", {"object": found})
+    if not answer:  # with what it does: tips over and lies still, keeps moving, or rocks
+        how = QUERIES["stable"].describe(answer).split(": ", 1)[-1]
+        raise ReasoningFailure(f"{found.name} is not stable where it was placed: {how}", object=found.name,
+                               motion=answer.details.get("motion"))
     return found
 
 
