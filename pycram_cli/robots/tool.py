@@ -186,16 +186,26 @@ def _grasp_offset(body: Object, arm: "ArmDescription", approach: str, normal: np
         return (0.0, 0.0, 0.0)
     palm_pose = body.get_link_position_and_orientation(palm)
     tool_position, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
-    to_palm = quat_to_matrix(palm_pose[1]).T @ quat_to_matrix(tool_orientation)  # tool directions into the palm frame
     if gripper.grasp_point is not None:
         point = np.asarray(gripper.grasp_point, dtype=float)
+        world = np.asarray(palm_pose[0]) + quat_to_matrix(palm_pose[1]) @ point
     else:
-        lo, hi = (np.asarray(v) for v in body.get_link_local_aabb(palm))
-        face = to_palm @ normal
-        point = (lo + hi) / 2.0 + face * float(np.abs(face) @ ((hi - lo) / 2.0))
-    world = np.asarray(palm_pose[0]) + quat_to_matrix(palm_pose[1]) @ point
+        world = _palm_face(body, palm, quat_to_matrix(tool_orientation) @ normal)
     local = quat_to_matrix(tool_orientation).T @ (world - np.asarray(tool_position))
     return tuple(float(v) + 0.0 for v in np.round(local, 6))  # type: ignore[return-value]
+
+
+def _palm_face(body: Object, palm: str, normal: np.ndarray) -> np.ndarray:
+    """The middle of the palm's face that `normal` (world) points out of: where a ray from outside towards the middle
+    of the palm's box meets the palm (its box's face when something else of the robot is met first)."""
+    lo, hi = (np.asarray(v) for v in body.get_aabb(palm))
+    middle = (lo + hi) / 2.0
+    reach = float(np.linalg.norm(hi - lo)) + 0.05
+    others = [obj for obj in body.world.objects if obj is not body]
+    hit = body.world.cast_rays([middle + normal * reach], [middle], others)[0]
+    if hit is not None and hit.object is body and hit.link == body.get_link_id(palm):
+        return np.asarray(hit.position, dtype=float)
+    return middle + normal * float(np.abs(normal) @ ((hi - lo) / 2.0))
 
 
 def model_grasps(body: Object, arm: "ArmDescription") -> dict[str, Quat]:
