@@ -14,10 +14,13 @@ from pathlib import Path
 import pytest
 
 from pycram_cli.plan import load_plan, run_plan
+from pycram_cli.world.pose import compose, invert
 from pycram_cli.worldfile.loader import load_world
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "robots"))
-from robot_variants import HAND_CLOSED, HAND_FINGERS, write_multi_finger_robot  # noqa: E402
+from robot_variants import HAND_CLOSED, HAND_FINGERS, HAND_PALM, write_multi_finger_robot  # noqa: E402
+
+PICK = "  - action: pick-up\n    object: milk\n"
 
 
 def _run(tmp_path: Path, body: str, gripper_keys: str = ""):
@@ -28,7 +31,7 @@ def _run(tmp_path: Path, body: str, gripper_keys: str = ""):
 
 
 def test_the_hand_wraps_the_milk_and_it_moves_with_the_hand(tmp_path: Path) -> None:
-    world, result = _run(tmp_path, "  - action: pick-up\n    object: milk\n  - action: park-arms\n")
+    world, result = _run(tmp_path, PICK + "  - action: park-arms\n")
     try:
         assert result.status == "succeeded", result.failure
         robot, milk = world.robot, world.get_object_by_name("milk")
@@ -56,11 +59,35 @@ def test_the_hand_carries_the_milk_to_the_island(tmp_path: Path) -> None:
 
 
 def test_approached_fingers_first_the_hand_closes_on_nothing(tmp_path: Path) -> None:
-    world, result = _run(tmp_path, "  - action: pick-up\n    object: milk\n", "approach: fingers")
+    world, result = _run(tmp_path, PICK, "approach: fingers")
     try:
         assert result.status == "failed"
         assert result.failure["type"] == "GripperFailure" and "closed on nothing" in result.failure["message"]
         assert world.get_object_by_name("milk") not in world.robot.attachments
+    finally:
+        world.exit()
+
+
+def _milk_in_palm(world) -> tuple[float, float, float]:
+    """Where the milk's middle is in the palm's frame."""
+    robot, milk = world.robot, world.get_object_by_name("milk")
+    lo, hi = milk.get_aabb()
+    middle = tuple((a + b) / 2 for a, b in zip(lo, hi))
+    return compose(invert(robot.get_link_position_and_orientation("zr2_wrist_twist_link")), (middle, (0, 0, 0, 1)))[0]
+
+
+@pytest.mark.parametrize("keys, along", [("", HAND_PALM[0] / 2), ("grasp_point: [0.05, 0, -0.035]", 0.05)])
+def test_the_milk_is_held_at_the_grasp_point(tmp_path: Path, keys: str, along: float) -> None:
+    world, result = _run(tmp_path, PICK, keys)
+    try:
+        assert result.status == "succeeded", result.failure
+        x, y, z = _milk_in_palm(world)
+        assert x == pytest.approx(along, abs=0.006)  # along the palm, where the grasp point is
+        assert y == pytest.approx(0.0, abs=0.006)
+        assert z < -HAND_PALM[2]  # on the side the fingers curl towards
+        robot, milk = world.robot, world.get_object_by_name("milk")
+        palm = robot.get_link_id("zr2_wrist_twist_link")
+        assert world.distance(robot, milk, 0.005, link_a=palm) < 0.005  # against the palm's face
     finally:
         world.exit()
 

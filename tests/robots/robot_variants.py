@@ -66,7 +66,8 @@ HAND_CLOSED = 1.5  # how far each joint curls (rad)
 @functools.lru_cache(maxsize=2)
 def multi_finger_robot(seed: int = 2):
     """The zoo robot of `seed` (a wheeled base, its camera on the wrist for seed 2) with its gripper replaced by a
-    three-finger hand whose fingers curl towards the palm: it takes things palm-first and wraps them."""
+    three-finger hand whose fingers curl towards the palm: it takes things palm-first and wraps them. Its tool frame
+    is the wrist's (the palm's origin): where the hand holds things is the palm's face, as the model shows."""
     from pycram_cli.robots.zoo import BLACK, Gripper, Joint, Link, box, generate
 
     robot = generate(seed)
@@ -90,7 +91,7 @@ def multi_finger_robot(seed: int = 2):
             hand_links.append(link)
             parent, origin = link, (0.0, side * length, 0.0)
     tool = f"{prefix}_hand_tcp"
-    joints.append(Joint(f"{tool}_joint", "fixed", palm, tool, (px / 2, 0.0, 0.0)))
+    joints.append(Joint(f"{tool}_joint", "fixed", palm, tool, (0.0, 0.0, 0.0)))  # at the wrist, not where it holds
     links.append(Link(tool))
     arm_links = tuple(l for l in robot.arm_links if l not in old) + tuple(hand_links) + (tool,)
     gripper = Gripper("two_revolute", tuple(names), 0.0, HAND_CLOSED, 0.1, 0.0)

@@ -39,10 +39,8 @@ def test_a_hand_whose_fingers_curl_towards_its_palm_is_palm_first_as_its_model_s
         assert found.approach == "palm"
         assert found.coupling == (1.0, 1.0, 1.0, 1.0, -1.0, -1.0)  # the thumb's limits are negative: it curls so
         assert found.palm_normal == (0.0, 0.0, -1.0)  # the fingers curl towards the palm's -z face
-        # held against the palm's face (the tool frame is the palm's middle; the face is its box's, with the margin
-        # the physics engine gives collision shapes)
-        assert found.grasp_offset[:2] == pytest.approx((0.0, 0.0), abs=1e-6)
-        assert -HAND_PALM[2] - 0.01 < found.grasp_offset[2] <= -HAND_PALM[2]
+        # held against the middle of the palm's face (the tool frame is at the wrist, the palm's origin)
+        assert found.grasp_offset == pytest.approx((HAND_PALM[0] / 2, 0.0, -HAND_PALM[2]), abs=1e-5)
         assert tool_axes(world.robot, arm)[:, 0] == pytest.approx([0, 0, -1])
         # the named grasps (the description has none) turn the palm's normal, not the wrist, to where they reach
         front = quat_to_matrix(desc.grasps["front"]) @ np.array([0.0, 0.0, -1.0])
@@ -59,7 +57,7 @@ def test_what_the_description_says_of_the_hand_is_taken_over_the_model(tmp_path:
         found = hand(world.robot, arm)
         assert found.approach == "fingers"
         assert tool_axes(world.robot, arm)[:, 0] == pytest.approx([1, 0, 0])  # along the wrist's roll axis
-        assert found.grasp_offset == pytest.approx((0.0, 0.0, -0.05))  # the palm and the tool frame share their axes
+        assert found.grasp_offset == pytest.approx((0.0375, 0.0, -0.05))  # the palm's frame is the tool frame
     finally:
         world.exit()
 
