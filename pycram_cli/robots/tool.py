@@ -81,8 +81,8 @@ def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
 
 # -- the hand as the model has it -------------------------------------------------------------------------------
 
-#: a hand is palm-first when its fingers' links, closing, move on average across the wrist axis by more than this
-#: share of how far they move (fingers that close against each other move, on average, nowhere across it)
+#: a hand is palm-first when its fingers' links, closed, lie on average across the wrist axis from the palm's middle
+#: by more than this share of their distance from it (fingers that close against each other lie ahead of the palm)
 CURLING = 0.5
 
 
@@ -133,21 +133,22 @@ def hand(body: Object, arm: "ArmDescription") -> Hand:
 
 
 def _read_hand(body: Object, arm: "ArmDescription") -> Hand:
+    """The hand as the description says and, where it says nothing, as the model shows: palm-first when its fingers
+    (two or more chains of revolute joints), closed, lie to one side of the palm across the wrist axis (they curl
+    towards that side: the palm's normal) rather than ahead of it, as fingers closing against each other do."""
     gripper = arm.gripper
     coupling = joint_coupling(gripper, lambda name: (body.joint(name).limited, body.joint(name).lower,
                                                      body.joint(name).upper))
     wrist, to_tool = _wrist_axes(body, arm)
-    moves, roots = _closing_moves(body, gripper, coupling, to_tool)
-    mean = np.mean(moves, axis=0) if moves else np.zeros(3)
-    across = mean - wrist * float(mean @ wrist)
-    typical = float(np.mean([np.linalg.norm(m) for m in moves])) if moves else 0.0
-    curling = all(body.joint(j).type in ("revolute", "continuous") for j in gripper.joints) and roots >= 2 \
-        and typical > 0 and float(np.linalg.norm(across)) > CURLING * typical
+    palm = arm.palm_link or arm.tool_frame
+    where, roots = _closed_fingers(body, gripper, coupling, palm, to_tool)
+    across = where - wrist * float(where @ wrist)
+    curling = roots >= 2 and all(body.joint(j).type in ("revolute", "continuous") for j in gripper.joints) \
+        and float(np.linalg.norm(across)) > CURLING * float(np.linalg.norm(where))
     approach = gripper.approach or ("palm" if curling else "fingers")
-    if float(np.linalg.norm(across)) > 1e-9:
+    if float(np.linalg.norm(across)) > 1e-6:
         normal = _nearest_axis(across, avoid=wrist)
-    else:  # nothing curls: the palm's thinnest side across the wrist (its box measured along the tool's axes)
-        palm = arm.palm_link or arm.tool_frame
+    else:  # the fingers close ahead of the palm: its thinnest side across the wrist (its box along the tool's axes)
         lo, hi = (np.asarray(v) for v in body.get_link_local_aabb(palm))
         palm_to_tool = to_tool @ quat_to_matrix(body.get_link_orientation(palm))
         normal = min((a for a in np.eye(3) if abs(float(a @ wrist)) < 0.5),
@@ -156,25 +157,21 @@ def _read_hand(body: Object, arm: "ArmDescription") -> Hand:
     return Hand(approach, coupling, tuple(float(v) + 0.0 for v in normal), offset)  # type: ignore[arg-type]
 
 
-def _closing_moves(body: Object, gripper: "GripperDescription", coupling: tuple[float, ...],
-                   to_tool: np.ndarray) -> tuple[list[np.ndarray], int]:
-    """How far each link the gripper's joints move goes from open to closed (tool frame), and how many fingers there
-    are (gripper joints not moved by another of them)."""
+def _closed_fingers(body: Object, gripper: "GripperDescription", coupling: tuple[float, ...], palm: str,
+                    to_tool: np.ndarray) -> tuple[np.ndarray, int]:
+    """Where the links the gripper's joints move lie, on average, with the gripper closed, seen from the middle of the
+    palm (tool axes); and how many fingers there are (gripper joints not moved by another of them)."""
     if not gripper.joints:
-        return [], 0
+        return np.zeros(3), 0
     links = sorted(body.links_below(gripper.joints))
     roots = sum(1 for j in gripper.joints if not (body.links_below([other for other in gripper.joints if other != j])
                                                    & {body.joint(j).index}))
-
-    def centres() -> list[np.ndarray]:
-        return [to_tool @ ((np.asarray(lo) + np.asarray(hi)) / 2.0) for lo, hi in (body.get_aabb(i) for i in links)]
-
+    lo, hi = body.get_aabb(palm)
+    middle = (np.asarray(lo) + np.asarray(hi)) / 2.0
     with body.joints_kept(gripper.joints):
-        body.reset_joints({j: c * gripper.open for j, c in zip(gripper.joints, coupling)})
-        opened = centres()
         body.reset_joints({j: c * gripper.closed for j, c in zip(gripper.joints, coupling)})
-        closed = centres()
-    return [b - a for a, b in zip(opened, closed)], roots
+        centres = [(np.asarray(a) + np.asarray(b)) / 2.0 for a, b in (body.get_aabb(i) for i in links)]
+    return to_tool @ (np.mean(centres, axis=0) - middle), roots
 
 
 def _grasp_offset(body: Object, arm: "ArmDescription", approach: str, normal: np.ndarray) -> tuple[float, float, float]:

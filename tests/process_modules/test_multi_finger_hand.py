@@ -18,7 +18,7 @@ from pycram_cli.world.pose import compose, invert
 from pycram_cli.worldfile.loader import load_world
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "robots"))
-from robot_variants import HAND_CLOSED, HAND_FINGERS, HAND_PALM, write_multi_finger_robot  # noqa: E402
+from robot_variants import HAND_CLOSED, HAND_FACE, HAND_FINGERS, HAND_PALM, write_multi_finger_robot  # noqa: E402
 
 PICK = "  - action: pick-up\n    object: milk\n"
 
@@ -76,7 +76,7 @@ def _milk_in_palm(world) -> tuple[float, float, float]:
     return compose(invert(robot.get_link_position_and_orientation("zr2_wrist_twist_link")), (middle, (0, 0, 0, 1)))[0]
 
 
-@pytest.mark.parametrize("keys, along", [("", HAND_PALM[0] / 2), ("grasp_point: [0.05, 0, -0.035]", 0.05)])
+@pytest.mark.parametrize("keys, along", [("", HAND_PALM[0] / 2), ("grasp_point: [0.05, 0, -0.045]", 0.05)])
 def test_the_milk_is_held_at_the_grasp_point(tmp_path: Path, keys: str, along: float) -> None:
     world, result = _run(tmp_path, PICK, keys)
     try:
@@ -84,7 +84,7 @@ def test_the_milk_is_held_at_the_grasp_point(tmp_path: Path, keys: str, along: f
         x, y, z = _milk_in_palm(world)
         assert x == pytest.approx(along, abs=0.006)  # along the palm, where the grasp point is
         assert y == pytest.approx(0.0, abs=0.006)
-        assert z < -HAND_PALM[2]  # on the side the fingers curl towards
+        assert z < -HAND_FACE  # on the side the fingers curl towards
         robot, milk = world.robot, world.get_object_by_name("milk")
         palm = robot.get_link_id("zr2_wrist_twist_link")
         assert world.distance(robot, milk, 0.005, link_a=palm) < 0.005  # against the palm's face

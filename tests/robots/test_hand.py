@@ -22,7 +22,7 @@ from pycram_cli.robots.zoo import generate, write
 from pycram_cli.world.pose import quat_to_matrix
 from pycram_cli.worldfile.loader import load_world
 
-from robot_variants import HAND_PALM, write_multi_finger_robot
+from robot_variants import HAND_FACE, HAND_PALM, write_multi_finger_robot
 
 
 def _hand_of(world_file: Path):
@@ -32,15 +32,17 @@ def _hand_of(world_file: Path):
     return world, desc, arm
 
 
-def test_a_hand_whose_fingers_curl_towards_its_palm_is_palm_first_as_its_model_shows(tmp_path: Path) -> None:
-    world, desc, arm = _hand_of(write_multi_finger_robot(tmp_path, kitchen=False))
+@pytest.mark.parametrize("opened", [0.0, 0.5])  # open flat, or a little curled
+def test_a_hand_whose_fingers_curl_towards_its_palm_is_palm_first_as_its_model_shows(tmp_path: Path,
+                                                                                   opened: float) -> None:
+    world, desc, arm = _hand_of(write_multi_finger_robot(tmp_path, kitchen=False, opened=opened))
     try:
         found = hand(world.robot, arm)
         assert found.approach == "palm"
         assert found.coupling == (1.0, 1.0, 1.0, 1.0, -1.0, -1.0)  # the thumb's limits are negative: it curls so
         assert found.palm_normal == (0.0, 0.0, -1.0)  # the fingers curl towards the palm's -z face
         # held against the middle of the palm's face (the tool frame is at the wrist, the palm's origin)
-        assert found.grasp_offset == pytest.approx((HAND_PALM[0] / 2, 0.0, -HAND_PALM[2]), abs=1e-5)
+        assert found.grasp_offset == pytest.approx((HAND_PALM[0] / 2, 0.0, -HAND_FACE), abs=1e-5)
         assert tool_axes(world.robot, arm)[:, 0] == pytest.approx([0, 0, -1])
         # the named grasps (the description has none) turn the palm's normal, not the wrist, to where they reach
         front = quat_to_matrix(desc.grasps["front"]) @ np.array([0.0, 0.0, -1.0])
