@@ -15,7 +15,7 @@ from ..world import JointLimitError, Object
 from ..world.pose import angle_between, quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
 from .base import ProcessModule, Robot
-from .grasping import tool_axes
+from .grasping import gripper_values, tool_axes
 from .registry import process_module
 
 
@@ -439,15 +439,16 @@ def set_gripper(robot: Robot, arm: str, opening: str) -> None:
     if not gripper.joints:
         return
     if opening == "open":
-        motion.move(robot, {joint: gripper.open for joint in gripper.joints}, f"opening the {gripper_words(arm)}")
+        motion.move(robot, gripper_values(robot, arm, "open"), f"opening the {gripper_words(arm)}")
     else:
         close_on(robot, arm)
 
 
 def close_on(robot: Robot, arm: str) -> float:
-    """Close the arm's gripper until its fingers touch something (never inside it); the joint value reached."""
+    """Close the arm's gripper until its fingers touch something (never inside it), every joint by its coupling (so
+    that the joints of a curling finger close together); the first joint's value reached."""
     gripper = robot.description.arm(arm).gripper
-    motion.advance(robot, {joint: gripper.closed for joint in gripper.joints})
+    motion.advance(robot, gripper_values(robot, arm, "closed"))
     return robot.body.get_joint_position(gripper.joints[0])
 
 

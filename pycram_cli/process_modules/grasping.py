@@ -22,8 +22,10 @@ gripper goes to the side of the object it touches).
 Everything robot-specific comes from the description (the grasp orientations, the gripper's
 opening and finger height, the palm link) and from the robot's model: which axis of the tool
 frame points out of the gripper (the axis of the arm's last joint, the wrist's roll, pointing
-away from the arm: x on the PR2 and the Fetch, z on a KUKA flange) and which one the fingers close
-along (the one the finger links are spread along: y on the PR2).
+away from the arm: x on the PR2 and the Fetch, z on a KUKA flange; a palm-first hand's is the palm's
+normal) and which one the fingers close along (the one the finger links are spread along: y on the PR2).
+A hand with a grasp point of its own (a palm-first hand's: the palm's face) holds the object there: the
+tool frame goes where that puts the grasp point.
 """
 from __future__ import annotations
 
@@ -35,6 +37,7 @@ from typing import Sequence
 import numpy as np
 
 from ..robots.objects import object_knowledge
+from ..robots.tool import hand
 from ..robots.tool import tool_axes as model_tool_axes
 from ..world import Object
 from ..world.pose import Quat, Vec3, invert, matrix_to_quat, quat_to_matrix, compose
@@ -67,6 +70,21 @@ def tool_axes(robot: Robot, arm: str) -> np.ndarray:
     if arm not in cache:
         cache[arm] = model_tool_axes(robot.body, robot.description.arm(arm))
     return cache[arm]
+
+
+def gripper_values(robot: Robot, arm: str, which: str) -> dict[str, float]:
+    """The arm's gripper joints `open` or `closed`, each turned by its coupling (robots/tool.py `hand`)."""
+    gripper = robot.description.arm(arm).gripper
+    return hand(robot.body, robot.description.arm(arm)).values(gripper, getattr(gripper, which))
+
+
+def grasp_offset(robot: Robot, arm: str) -> np.ndarray:
+    """The grasp point in the tool frame: where an object is held (zero for a hand without a grasp point of its own,
+    or without a gripper)."""
+    desc = robot.description.arm(arm)
+    if not desc.gripper.joints:
+        return np.zeros(3)
+    return np.asarray(hand(robot.body, desc).grasp_offset, dtype=float)
 
 
 def wanted_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
@@ -123,8 +141,9 @@ def _extent(half: np.ndarray, frame: np.ndarray, direction: np.ndarray) -> float
 
 
 def palm_clearance(robot: Robot, arm: str) -> float:
-    """How deep the tool frame can go into an object before the palm meets it (inf without a palm link): the distance
-    from the tool frame back to the front of the palm's box, along the tool's approach axis."""
+    """How deep the grasp point can go into an object before the palm meets it (inf without a palm link): the distance
+    from the grasp point (the tool frame, for most hands) back to the front of the palm's box, along the tool's
+    approach axis."""
     desc = robot.description.arm(arm)
     if not desc.palm_link or desc.palm_link == desc.tool_frame:
         return math.inf
@@ -135,6 +154,9 @@ def palm_clearance(robot: Robot, arm: str) -> float:
     approach = tool_axes(robot, arm)[:, 0]
     front = max(float(np.asarray(compose(inverse, ((x, y, z), (0, 0, 0, 1)))[0]) @ approach)
                 for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2]))
+    offset = grasp_offset(robot, arm)
+    if offset.any():
+        front -= float(offset @ approach)
     return max(0.0, -front)
 
 
@@ -167,6 +189,7 @@ def grasps_of_box(robot: Robot, arm: str, pose: tuple[Sequence[float], Sequence[
         return []
     # how deep the tool frame goes into the object: up to the palm; an arm without a gripper only touches it
     depth_limit = palm_clearance(robot, arm) if robot.description.arm(arm).gripper.joints else 0.0
+    offset = grasp_offset(robot, arm)
     found: list[Grasp] = []
     for tool in frames:
         approach, closing, along = tool[:, 0], tool[:, 1], tool[:, 2]
@@ -188,18 +211,28 @@ def grasps_of_box(robot: Robot, arm: str, pose: tuple[Sequence[float], Sequence[
             for point in points:
                 position = world_centre + frame @ (np.asarray(point.at) * local_half + np.asarray(point.offset))
                 depth = reach + float((position - world_centre) @ approach)
-                found.append(Grasp(_vec(position), orientation, point.width, height, grasp, approach, depth))
+                found.append(Grasp(_vec(_tool_at(position, tool, axes, offset)), orientation, point.width, height,
+                                   grasp, approach, depth))
             continue
         # the middle of the box, no deeper along the approach than the palm allows
         world_centre = origin + rotation @ centre
         reach = _extent(half, rotation, approach) / 2.0
         depth = min(reach, depth_limit)
         position = world_centre - approach * (reach - depth)
-        found.append(Grasp(_vec(position), orientation, width, height, grasp, approach, depth))
+        found.append(Grasp(_vec(_tool_at(position, tool, axes, offset)), orientation, width, height, grasp, approach,
+                           depth))
     if points:
         base = np.asarray(robot.body.get_position())
         found.sort(key=lambda g: float(np.hypot(g.position[0] - base[0], g.position[1] - base[1])))
     return found
+
+
+def _tool_at(point: np.ndarray, tool: np.ndarray, axes: np.ndarray, offset: np.ndarray) -> np.ndarray:
+    """Where the tool frame goes for its grasp point (`offset` in the tool frame) to be at `point`, the tool's grasp
+    axes being `tool` (world) and `axes` (its own frame)."""
+    if not offset.any():
+        return point
+    return point - (tool @ axes.T) @ offset
 
 
 def _grasp_frame(rotation: np.ndarray, tool: np.ndarray, round_: bool) -> np.ndarray:

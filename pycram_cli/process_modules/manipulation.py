@@ -3,7 +3,9 @@
 Pick-up: the grasp comes from the object's own frame (`grasping.py`); the gripper opens, the tool
 goes to a pre-grasp pose `APPROACH` back along its approach, moves in until the fingers or the palm
 touch something (never inside it: the object, the drawer's bottom), the fingers close until they
-touch the object, the object is attached to the tool frame and lifted `LIFT` straight up.
+touch the object, the object is attached to the tool frame and lifted `LIFT` straight up. A hand whose
+fingers curl towards its palm approaches palm-first, along the palm's normal, until the palm touches the
+object, and curls every finger joint by its coupling until the fingers touch it (robots/tool.py `hand`).
 
 Place: the object is stood upright (as held, turned about the vertical if the arm needs it) on the
 surface under the target — its lowest point on the highest surface found below it, whatever its
@@ -29,7 +31,7 @@ from ..world.pose import (Quat, Vec3, angle_between, compose, invert, quat_inver
 from . import motion
 from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, reach_near_each, set_gripper
 from .base import ProcessModule, Robot
-from .grasping import Grasp, holdable_grasps, wanted_orientation
+from .grasping import Grasp, gripper_values, holdable_grasps, wanted_orientation
 from .registry import process_module
 
 #: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
@@ -86,8 +88,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     best: tuple[float, IKSolution] | None = None
     blocked: list[motion.Hit] = []
     refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
-    gripper = robot.description.arm(arm).gripper
-    opened = {joint: gripper.open for joint in gripper.joints}
+    opened = gripper_values(robot, arm, "open")
     taken: list[tuple[Grasp, IKSolution, IKSolution]] = []
 
     def attempt(k: int, pre: IKSolution) -> bool:

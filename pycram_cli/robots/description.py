@@ -32,7 +32,7 @@ from ..schema import check_keys, describe, expect, is_number, names_only, number
 from ..world.model_files import ModelInfo, describe_model
 from ..world.pose import check_quaternion, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
-from .tool import astray_grasps, model_grasps
+from .tool import astray_grasps, hand, joint_coupling, model_grasps
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -40,7 +40,9 @@ if TYPE_CHECKING:
 DESCRIPTION_KEYS = ("name", "urdf", "base_link", "mobile", "torso", "camera", "head", "arms", "grasps",
                     "resources", "process_modules")
 ARM_KEYS = ("joints", "tool_frame", "palm_link", "gripper", "links", "poses")
-GRIPPER_KEYS = ("joints", "open", "closed", "max_width", "finger_height")
+GRIPPER_KEYS = ("joints", "open", "closed", "max_width", "finger_height", "approach", "coupling", "grasp_point")
+#: how a hand approaches what it takes: along the wrist's roll axis, fingers first, or along the palm's normal
+APPROACHES = ("fingers", "palm")
 CAMERA_KEYS = ("frame", "horizontal_fov", "vertical_fov", "near", "far")
 HEAD_KEYS = ("pan_joint", "tilt_joint", "pan_link", "tilt_link")
 TORSO_KEYS = ("joint", "default")
@@ -59,6 +61,9 @@ class GripperDescription:
     closed: float = 0.0
     max_width: float = math.inf  # metres between the fingers when fully open
     finger_height: float = 0.0  # side grasps (front, left, right) need objects at least this tall
+    approach: str = ""  # "fingers" or "palm"; "" = as the model shows (robots/tool.py `hand`)
+    coupling: tuple[float, ...] = ()  # per joint: its value is this times the gripper's; () = from the model's limits
+    grasp_point: tuple[float, float, float] | None = None  # in the palm's frame; None = as the model shows
 
     def angle_for_width(self, width: float) -> float:
         """The finger joint value that leaves `width` between the fingers (linear between closed and open)."""
@@ -245,9 +250,38 @@ class _Reader:
         data = self.mapping(arm, "gripper", GRIPPER_KEYS, ("joints", "open", "closed"))
         if data is None:
             return GripperDescription()
-        return GripperDescription(self.names(data, "joints"), self.number(data, "open", 0.0),
+        joints = self.names(data, "joints")
+        approach = ""
+        if "approach" in data:
+            value = data["approach"]
+            if value not in APPROACHES:
+                self.error(f"expected how the hand approaches ({' or '.join(APPROACHES)}), got {describe(value)}",
+                           data.loc("approach", True), f"arms.{arm_name}.gripper.approach",
+                           did_you_mean(str(value), APPROACHES) or f"one of: {', '.join(APPROACHES)}")
+            elif value == "palm" and not isinstance(arm.get("palm_link"), str):
+                self.error("a palm-first hand needs the arm's palm_link (the palm's normal is the approach)",
+                           data.loc("approach", True), f"arms.{arm_name}.gripper.approach",
+                           "add palm_link: <the palm's link> to the arm")
+            else:
+                approach = str(value)
+        coupling: tuple[float, ...] = ()
+        if "coupling" in data and joints:
+            key = f"arms.{arm_name}.gripper.coupling"
+            numbers = number_list(data["coupling"], len(joints), data.loc("coupling", True), key, self.errors)
+            if numbers is not None and any(v == 0 for v in numbers):
+                self.error("a coupling of 0 would leave a gripper joint still: give each joint a factor, -1 for one "
+                           "that turns the other way", data.loc("coupling", True), key)
+            elif numbers is not None:
+                coupling = tuple(numbers)
+        grasp_point = None
+        if "grasp_point" in data:
+            point = number_list(data["grasp_point"], 3, data.loc("grasp_point", True),
+                                f"arms.{arm_name}.gripper.grasp_point", self.errors)
+            if point is not None:
+                grasp_point = (point[0], point[1], point[2])
+        return GripperDescription(joints, self.number(data, "open", 0.0),
                                   self.number(data, "closed", 0.0), self.number(data, "max_width", math.inf, True),
-                                  self.number(data, "finger_height", 0.0))
+                                  self.number(data, "finger_height", 0.0), approach, coupling, grasp_point)
 
     def poses(self, arm: LMap, arm_name: str, joints: tuple[str, ...]) -> dict[str, tuple[float, ...]]:
         if "poses" not in arm:
@@ -276,7 +310,7 @@ class _Reader:
         for key in ARM_KEYS:
             self.mark(f"arms.{name}.{key}", data, key)
         if isinstance(data.get("gripper"), LMap):
-            for key in ("joints", "open", "closed"):
+            for key in ("joints", "open", "closed", "approach", "coupling", "grasp_point"):
                 self.mark(f"arms.{name}.gripper.{key}", data["gripper"], key)
         joints = self.names(data, "joints")
         if "joints" in data and not joints and isinstance(data["joints"], LList):
@@ -446,12 +480,21 @@ def _values_outside_limits(desc: RobotDescription, model: ModelInfo) -> list[Inp
                 if problem:
                     errors.append(InputError(f"pose '{pose}': {problem}", desc.where(key), key=key))
                     break
+        coupling = joint_coupling(arm.gripper, lambda name: (model.joints[name].limited, model.joints[name].lower,
+                                                            model.joints[name].upper) if name in model.joints else None)
         for which in ("open", "closed"):
-            value = getattr(arm.gripper, which)
-            for joint in arm.gripper.joints:
+            for joint, factor in zip(arm.gripper.joints, coupling):
+                value = getattr(arm.gripper, which) * factor
                 info = model.joints.get(joint)
                 if _outside(value, joint, model) and info is not None:
                     key = f"arms.{arm.name}.gripper.{which}"
+                    if arm.gripper.coupling and not _outside(-value, joint, model):  # coupled the wrong way round
+                        key = f"arms.{arm.name}.gripper.coupling"
+                        errors.append(InputError(
+                            f"the gripper's {which} value coupled by {factor:g} is {value:g}, outside {joint}'s limits "
+                            f"[{info.lower:g}, {info.upper:g}]", desc.where(key), key=key,
+                            suggestion=f"a coupling of {-factor:g} for {joint} turns it the other way"))
+                        break
                     errors.append(InputError(f"the gripper's {which} value {value:g} is outside {joint}'s limits "
                                              f"[{info.lower:g}, {info.upper:g}]", desc.where(key), key=key))
                     break
@@ -515,7 +558,12 @@ _ASSIGNED: "weakref.WeakKeyDictionary[Object, RobotDescription | None]" = weakre
 
 def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
     """Give a robot object its description (the world loader does, for `description:` in a world file); a description
-    without `grasps:` gets the named grasps of its first arm's tool frame as the model has it."""
+    without `grasps:` gets the named grasps of its first arm's tool frame as the model has it. Each hand is read from
+    the model now (robots/tool.py `hand`), while it holds nothing."""
+    if desc is not None:
+        for arm in desc.arms.values():
+            if arm.gripper.joints:
+                hand(obj, arm)
     if desc is not None and desc.grasps_from_model and desc.arms:
         desc = dataclasses.replace(desc, grasps=model_grasps(obj, next(iter(desc.arms.values()))))
     elif desc is not None and desc.arms and desc.grasps:

@@ -6,10 +6,16 @@ arm towards the tool's own links; the fingers close along the tool axis across i
 spread along (y when the gripper has fewer than two finger links). A description without `grasps:` gets the grasps
 the bundled robots write by hand, computed for its own tool frame: front approaches along the base's +x with the
 fingers closing along +y, top approaches downwards, left along -y and right along +y.
+
+A hand whose fingers curl towards its palm (a multi-finger hand) approaches palm-first instead: the approach is the
+palm's normal, the side the fingers curl towards, and the object is held against the palm (`hand`). What the
+description leaves out of the gripper (`approach`, `coupling`, `grasp_point`) is read from the model here.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import weakref
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -17,7 +23,7 @@ from ..world import Object
 from ..world.pose import Quat, matrix_to_quat, quat_to_matrix
 
 if TYPE_CHECKING:
-    from .description import ArmDescription
+    from .description import ArmDescription, GripperDescription
 
 #: the named grasps: (approach, closing) directions in the robot base's frame
 NAMED_GRASPS: dict[str, tuple[tuple[float, float, float], tuple[float, float, float]]] = {
@@ -36,8 +42,8 @@ def _nearest_axis(v: np.ndarray, avoid: np.ndarray | None = None) -> np.ndarray:
     return max(axes, key=lambda a: float(a @ v))
 
 
-def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
-    """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame."""
+def _wrist_axes(body: Object, arm: "ArmDescription") -> tuple[np.ndarray, np.ndarray]:
+    """The wrist's roll axis pointing away from the arm (nearest tool axis), and the world-to-tool rotation."""
     _, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
     to_tool = quat_to_matrix(tool_orientation).T
     last = body.joint(arm.joints[-1])
@@ -49,14 +55,154 @@ def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
     outward = centre - np.asarray(joint_position)
     if float(outward @ axis) < 0:
         axis = -axis
-    approach = _nearest_axis(to_tool @ axis)
+    return _nearest_axis(to_tool @ axis), to_tool
+
+
+def _closing_axis(body: Object, arm: "ArmDescription", to_tool: np.ndarray, approach: np.ndarray) -> np.ndarray:
+    """The tool axis across `approach` that the gripper joints' links are most spread along (y with fewer than two)."""
     fingers = [body.get_aabb(body.joint(name).index) for name in arm.gripper.joints]
     spread = np.zeros(3)
     if len(fingers) >= 2:
         centres = [to_tool @ ((np.asarray(lo) + np.asarray(hi)) / 2.0) for lo, hi in fingers]
         spread = np.max(centres, axis=0) - np.min(centres, axis=0)
-    closing = _nearest_axis(spread + np.array([0.0, 1e-6, 0.0]), avoid=approach)
+    return _nearest_axis(spread + np.array([0.0, 1e-6, 0.0]), avoid=approach)
+
+
+def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
+    """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame. Fingers-first
+    the approach is the wrist's roll axis; palm-first it is the palm's normal (`hand`)."""
+    wrist, to_tool = _wrist_axes(body, arm)
+    approach = wrist
+    if arm.gripper.joints and hand(body, arm).approach == "palm":
+        approach = np.asarray(hand(body, arm).palm_normal)
+    closing = _closing_axis(body, arm, to_tool, approach)
     return np.column_stack([approach, closing, np.cross(approach, closing)])
+
+
+# -- the hand as the model has it -------------------------------------------------------------------------------
+
+#: a hand is palm-first when its fingers' links, closed, lie on average across the wrist axis from the palm's middle
+#: by more than this share of their distance from it (fingers that close against each other lie ahead of the palm)
+CURLING = 0.5
+
+
+@dataclass(frozen=True)
+class Hand:
+    """How a gripper approaches and closes, resolved against the model: what the description says, else inferred."""
+
+    approach: str  # "fingers" (along the wrist's roll axis) or "palm" (along the palm's normal)
+    coupling: tuple[float, ...]  # per gripper joint: its value is this times the gripper's value
+    palm_normal: tuple[float, float, float]  # the tool axis the fingers curl towards (palm-first: the approach)
+    grasp_offset: tuple[float, float, float]  # the grasp point in the tool frame (where an object is held)
+
+    def values(self, gripper: "GripperDescription", value: float) -> dict[str, float]:
+        """The gripper's joints at a gripper value (`open`, `closed`), each turned by its coupling."""
+        return {joint: c * value for joint, c in zip(gripper.joints, self.coupling)}
+
+
+def joint_coupling(gripper: "GripperDescription", limits: Callable[[str], tuple[bool, float, float] | None]
+                   ) -> tuple[float, ...]:
+    """Each gripper joint's coupling: the description's, else 1, or -1 for a joint whose limits (`limits(name)`:
+    limited, lower, upper) allow the gripper's open and closed values only negated (it curls the other way)."""
+    if gripper.coupling:
+        return gripper.coupling
+    found = []
+    for joint in gripper.joints:
+        info = limits(joint)
+        sign = 1.0
+        if info is not None and info[0]:
+            _, lo, hi = info
+            inside = lambda v: lo - 1e-9 <= v <= hi + 1e-9  # noqa: E731
+            if not (inside(gripper.open) and inside(gripper.closed)) and inside(-gripper.open) and inside(-gripper.closed):
+                sign = -1.0
+        found.append(sign)
+    return tuple(found)
+
+
+_HANDS: "weakref.WeakKeyDictionary[Object, dict[tuple, Hand]]" = weakref.WeakKeyDictionary()
+
+
+def hand(body: Object, arm: "ArmDescription") -> Hand:
+    """The arm's hand as the model has it (kept per body: it is first read when the robot is loaded, its fingers
+    tried closed and put back)."""
+    key = (arm.name, arm.tool_frame, arm.palm_link, arm.joints[-1] if arm.joints else "", arm.gripper)
+    cache = _HANDS.setdefault(body, {})
+    if key not in cache:
+        cache[key] = _read_hand(body, arm)
+    return cache[key]
+
+
+def _read_hand(body: Object, arm: "ArmDescription") -> Hand:
+    """The hand as the description says and, where it says nothing, as the model shows: palm-first when its fingers
+    (two or more chains of revolute joints), closed, lie to one side of the palm across the wrist axis (they curl
+    towards that side: the palm's normal) rather than ahead of it, as fingers closing against each other do."""
+    gripper = arm.gripper
+    coupling = joint_coupling(gripper, lambda name: (body.joint(name).limited, body.joint(name).lower,
+                                                     body.joint(name).upper))
+    wrist, to_tool = _wrist_axes(body, arm)
+    palm = arm.palm_link or arm.tool_frame
+    where, roots = _closed_fingers(body, gripper, coupling, palm, to_tool)
+    across = where - wrist * float(where @ wrist)
+    curling = roots >= 2 and all(body.joint(j).type in ("revolute", "continuous") for j in gripper.joints) \
+        and float(np.linalg.norm(across)) > CURLING * float(np.linalg.norm(where))
+    approach = gripper.approach or ("palm" if curling else "fingers")
+    if float(np.linalg.norm(across)) > 1e-6:
+        normal = _nearest_axis(across, avoid=wrist)
+    else:  # the fingers close ahead of the palm: its thinnest side across the wrist (its box along the tool's axes)
+        lo, hi = (np.asarray(v) for v in body.get_link_local_aabb(palm))
+        palm_to_tool = to_tool @ quat_to_matrix(body.get_link_orientation(palm))
+        normal = min((a for a in np.eye(3) if abs(float(a @ wrist)) < 0.5),
+                     key=lambda a: float(np.abs(palm_to_tool.T @ a) @ (hi - lo)))
+    offset = _grasp_offset(body, arm, approach, normal)
+    return Hand(approach, coupling, tuple(float(v) + 0.0 for v in normal), offset)  # type: ignore[arg-type]
+
+
+def _closed_fingers(body: Object, gripper: "GripperDescription", coupling: tuple[float, ...], palm: str,
+                    to_tool: np.ndarray) -> tuple[np.ndarray, int]:
+    """Where the links the gripper's joints move lie, on average, with the gripper closed, seen from the middle of the
+    palm (tool axes); and how many fingers there are (gripper joints not moved by another of them)."""
+    if not gripper.joints:
+        return np.zeros(3), 0
+    links = sorted(body.links_below(gripper.joints))
+    roots = sum(1 for j in gripper.joints if not (body.links_below([other for other in gripper.joints if other != j])
+                                                   & {body.joint(j).index}))
+    lo, hi = body.get_aabb(palm)
+    middle = (np.asarray(lo) + np.asarray(hi)) / 2.0
+    with body.joints_kept(gripper.joints):
+        body.reset_joints({j: c * gripper.closed for j, c in zip(gripper.joints, coupling)})
+        centres = [(np.asarray(a) + np.asarray(b)) / 2.0 for a, b in (body.get_aabb(i) for i in links)]
+    return to_tool @ (np.mean(centres, axis=0) - middle), roots
+
+
+def _grasp_offset(body: Object, arm: "ArmDescription", approach: str, normal: np.ndarray) -> tuple[float, float, float]:
+    """The grasp point in the tool frame: the description's (given in the palm's frame), else the tool frame itself
+    (fingers-first) or the middle of the palm's face the fingers curl towards (palm-first)."""
+    gripper = arm.gripper
+    palm = arm.palm_link or arm.tool_frame
+    if gripper.grasp_point is None and approach == "fingers":
+        return (0.0, 0.0, 0.0)
+    palm_pose = body.get_link_position_and_orientation(palm)
+    tool_position, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
+    if gripper.grasp_point is not None:
+        point = np.asarray(gripper.grasp_point, dtype=float)
+        world = np.asarray(palm_pose[0]) + quat_to_matrix(palm_pose[1]) @ point
+    else:
+        world = _palm_face(body, palm, quat_to_matrix(tool_orientation) @ normal)
+    local = quat_to_matrix(tool_orientation).T @ (world - np.asarray(tool_position))
+    return tuple(float(v) + 0.0 for v in np.round(local, 6))  # type: ignore[return-value]
+
+
+def _palm_face(body: Object, palm: str, normal: np.ndarray) -> np.ndarray:
+    """The middle of the palm's face that `normal` (world) points out of: where a ray from outside towards the middle
+    of the palm's box meets the palm (its box's face when something else of the robot is met first)."""
+    lo, hi = (np.asarray(v) for v in body.get_aabb(palm))
+    middle = (lo + hi) / 2.0
+    reach = float(np.linalg.norm(hi - lo)) + 0.05
+    others = [obj for obj in body.world.objects if obj is not body]
+    hit = body.world.cast_rays([middle + normal * reach], [middle], others)[0]
+    if hit is not None and hit.object is body and hit.link == body.get_link_id(palm):
+        return np.asarray(hit.position, dtype=float)
+    return middle + normal * float(np.abs(normal) @ ((hi - lo) / 2.0))
 
 
 def model_grasps(body: Object, arm: "ArmDescription") -> dict[str, Quat]:
