@@ -9,11 +9,10 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ...errors import InputError, Location, did_you_mean
-from ...failures import Failure, ManipulationFailure, NavigationFailure, ReasoningFailure
+from ...failures import Failure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
 from ...reasoning import QUERIES
-from ...world.pose import quat_to_matrix
 from ..declaration import ANY_ARM, Slot, drives
 from .actor import Actor, Finder, as_failure
 from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, resting, try_choices
@@ -45,42 +44,13 @@ def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
             try:
                 a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
             except ManipulationFailure:
-                if _drawn_in_further_back(a, pose.arm):
-                    return obj
                 # the arm cannot draw it in from here: put it back where it was, so that the next place to stand
                 # starts as this one did
-                go(a, pose)
                 a.motion("place", {"object": obj, "target": was, "arm": pose.arm})
                 raise
         return obj
 
     return try_choices(actor, Finder(location, here=True), take, f"pick up {obj.name}")
-
-
-#: when the arm cannot draw what it took into its carry pose where the robot stands (another thing on the counter
-#: beside it is in the way), the robot backs straight away this far (m), the first that is free, and tries again
-STEP_BACK = (0.15, 0.3)
-
-
-def _drawn_in_further_back(actor: Actor, arm: str) -> bool:
-    """Back the base straight away from where it took the object (`STEP_BACK`), the held object still lifted over the
-    surface, and draw the arm into its rest pose there; whether that worked. When it did not, the robot may stand
-    where a step back left it: the caller drives back before it puts the object down again."""
-    robot = actor.robot
-    if not robot.description.mobile:
-        return False
-    (x, y, z), orientation = robot.body.get_pose()
-    heading = quat_to_matrix(orientation)[:, 0]
-    rest = rest_of(robot, arm)
-    for distance in STEP_BACK:
-        try:
-            actor.motion("moving", {"target": [x - heading[0] * distance, y - heading[1] * distance, z],
-                                    "orientation": list(orientation)})
-            actor.motion("move-arm-joints", {"arms": {arm: rest}})
-            return True
-        except (NavigationFailure, ManipulationFailure):
-            continue
-    return False
 
 
 declare_action(Action(
