@@ -361,12 +361,10 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
 BACK_OFF = (0.08, 0.05, 0.03)
 
 
-def back_off(robot: Robot, arm: str, what: str, released: Object | None = None) -> float:
+def back_off(robot: Robot, arm: str, what: str) -> float:
     """Back the (open) tool straight out along its approach after letting go of something: `BACK_OFF[0]`, or the
     longest of the shorter distances the arm reaches and the way to which is free. The distance backed off (0 when
-    none: the hand stays where it let go, and the next motion starts from there). The object just let go of
-    (`released`) is not in the way: the hand leaves it the way it came in, and an opened finger that still touches
-    it (a box that turned a little as it came to rest) must not keep the hand there, leaning on it while it settles."""
+    none: the hand stays where it let go, and the next motion starts from there)."""
     tool_frame = robot.description.arm(arm).tool_frame
     position, orientation = robot.body.get_link_position_and_orientation(tool_frame)
     approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
@@ -376,8 +374,7 @@ def back_off(robot: Robot, arm: str, what: str, released: Object | None = None) 
         if not solution.success:
             continue
         try:
-            motion.move(robot, solution.joint_positions, f"the {arm_words(arm)}'s retreat from {what}",
-                        ignore=() if released is None else (released,))
+            motion.move(robot, solution.joint_positions, f"the {arm_words(arm)}'s retreat from {what}")
         except ManipulationFailure:
             continue
         return distance

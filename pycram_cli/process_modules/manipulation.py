@@ -425,7 +425,7 @@ class Place(ProcessModule):
         motion.advance(robot, solution.joint_positions)  # down until it touches the surface
         robot.body.detach(obj)
         set_gripper(robot, arm, "open")
-        back_off(robot, arm, obj.name, released=obj)
+        back_off(robot, arm, obj.name)
         tool = robot.body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
         up = reach(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
         if up.success:  # and up, clear of what stands there, if the way is free
