@@ -110,13 +110,24 @@ class Candidates:
     """Every candidate of a resolution as arrays (positions, turns, scores, outcomes), and the order they are tried in."""
 
     def __init__(self, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray, scores: np.ndarray,
-                 outcome: np.ndarray) -> None:
+                 outcome: np.ndarray, first: np.ndarray | None = None) -> None:
         self.xs, self.ys, self.yaws, self.scores = xs, ys, yaws, scores
         self.outcome = outcome.astype(np.int8)
+        self.first = np.zeros(len(xs), dtype=bool) if first is None else first.astype(bool)
         self.detail: dict[int, str] = {}
-        # best first; ties by position and turn, so that the order never depends on arithmetic noise
+        # best first (those marked `first` before the rest); ties by position and turn, so that the order never
+        # depends on arithmetic noise
         index = np.arange(len(xs))
-        self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), outcome != 0))
+        self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), ~self.first,
+                                 outcome != 0))
+
+    def extended(self, more: "Candidates") -> "Candidates":
+        """These candidates (their outcomes and details kept) and `more` after them, ordered anew."""
+        joined = Candidates(*(np.concatenate([a, b]) for a, b in
+                              ((self.xs, more.xs), (self.ys, more.ys), (self.yaws, more.yaws),
+                               (self.scores, more.scores), (self.outcome, more.outcome), (self.first, more.first))))
+        joined.detail = dict(self.detail)
+        return joined
 
     def __len__(self) -> int:
         return len(self.xs)
@@ -206,6 +217,49 @@ def arm_geometry(robot: Robot) -> dict[str, ArmGeometry]:
         length = float(sum(np.linalg.norm(b - a) for a, b in zip(points, points[1:])))
         found[arm.name] = ArmGeometry(arm.name, points[0], length)
     return found
+
+
+#: an arm with fewer rotating joints than this cannot turn its tool about every axis wherever it reaches
+FREE_ORIENTATION_JOINTS = 6
+
+
+def straight_reach_line(robot: Robot, arm: str) -> float:
+    """The lateral offset (m, the base frame's y) of the arm's tool frame with every arm joint at zero: the line
+    straight ahead of the robot on which the arm reaches with its tool pointing along the base's x."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    tool = robot.description.arm(arm).tool_frame
+    with body.joints_kept(names):
+        body.reset_joints({n: 0.0 for n in names})
+        offset = compose(invert(body.get_pose()), (body.get_link_position(tool), (0, 0, 0, 1)))[0]
+    return float(offset[1])
+
+
+def aligned_reach_line(robot: Robot, arm: str) -> float | None:
+    """`straight_reach_line` for an arm that cannot orient its tool freely (fewer than FREE_ORIENTATION_JOINTS
+    rotating joints: a pan, pitches and a wrist roll keep the tool in the vertical plane the pan turns, so a front
+    grasp, pointing along the base's x, is reachable only on that line); None for an arm that can."""
+    body = robot.body
+    rotating = sum(1 for n in robot.description.arm(arm).joints if body.joint(n).type in ("revolute", "continuous"))
+    return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
+
+
+def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: ArmGeometry,
+                       line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Base poses (xs, ys, yaws) facing along a handle's pull (from `opened` towards `closed`) with the arm's reach
+    line (`straight_reach_line`) through the handle, the shoulder STEP, 2 STEP, ... up to the arm's length short
+    of the closed handle. From these the arm follows the handle all the way open with one front grasp; the
+    lattice's candidates face the handle from the base's centre and miss that line by the arm's mount offset."""
+    into = np.asarray(closed[:2], dtype=float) - np.asarray(opened[:2], dtype=float)
+    norm = float(np.hypot(*into))
+    if norm < 1e-6:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    into = into / norm
+    left = np.array([-into[1], into[0]])
+    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the handle's x in the base frame
+    xs = closed[0] - ahead * into[0] - line * left[0]
+    ys = closed[1] - ahead * into[1] - line * left[1]
+    return xs, ys, np.full(len(xs), math.atan2(into[1], into[0]))
 
 
 def camera_offset(robot: Robot) -> np.ndarray | None:
@@ -403,6 +457,8 @@ class BasePoseResolution(_Resolution):
         self.arm_order = np.zeros((0, 0), dtype=np.int8)
         self._allowed: tuple[set[int], set[tuple[int, str]]] = (set(), set())
         self._handle_path: list[np.ndarray] = []
+        #: candidates tried only once all the others failed (with their arm orders): see `_prepare`
+        self._deferred: tuple[Candidates, np.ndarray] | None = None
         #: whether the robot's current pose is the first candidate (an action asks: no need to drive when it will do)
         self.here = False
         self.here_index: int | None = None
@@ -489,6 +545,23 @@ class BasePoseResolution(_Resolution):
         ys = np.concatenate([py] * len(tried))
         turns = np.concatenate([np.full(len(px), t) for t in tried])
         yaws = np.concatenate([facing] * len(tried)) + turns
+        lattice = len(xs)
+        # an accessing location also stands in line with the pull (`pull_aligned_poses`): first for an arm that cannot
+        # turn its tool freely (the lattice misses the line it reaches on), after the lattice for any other arm
+        kind = np.zeros(0, dtype=np.int8)  # of the aligned poses: 1 for a constrained arm, 2 deferred
+        if spec.accessing is not None and robot.description.mobile:
+            parts = []
+            for name, geo in arms.items():
+                line = aligned_reach_line(robot, name)
+                ax, ay, ayaw = pull_aligned_poses(self._handle_path[0], self._handle_path[-1],
+                                                  geo, line if line is not None else straight_reach_line(robot, name))
+                parts.append((ax, ay, ayaw, np.full(len(ax), 1 if line is not None else 2, dtype=np.int8)))
+            ax, ay, ayaw, kind = (np.concatenate([part[k] for part in parts]) for k in range(4))
+            near = np.hypot(ax - primary[0], ay - primary[1]) <= radius
+            ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
+            aturn = np.angle(np.exp(1j * (ayaw - np.arctan2(primary[1] - ay, primary[0] - ax))))
+            xs, ys, yaws = np.concatenate([xs, ax]), np.concatenate([ys, ay]), np.concatenate([yaws, ayaw])
+            turns = np.concatenate([turns, aturn])
         here = np.asarray(robot.body.get_position()[:2])
         scores = TURN_WEIGHT * np.abs(turns) + TRAVEL_WEIGHT * np.hypot(xs - here[0], ys - here[1])
         outcome = np.zeros(len(xs), dtype=np.int8)
@@ -528,14 +601,24 @@ class BasePoseResolution(_Resolution):
             xs, ys, yaws, scores = (np.zeros(0) for _ in range(4))
             outcome, self.arm_order = np.zeros(0, dtype=np.int8), np.zeros((0, len(arms)), dtype=np.int8)
             self.here = True
+        first = np.zeros(len(xs), dtype=bool)
+        if len(kind):  # the aligned poses of arms that need them go first; the others wait until the lattice fails
+            first[lattice:] = kind == 1
+            kept = np.ones(len(xs), dtype=bool)
+            kept[lattice:] = kind != 2
+            later = ~kept
+            self._deferred = (Candidates(xs[later], ys[later], yaws[later], scores[later], outcome[later],
+                                         np.ones(int(later.sum()), dtype=bool)), self.arm_order[later])
+            xs, ys, yaws, scores, outcome, first = xs[kept], ys[kept], yaws[kept], scores[kept], outcome[kept], first[kept]
+            self.arm_order = self.arm_order[kept]
         if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
             rx, ry = robot.body.get_position()[:2]
             ryaw = _yaw_of(robot.body.get_orientation())
             xs, ys, yaws = np.append(xs, rx), np.append(ys, ry), np.append(yaws, ryaw)
-            scores, outcome = np.append(scores, -1.0), np.append(outcome, 0)
+            scores, outcome, first = np.append(scores, -1.0), np.append(outcome, 0), np.append(first, False)
             self.arm_order = np.concatenate([self.arm_order, self._here_arms(arms, reach_target, rx, ry, ryaw)])
             self.here_index = len(xs) - 1
-        self.candidates = Candidates(xs, ys, yaws, scores, outcome)
+        self.candidates = Candidates(xs, ys, yaws, scores, outcome, first)
         self._allowed = self._allowed_contacts()
 
     def _here_arms(self, arms: dict[str, ArmGeometry], target: np.ndarray | None, x: float, y: float,
@@ -620,7 +703,22 @@ class BasePoseResolution(_Resolution):
                         return pose
                     if self.expensive >= self._patience():
                         break
+                if self.cursor >= len(order) or self.expensive >= self._patience():
+                    if not self._take_deferred():
+                        break
+                    order = self.candidates.order
         raise self._fail(self.failure_message())
+
+    def _take_deferred(self) -> bool:
+        """Add the deferred candidates when all the others failed (tried anew, with patience anew): whether there were."""
+        if self._deferred is None or not len(self._deferred[0]):
+            return False
+        more, arm_order = self._deferred
+        self._deferred = None
+        self.candidates = self.candidates.extended(more)
+        self.arm_order = np.concatenate([self.arm_order, arm_order])
+        self.cursor, self.expensive = 0, 0
+        return True
 
     def _map_test(self, chunk: np.ndarray) -> None:
         todo = chunk[(self.candidates.outcome[chunk] == 0) & (chunk != (self.here_index if self.here_index is not None else -1))]
