@@ -39,15 +39,15 @@ from ..failures import GripperFailure, LocationFailure, ManipulationFailure, Rea
 from ..kinds import arm_phrase, arm_words
 from ..process_modules import Robot
 from ..process_modules import motion
-from ..process_modules.accessing import drawer_pushes_into
+from ..process_modules.accessing import drawer_pushes_into, plan_handle_grasp
 from ..process_modules.arms import move_over, reach, rest_configuration, rest_pose
 from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
-from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place, resting_on
+from ..process_modules.manipulation import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..reasoning.reachability import TakeAnswer, register_take_check
 from ..world import Object
-from ..world.pose import compose, invert, yaw_quaternion
+from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import floor
 from .spec import LocationSpec
 
@@ -244,22 +244,42 @@ def aligned_reach_line(robot: Robot, arm: str) -> float | None:
     return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
 
 
+def line_poses(point: Sequence[float], heading: float, arm: ArmGeometry,
+               line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Base poses (xs, ys, yaws) turned to `heading` (rad) with the arm's reach line (`straight_reach_line`) through
+    `point`, the shoulder STEP, 2 STEP, ... up to the arm's length short of it: from these an arm that keeps its
+    tool in its pan's plane reaches `point` with its tool pointing along `heading`. The lattice's candidates face
+    the target from the base's centre and miss that line by the arm's mount offset."""
+    into = np.array([math.cos(heading), math.sin(heading)])
+    left = np.array([-into[1], into[0]])
+    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the point's x in the base frame
+    xs = point[0] - ahead * into[0] - line * left[0]
+    ys = point[1] - ahead * into[1] - line * left[1]
+    return xs, ys, np.full(len(xs), heading)
+
+
 def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: ArmGeometry,
                        line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Base poses (xs, ys, yaws) facing along a handle's pull (from `opened` towards `closed`) with the arm's reach
-    line (`straight_reach_line`) through the handle, the shoulder STEP, 2 STEP, ... up to the arm's length short
-    of the closed handle. From these the arm follows the handle all the way open with one front grasp; the
-    lattice's candidates face the handle from the base's centre and miss that line by the arm's mount offset."""
+    """`line_poses` for a handle: facing along its pull (from `opened` towards `closed`), the line through the closed
+    handle; from these the arm follows the handle all the way open with one front grasp."""
     into = np.asarray(closed[:2], dtype=float) - np.asarray(opened[:2], dtype=float)
-    norm = float(np.hypot(*into))
-    if norm < 1e-6:
+    if float(np.hypot(*into)) < 1e-6:
         return np.zeros(0), np.zeros(0), np.zeros(0)
-    into = into / norm
-    left = np.array([-into[1], into[0]])
-    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the handle's x in the base frame
-    xs = closed[0] - ahead * into[0] - line * left[0]
-    ys = closed[1] - ahead * into[1] - line * left[1]
-    return xs, ys, np.full(len(xs), math.atan2(into[1], into[0]))
+    return line_poses(closed, math.atan2(into[1], into[0]), arm, line)
+
+
+def place_headings(robot: Robot, obj: Object, target: Sequence[float]) -> list[tuple[np.ndarray, float]]:
+    """(tool position, tool heading) for each way place may stand the held `obj` at `target` (`PLACE_TURNS`), where
+    the tool points sideways (a tool pointing down turns about the vertical with the wrist: none)."""
+    held = invert(robot.body.attachments[obj].transform)
+    upright = level(obj.get_orientation(), obj.upright)
+    found = []
+    for turn in PLACE_TURNS:
+        position, orientation = compose((tuple(target), quat_multiply(yaw_quaternion(turn), upright)), held)
+        x = quat_to_matrix(orientation)[:, 0]
+        if abs(float(x[2])) < 0.7:
+            found.append((np.asarray(position, dtype=float), math.atan2(float(x[1]), float(x[0]))))
+    return found
 
 
 def camera_offset(robot: Robot) -> np.ndarray | None:
@@ -549,13 +569,23 @@ class BasePoseResolution(_Resolution):
         # an accessing location also stands in line with the pull (`pull_aligned_poses`): first for an arm that cannot
         # turn its tool freely (the lattice misses the line it reaches on), after the lattice for any other arm
         kind = np.zeros(0, dtype=np.int8)  # of the aligned poses: 1 for a constrained arm, 2 deferred
+        parts = []
         if spec.accessing is not None and robot.description.mobile:
-            parts = []
             for name, geo in arms.items():
                 line = aligned_reach_line(robot, name)
                 ax, ay, ayaw = pull_aligned_poses(self._handle_path[0], self._handle_path[-1],
                                                   geo, line if line is not None else straight_reach_line(robot, name))
                 parts.append((ax, ay, ayaw, np.full(len(ax), 1 if line is not None else 2, dtype=np.int8)))
+        elif spec.placing is not None and reach_target is not None and robot.description.mobile:
+            # an arm that cannot turn its tool freely puts a thing held from the side down only on its reach line
+            for name, geo in arms.items():
+                line = aligned_reach_line(robot, name)
+                if line is None:
+                    continue
+                for point, heading in place_headings(robot, spec.placing, reach_target):
+                    ax, ay, ayaw = line_poses(point, heading, geo, line)
+                    parts.append((ax, ay, ayaw, np.ones(len(ax), dtype=np.int8)))
+        if parts:
             ax, ay, ayaw, kind = (np.concatenate([part[k] for part in parts]) for k in range(4))
             near = np.hypot(ax - primary[0], ay - primary[1]) <= radius
             ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
@@ -794,7 +824,8 @@ class BasePoseResolution(_Resolution):
                 solution = reach(robot, arm, position, orientation)
                 if not solution.success:
                     continue
-                if spec.accessing is not None and not self._follows_handle(arm, orientation):
+                if spec.accessing is not None and not (self._follows_handle(arm, orientation)
+                                                       and self._takes_handle(arm)):
                     continue
                 if self._touches_at(solution.joint_positions, blocked):
                     continue
@@ -1004,6 +1035,19 @@ class BasePoseResolution(_Resolution):
                     drawer_pushes_into(self.robot, obj, moving, hand)
                 except ManipulationFailure:
                     return False
+        return True
+
+    def _takes_handle(self, arm: str) -> bool:
+        """Accessing's own planning takes the handle from here: its grasp (aligned with the handle's box, not turned
+        with the base as the test above) and its pre-grasp pose are reached."""
+        handle = self.spec.accessing
+        assert handle is not None
+        names = list(self.robot.description.arm(arm).joints)
+        with self.robot.body.joints_kept(names):
+            try:
+                plan_handle_grasp(self.robot, arm, handle.obj, handle.link)
+            except (GripperFailure, ReachabilityFailure):
+                return False
         return True
 
     def _view(self, i: int) -> tuple[float, float, float] | None:
