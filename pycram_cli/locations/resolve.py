@@ -1039,14 +1039,19 @@ class BasePoseResolution(_Resolution):
 
     def _takes_handle(self, arm: str) -> bool:
         """Accessing's own planning takes the handle from here: its grasp (aligned with the handle's box, not turned
-        with the base as the test above) and its pre-grasp pose are reached."""
+        with the base as the test above) and its pre-grasp pose are reached, and the arm, its gripper open as
+        accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`, as accessing moves)."""
         handle = self.spec.accessing
         assert handle is not None
-        names = list(self.robot.description.arm(arm).joints)
-        with self.robot.body.joints_kept(names):
+        robot = self.robot
+        gripper = robot.description.arm(arm).gripper
+        names = list(robot.description.arm(arm).joints) + list(gripper.joints)
+        with robot.body.joints_kept(names):
             try:
-                plan_handle_grasp(self.robot, arm, handle.obj, handle.link)
-            except (GripperFailure, ReachabilityFailure):
+                robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
+                _, pre, _ = plan_handle_grasp(robot, arm, handle.obj, handle.link)
+                move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
+            except (GripperFailure, ReachabilityFailure, ManipulationFailure):
                 return False
         return True
 
