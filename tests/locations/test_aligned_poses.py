@@ -9,11 +9,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pycram_cli.locations import locate
 from pycram_cli.locations.resolve import (STEP, ArmGeometry, aligned_reach_line, line_poses, pull_aligned_poses,
                                           straight_reach_line)
 from pycram_cli.process_modules import Robot
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world
+
+
+HANDLE = "sink_area_left_upper_drawer_handle"
 
 
 def _in_base_frame(point, x, y, yaw):
@@ -54,6 +58,21 @@ def test_only_an_arm_that_cannot_orient_its_tool_freely_gets_a_reach_line(zoo_wo
     arm = next(iter(robot.description.arms))
     line = aligned_reach_line(robot, arm)  # seed 1: pan, three pitches, a wrist roll
     assert line is not None and line == pytest.approx(straight_reach_line(robot, arm))
+
+
+def test_a_five_joint_arm_finds_where_to_open_the_drawer_in_line_with_its_pull(zoo_world):
+    robot = Robot.of(zoo_world)
+    arm = next(iter(robot.description.arms))
+    with zoo_world.snapshot():
+        pose = locate(zoo_world, {"accessing": HANDLE}).next()
+    assert pose.arm == arm and pose.grasp == "front"
+    kitchen = zoo_world.get_object_by_name("kitchen")
+    handle = kitchen.get_link_position(HANDLE)
+    pull = kitchen.joint("sink_area_left_upper_drawer_main_joint")
+    assert pose.yaw == pytest.approx(0.0, abs=1e-5)  # facing along the pull (this drawer opens towards -x)
+    _, lateral = _in_base_frame(handle, pose.position[0], pose.position[1], pose.yaw)
+    assert lateral == pytest.approx(aligned_reach_line(robot, arm), abs=1e-6)  # the handle on the arm's line
+    assert pull.type == "prismatic"
 
 
 def test_the_pr2s_arms_get_none():
