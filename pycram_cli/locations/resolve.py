@@ -2,7 +2,11 @@
 
 A base-pose location (reachable-for, visible-for, both, accessing) starts from candidate base
 poses on a fixed 5 cm lattice of the floor around its target, each turned to face it (and
-20° either way). Every candidate gets a score from cheap geometry (how far its arm's shoulder
+20° either way). An arm with fewer than six rotating joints keeps its tool in the plane its pan
+turns, so it reaches with the tool pointing sideways only on its own reach line: for it, opening a
+drawer and placing a thing held from the side also get poses that put that line through the
+handle (facing along the pull) or the tool's place (for each heading place may stand the thing
+in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
 is from the target compared with a comfortable reach, how far its camera is from what it
 should see, how much it turns away, how far the robot would drive), and the candidates are
 tried best first. Each one goes through the tests, cheapest first, and the first to pass them
