@@ -2,7 +2,11 @@
 
 A base-pose location (reachable-for, visible-for, both, accessing) starts from candidate base
 poses on a fixed 5 cm lattice of the floor around its target, each turned to face it (and
-20° either way). Every candidate gets a score from cheap geometry (how far its arm's shoulder
+20° either way). An arm with fewer than six rotating joints keeps its tool in the plane its pan
+turns, so it reaches with the tool pointing sideways only on its own reach line: for it, opening a
+drawer and placing a thing held from the side also get poses that put that line through the
+handle (facing along the pull) or the tool's place (for each heading place may stand the thing
+in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
 is from the target compared with a comfortable reach, how far its camera is from what it
 should see, how much it turns away, how far the robot would drive), and the candidates are
 tried best first. Each one goes through the tests, cheapest first, and the first to pass them
@@ -39,15 +43,15 @@ from ..failures import GripperFailure, LocationFailure, ManipulationFailure, Rea
 from ..kinds import arm_phrase, arm_words
 from ..process_modules import Robot
 from ..process_modules import motion
-from ..process_modules.accessing import drawer_pushes_into
+from ..process_modules.accessing import drawer_pushes_into, plan_handle_grasp
 from ..process_modules.arms import move_over, reach, rest_configuration, rest_pose
 from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
-from ..process_modules.manipulation import grasp_orientation, level, plan_grasp, plan_place, resting_on
+from ..process_modules.manipulation import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..reasoning.reachability import TakeAnswer, register_take_check
 from ..world import Object
-from ..world.pose import compose, invert, yaw_quaternion
+from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import floor
 from .spec import LocationSpec
 
@@ -110,13 +114,24 @@ class Candidates:
     """Every candidate of a resolution as arrays (positions, turns, scores, outcomes), and the order they are tried in."""
 
     def __init__(self, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray, scores: np.ndarray,
-                 outcome: np.ndarray) -> None:
+                 outcome: np.ndarray, first: np.ndarray | None = None) -> None:
         self.xs, self.ys, self.yaws, self.scores = xs, ys, yaws, scores
         self.outcome = outcome.astype(np.int8)
+        self.first = np.zeros(len(xs), dtype=bool) if first is None else first.astype(bool)
         self.detail: dict[int, str] = {}
-        # best first; ties by position and turn, so that the order never depends on arithmetic noise
+        # best first (those marked `first` before the rest); ties by position and turn, so that the order never
+        # depends on arithmetic noise
         index = np.arange(len(xs))
-        self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), outcome != 0))
+        self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), ~self.first,
+                                 outcome != 0))
+
+    def extended(self, more: "Candidates") -> "Candidates":
+        """These candidates (their outcomes and details kept) and `more` after them, ordered anew."""
+        joined = Candidates(*(np.concatenate([a, b]) for a, b in
+                              ((self.xs, more.xs), (self.ys, more.ys), (self.yaws, more.yaws),
+                               (self.scores, more.scores), (self.outcome, more.outcome), (self.first, more.first))))
+        joined.detail = dict(self.detail)
+        return joined
 
     def __len__(self) -> int:
         return len(self.xs)
@@ -205,6 +220,69 @@ def arm_geometry(robot: Robot) -> dict[str, ArmGeometry]:
         points = [np.asarray(compose(to_base, (body.get_link_position(link), (0, 0, 0, 1)))[0]) for link in links]
         length = float(sum(np.linalg.norm(b - a) for a, b in zip(points, points[1:])))
         found[arm.name] = ArmGeometry(arm.name, points[0], length)
+    return found
+
+
+#: an arm with fewer rotating joints than this cannot turn its tool about every axis wherever it reaches
+FREE_ORIENTATION_JOINTS = 6
+
+
+def straight_reach_line(robot: Robot, arm: str) -> float:
+    """The lateral offset (m, the base frame's y) of the arm's tool frame with every arm joint at zero: the line
+    straight ahead of the robot on which the arm reaches with its tool pointing along the base's x."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    tool = robot.description.arm(arm).tool_frame
+    with body.joints_kept(names):
+        body.reset_joints({n: 0.0 for n in names})
+        offset = compose(invert(body.get_pose()), (body.get_link_position(tool), (0, 0, 0, 1)))[0]
+    return float(offset[1])
+
+
+def aligned_reach_line(robot: Robot, arm: str) -> float | None:
+    """`straight_reach_line` for an arm that cannot orient its tool freely (fewer than FREE_ORIENTATION_JOINTS
+    rotating joints: a pan, pitches and a wrist roll keep the tool in the vertical plane the pan turns, so a front
+    grasp, pointing along the base's x, is reachable only on that line); None for an arm that can."""
+    body = robot.body
+    rotating = sum(1 for n in robot.description.arm(arm).joints if body.joint(n).type in ("revolute", "continuous"))
+    return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
+
+
+def line_poses(point: Sequence[float], heading: float, arm: ArmGeometry,
+               line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Base poses (xs, ys, yaws) turned to `heading` (rad) with the arm's reach line (`straight_reach_line`) through
+    `point`, the shoulder STEP, 2 STEP, ... up to the arm's length short of it: from these an arm that keeps its
+    tool in its pan's plane reaches `point` with its tool pointing along `heading`. The lattice's candidates face
+    the target from the base's centre and miss that line by the arm's mount offset."""
+    into = np.array([math.cos(heading), math.sin(heading)])
+    left = np.array([-into[1], into[0]])
+    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the point's x in the base frame
+    xs = point[0] - ahead * into[0] - line * left[0]
+    ys = point[1] - ahead * into[1] - line * left[1]
+    return xs, ys, np.full(len(xs), heading)
+
+
+def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: ArmGeometry,
+                       line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """`line_poses` for a handle: facing along its pull (from `opened` towards `closed`), the line through the closed
+    handle; from these the arm follows the handle all the way open with one front grasp."""
+    into = np.asarray(closed[:2], dtype=float) - np.asarray(opened[:2], dtype=float)
+    if float(np.hypot(*into)) < 1e-6:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    return line_poses(closed, math.atan2(into[1], into[0]), arm, line)
+
+
+def place_headings(robot: Robot, obj: Object, target: Sequence[float]) -> list[tuple[np.ndarray, float]]:
+    """(tool position, tool heading) for each way place may stand the held `obj` at `target` (`PLACE_TURNS`), where
+    the tool points sideways (a tool pointing down turns about the vertical with the wrist: none)."""
+    held = invert(robot.body.attachments[obj].transform)
+    upright = level(obj.get_orientation(), obj.upright)
+    found = []
+    for turn in PLACE_TURNS:
+        position, orientation = compose((tuple(target), quat_multiply(yaw_quaternion(turn), upright)), held)
+        x = quat_to_matrix(orientation)[:, 0]
+        if abs(float(x[2])) < 0.7:
+            found.append((np.asarray(position, dtype=float), math.atan2(float(x[1]), float(x[0]))))
     return found
 
 
@@ -403,6 +481,8 @@ class BasePoseResolution(_Resolution):
         self.arm_order = np.zeros((0, 0), dtype=np.int8)
         self._allowed: tuple[set[int], set[tuple[int, str]]] = (set(), set())
         self._handle_path: list[np.ndarray] = []
+        #: candidates tried only once all the others failed (with their arm orders): see `_prepare`
+        self._deferred: tuple[Candidates, np.ndarray] | None = None
         #: whether the robot's current pose is the first candidate (an action asks: no need to drive when it will do)
         self.here = False
         self.here_index: int | None = None
@@ -489,6 +569,33 @@ class BasePoseResolution(_Resolution):
         ys = np.concatenate([py] * len(tried))
         turns = np.concatenate([np.full(len(px), t) for t in tried])
         yaws = np.concatenate([facing] * len(tried)) + turns
+        lattice = len(xs)
+        # an accessing location also stands in line with the pull (`pull_aligned_poses`): first for an arm that cannot
+        # turn its tool freely (the lattice misses the line it reaches on), after the lattice for any other arm
+        kind = np.zeros(0, dtype=np.int8)  # of the aligned poses: 1 for a constrained arm, 2 deferred
+        parts = []
+        if spec.accessing is not None and robot.description.mobile:
+            for name, geo in arms.items():
+                line = aligned_reach_line(robot, name)
+                ax, ay, ayaw = pull_aligned_poses(self._handle_path[0], self._handle_path[-1],
+                                                  geo, line if line is not None else straight_reach_line(robot, name))
+                parts.append((ax, ay, ayaw, np.full(len(ax), 1 if line is not None else 2, dtype=np.int8)))
+        elif spec.placing is not None and reach_target is not None and robot.description.mobile:
+            # an arm that cannot turn its tool freely puts a thing held from the side down only on its reach line
+            for name, geo in arms.items():
+                line = aligned_reach_line(robot, name)
+                if line is None:
+                    continue
+                for point, heading in place_headings(robot, spec.placing, reach_target):
+                    ax, ay, ayaw = line_poses(point, heading, geo, line)
+                    parts.append((ax, ay, ayaw, np.ones(len(ax), dtype=np.int8)))
+        if parts:
+            ax, ay, ayaw, kind = (np.concatenate([part[k] for part in parts]) for k in range(4))
+            near = np.hypot(ax - primary[0], ay - primary[1]) <= radius
+            ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
+            aturn = np.angle(np.exp(1j * (ayaw - np.arctan2(primary[1] - ay, primary[0] - ax))))
+            xs, ys, yaws = np.concatenate([xs, ax]), np.concatenate([ys, ay]), np.concatenate([yaws, ayaw])
+            turns = np.concatenate([turns, aturn])
         here = np.asarray(robot.body.get_position()[:2])
         scores = TURN_WEIGHT * np.abs(turns) + TRAVEL_WEIGHT * np.hypot(xs - here[0], ys - here[1])
         outcome = np.zeros(len(xs), dtype=np.int8)
@@ -528,14 +635,24 @@ class BasePoseResolution(_Resolution):
             xs, ys, yaws, scores = (np.zeros(0) for _ in range(4))
             outcome, self.arm_order = np.zeros(0, dtype=np.int8), np.zeros((0, len(arms)), dtype=np.int8)
             self.here = True
+        first = np.zeros(len(xs), dtype=bool)
+        if len(kind):  # the aligned poses of arms that need them go first; the others wait until the lattice fails
+            first[lattice:] = kind == 1
+            kept = np.ones(len(xs), dtype=bool)
+            kept[lattice:] = kind != 2
+            later = ~kept
+            self._deferred = (Candidates(xs[later], ys[later], yaws[later], scores[later], outcome[later],
+                                         np.ones(int(later.sum()), dtype=bool)), self.arm_order[later])
+            xs, ys, yaws, scores, outcome, first = xs[kept], ys[kept], yaws[kept], scores[kept], outcome[kept], first[kept]
+            self.arm_order = self.arm_order[kept]
         if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
             rx, ry = robot.body.get_position()[:2]
             ryaw = _yaw_of(robot.body.get_orientation())
             xs, ys, yaws = np.append(xs, rx), np.append(ys, ry), np.append(yaws, ryaw)
-            scores, outcome = np.append(scores, -1.0), np.append(outcome, 0)
+            scores, outcome, first = np.append(scores, -1.0), np.append(outcome, 0), np.append(first, False)
             self.arm_order = np.concatenate([self.arm_order, self._here_arms(arms, reach_target, rx, ry, ryaw)])
             self.here_index = len(xs) - 1
-        self.candidates = Candidates(xs, ys, yaws, scores, outcome)
+        self.candidates = Candidates(xs, ys, yaws, scores, outcome, first)
         self._allowed = self._allowed_contacts()
 
     def _here_arms(self, arms: dict[str, ArmGeometry], target: np.ndarray | None, x: float, y: float,
@@ -620,7 +737,22 @@ class BasePoseResolution(_Resolution):
                         return pose
                     if self.expensive >= self._patience():
                         break
+                if self.cursor >= len(order) or self.expensive >= self._patience():
+                    if not self._take_deferred():
+                        break
+                    order = self.candidates.order
         raise self._fail(self.failure_message())
+
+    def _take_deferred(self) -> bool:
+        """Add the deferred candidates when all the others failed (tried anew, with patience anew): whether there were."""
+        if self._deferred is None or not len(self._deferred[0]):
+            return False
+        more, arm_order = self._deferred
+        self._deferred = None
+        self.candidates = self.candidates.extended(more)
+        self.arm_order = np.concatenate([self.arm_order, arm_order])
+        self.cursor, self.expensive = 0, 0
+        return True
 
     def _map_test(self, chunk: np.ndarray) -> None:
         todo = chunk[(self.candidates.outcome[chunk] == 0) & (chunk != (self.here_index if self.here_index is not None else -1))]
@@ -696,7 +828,8 @@ class BasePoseResolution(_Resolution):
                 solution = reach(robot, arm, position, orientation)
                 if not solution.success:
                     continue
-                if spec.accessing is not None and not self._follows_handle(arm, orientation):
+                if spec.accessing is not None and not (self._follows_handle(arm, orientation)
+                                                       and self._takes_handle(arm)):
                     continue
                 if self._touches_at(solution.joint_positions, blocked):
                     continue
@@ -906,6 +1039,24 @@ class BasePoseResolution(_Resolution):
                     drawer_pushes_into(self.robot, obj, moving, hand)
                 except ManipulationFailure:
                     return False
+        return True
+
+    def _takes_handle(self, arm: str) -> bool:
+        """Accessing's own planning takes the handle from here: its grasp (aligned with the handle's box, not turned
+        with the base as the test above) and its pre-grasp pose are reached, and the arm, its gripper open as
+        accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`, as accessing moves)."""
+        handle = self.spec.accessing
+        assert handle is not None
+        robot = self.robot
+        gripper = robot.description.arm(arm).gripper
+        names = list(robot.description.arm(arm).joints) + list(gripper.joints)
+        with robot.body.joints_kept(names):
+            try:
+                robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
+                _, pre, _ = plan_handle_grasp(robot, arm, handle.obj, handle.link)
+                move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
+            except (GripperFailure, ReachabilityFailure, ManipulationFailure):
+                return False
         return True
 
     def _view(self, i: int) -> tuple[float, float, float] | None:

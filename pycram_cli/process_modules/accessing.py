@@ -15,6 +15,7 @@ import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
+from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
@@ -57,6 +58,20 @@ def handle_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3
     return None if grasp is None else (grasp.position, grasp.orientation)
 
 
+def plan_handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Grasp, IKSolution, IKSolution]:
+    """How accessing takes the handle from where the robot stands: the grasp, and the arm's configurations at the
+    pre-grasp pose (APPROACH back, near the arm's configuration) and at the handle. GripperFailure when the gripper
+    cannot hold it, ReachabilityFailure when the arm reaches either pose not (the location test asks this too)."""
+    grasp = handle_grasp(robot, arm, part, handle)
+    if grasp is None:
+        raise GripperFailure(f"the {gripper_words(arm)} cannot hold the handle {handle}", arm=arm)
+    what = f"the handle {handle}"
+    pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
+                     f"the pre-grasp pose for {what}", near=True)
+    at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
+    return grasp, pre, at
+
+
 def _below(part: Object, link: int, joint_index: int) -> bool:
     """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
     while link != -1:
@@ -92,14 +107,9 @@ class Accessing(ProcessModule):
         arm = slots["arm"]
         start = part.get_joint_position(joint.name)
         goal = min(joint.upper, joint.lower + float(slots["distance"])) if joint.limited else start + float(slots["distance"])
-        grasp = handle_grasp(robot, arm, part, handle)
-        if grasp is None:
-            raise GripperFailure(f"the {gripper_words(arm)} cannot hold the handle {handle}", arm=arm)
         what = f"the handle {handle}"
         set_gripper(robot, arm, "open")
-        pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
-                         f"the pre-grasp pose for {what}", near=True)
-        at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
+        grasp, pre, at = plan_handle_grasp(robot, arm, part, handle)
         move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to {what}")
         motion.advance(robot, at.joint_positions)
         close_on(robot, arm)

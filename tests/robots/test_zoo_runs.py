@@ -3,7 +3,10 @@
 Seed 2 is a wheeled robot with a 6-joint arm, a one-finger gripper and its camera on the wrist:
 wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 6's arm is too
 short for the counter: the run ends with a location failure saying the object is out of reach —
-a plan failure (exit 1), never an internal error.
+a plan failure (exit 1), never an internal error. Seed 12 has a 5-joint arm (a pan, three pitches, a
+wrist roll) mounted off the base's centre line: its tool stays in the plane the pan turns, so it puts
+the milk down only from poses whose reach line runs through the place (locations/resolve.py
+`line_poses`); the test runs only the milk's part of the demo.
 """
 from __future__ import annotations
 
@@ -15,9 +18,10 @@ from pycram_cli.cli.main import cli
 from pycram_cli.robots.zoo import generate, write_world
 
 
-def run_demo(seed: int, folder: Path):
+def run_demo(seed: int, folder: Path, *params: str):
     world = write_world(generate(seed), folder)
-    return CliRunner().invoke(cli, ["run", "plans/set_table_actions.yaml", "--world", str(world)])
+    return CliRunner().invoke(cli, ["run", "plans/set_table_actions.yaml", "--world", str(world),
+                                    *(arg for p in params for arg in ("-p", p))])
 
 
 def test_a_wrist_camera_robot_on_wheels_sets_the_table(tmp_path: Path) -> None:
@@ -31,3 +35,9 @@ def test_a_robot_whose_arm_is_too_short_says_it_cannot_reach(tmp_path: Path) -> 
     assert result.exit_code == 1, result.output
     text = " ".join(result.output.split())
     assert "LocationFailure" in text and "out of reach" in text
+
+
+def test_a_five_joint_arm_puts_the_milk_on_the_island(tmp_path: Path) -> None:
+    result = run_demo(12, tmp_path, "objects=[milk]")
+    assert result.exit_code == 0, result.output
+    assert "placed milk" in result.output

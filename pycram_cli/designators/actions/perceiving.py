@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ...failures import Failure, NavigationFailure, PerceptionFailure, ReachabilityFailure
+from ...failures import Failure, LocationFailure, NavigationFailure, PerceptionFailure, ReachabilityFailure
 from ...locations import handle_of, opening_joint
 from ...reasoning.supporting import support_points
 from ...world import Object
@@ -14,6 +14,9 @@ from .declaration import Action, declare_action
 
 #: a drawer or door opened less than this fraction of its range counts as closed: what is inside cannot be seen
 CLOSED = 0.2
+#: search opens a container all the way; a robot that cannot pull it that far from any pose opens it this far
+#: (fractions of its range) instead, while what lies inside may still come out from under what covers it
+PARTLY = (0.75,)
 
 
 def _detect(actor: Actor, slots: Mapping[str, Any]) -> Object:
@@ -64,7 +67,17 @@ def _search(actor: Actor, slots: Mapping[str, Any]) -> Object:
     if inside is not None:  # all the way: what lies inside is seen, and taken, best from above the open drawer
         container, joint, handle = inside
         info = container.joint(joint)
-        actor.action("open", {"handle": handle, "distance": (info.upper - info.lower) if info.limited else None})
+        if not info.limited:
+            actor.action("open", {"handle": handle, "distance": None})
+        else:
+            ways = [1.0, *PARTLY]
+            for k, fraction in enumerate(ways):
+                try:
+                    actor.action("open", {"handle": handle, "distance": fraction * (info.upper - info.lower)})
+                    break
+                except LocationFailure:  # no pose to pull it that far from (a short arm): less far, while there is
+                    if k == len(ways) - 1:
+                        raise
     robot = actor.robot
     places: list[dict[str, Any]] = [{"visible-for": obj}]
     if any(not robot.held_objects(arm) for arm in robot.description.arms):  # stand where it could be picked up too
