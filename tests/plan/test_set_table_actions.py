@@ -41,8 +41,12 @@ def test_it_sets_the_table_on_the_pr2_and_on_the_fetch(world_name):
         result = scenario.run(world=world)
         assert result.status == "succeeded", result.failure
         set_on_the_island(world)
-        # the spoon was in the closed drawer: search opened it
-        assert world.get_object_by_name("kitchen").get_joint_position("sink_area_left_upper_drawer_main_joint") > 0.4
+        # the spoon was in the closed drawer: search opened it, and transport tried to close it again (the PR2
+        # does; the Fetch's arm cannot follow the handle the last centimetres, and leaves it open)
+        text = str(result.trace)
+        assert "action open" in text and "action close" in text
+        if world_name == "kitchen":
+            assert world.get_object_by_name("kitchen").get_joint_position("sink_area_left_upper_drawer_main_joint") < 0.01
     finally:
         world.exit()
 

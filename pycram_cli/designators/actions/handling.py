@@ -17,6 +17,7 @@ from ..declaration import ANY_ARM, Slot, drives
 from .actor import Actor, Finder, as_failure
 from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, resting, try_choices
 from .declaration import Action, declare_action
+from .perceiving import container_of, is_closed
 
 EVERYTHING = drives("base", "head", ANY_ARM)
 
@@ -180,6 +181,7 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
     wanted = {"object": slots["object"]} if slots.get("object") is not None else {"object-type": slots["object-type"]}
     found = actor.action("search", wanted)
     was = list(found.get_position())
+    taken_out_of = container_of(found, closed=False)
     if actor.robot.arm_holding(found) is None:  # already in hand when a place failed earlier and nothing took it back
         actor.action("pick-up", {"object": found, "arm": slots.get("arm"), "grasp": slots.get("grasp")})
     taken_from = actor.robot.body.get_pose()
@@ -194,7 +196,22 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
         how = QUERIES["stable"].describe(answer).split(": ", 1)[-1]
         raise ReasoningFailure(f"{found.name} is not stable where it was placed: {how}", object=found.name,
                                motion=answer.details.get("motion"))
+    if taken_out_of is not None:
+        _seal(actor, *taken_out_of)
     return found
+
+
+def _seal(actor: Actor, container: Any, joint: str, handle: str) -> None:
+    """Close the drawer or door the object was taken out of, once it is delivered (CRAM's transport seals what it
+    accessed): an open drawer left behind stands where the robot must stand for the next things it fetches. The object
+    is delivered either way: when the robot cannot close it, the failed `close` shows in the trace and the transport
+    still succeeds."""
+    if is_closed(container, joint):
+        return
+    try:
+        actor.action("close", {"handle": handle, "part-of": container})
+    except Failure:
+        pass
 
 
 def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None:
@@ -214,7 +231,8 @@ def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None
 
 declare_action(Action(
     "transport", "Bring an object (or one of a type) to a location: find it, stand, pick it up, carry it, stand, "
-                 "place it, park, and check that it stands stably (ReasoningFailure if not).", (
+                 "place it, park, check that it stands stably (ReasoningFailure if not), and close the drawer or "
+                 "door it was taken out of.", (
         Slot("object", "object", False, "the object to bring"),
         Slot("object-type", "object-type", False, "or the type of object to bring (found by search)"),
         Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),

@@ -37,8 +37,16 @@ declare_action(Action(
     ), run=_detect, uses=drives("head"), one_of=("object-type", "object"), needs=("camera",), returns="the object seen"))
 
 
-def container_of(obj: Object) -> tuple[Object, str, str] | None:
-    """(object, joint, handle) of the closed drawer or door `obj` is in (rests on a link its joint carries), or None."""
+def is_closed(obj: Object, joint: str) -> bool:
+    """Whether a drawer or door is (nearly) closed: opened less than CLOSED of its range."""
+    info = obj.joint(joint)
+    span = (info.upper - info.lower) if info.limited else 1.0
+    return obj.get_joint_position(joint) - (info.lower if info.limited else 0.0) < CLOSED * span
+
+
+def container_of(obj: Object, closed: bool = True) -> tuple[Object, str, str] | None:
+    """(object, joint, handle) of the closed drawer or door `obj` is in (rests on a link its joint carries), or None;
+    `closed=False`: of the drawer or door it is in, however far open."""
     world = obj.world
     for other in world.objects:
         if other is obj or other.type == "robot" or not other.movable_joints:
@@ -47,9 +55,7 @@ def container_of(obj: Object) -> tuple[Object, str, str] | None:
             joint = opening_joint(other, link)
             if joint is None:
                 continue
-            info = other.joint(joint)
-            span = (info.upper - info.lower) if info.limited else 1.0
-            if other.get_joint_position(joint) - (info.lower if info.limited else 0.0) < CLOSED * span:
+            if not closed or is_closed(other, joint):
                 handle = handle_of(other, joint)
                 if handle is not None:
                     return other, joint, handle
