@@ -183,10 +183,7 @@ def strays(robot: Robot, arm: str, start: Mapping[str, float], end: Mapping[str,
     tool = robot.description.arm(arm).tool_frame
     names = list(end)
     a = np.array([float(start.get(n, end[n])) for n in names])
-    b = np.array([float(end[n]) for n in names])
-    for i, name in enumerate(names):
-        if body.joint(name).type == "continuous":
-            b[i] = a[i] + math.remainder(b[i] - a[i], 2 * math.pi)
+    b = motion.short_way(body, names, a, np.array([float(end[n]) for n in names]))
     p0, p1 = np.asarray(line_start, dtype=float), np.asarray(line_end, dtype=float)
     span = p1 - p0
     length2 = float(span @ span)

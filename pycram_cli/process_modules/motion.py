@@ -276,10 +276,7 @@ class Motion:
         current = self.body.get_joint_positions(names)
         start = np.array([current[n] for n in names])
         end = np.array([float(goal.get(n, current[n])) for n in names])
-        for i, joint in enumerate(self.joints):  # continuous joints turn the short way
-            if joint.type == "continuous":
-                end[i] = start[i] + math.remainder(end[i] - start[i], 2 * math.pi)
-        return start, end
+        return start, short_way(self.body, names, start, end)
 
     def _put(self, values: np.ndarray) -> None:
         self.body.reset_joints({j.name: float(v) for j, v in zip(self.joints, values)})
@@ -344,6 +341,16 @@ class Motion:
         finally:
             self._put(start)
         return last_free, hits
+
+
+def short_way(body: Object, names: Sequence[str], start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """`end` with each continuous joint's value moved by whole turns to within half a turn of `start`: a path from
+    `start` to it turns the short way."""
+    end = np.array(end, dtype=float)
+    for i, name in enumerate(names):
+        if body.joint(name).type == "continuous":
+            end[i] = start[i] + math.remainder(end[i] - start[i], 2 * math.pi)
+    return end
 
 
 def joints_of(robot: Robot, arms: Iterable[str], gripper: bool = False) -> list[str]:
