@@ -14,6 +14,7 @@ from ..files import check_writable
 from ..errors import InputError, Location
 from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
+from ..scenario.starts import ImpossibleStart, possible_variant
 from ..scenario.variations import beside, read_variations
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
@@ -157,12 +158,21 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if vary is None:
             raise InputError(f"--scenario needs the variation file: give --vary (none named "
                              f"{scenario.plan.path.stem}.vary.yaml is beside the plan)", Location("--scenario"))
-        variant = read_variations(vary, scenario.world, scenario.plan).sample(scenario_seed)
+        variations = read_variations(vary, scenario.world, scenario.plan)
+        base = scenario
+        try:  # the sweep's draw: redrawn while its objects cannot start (scenario/starts.py)
+            variant, world = possible_variant(variations, scenario_seed, None,
+                                              lambda v: base.varied(v).load_world(mode="gui" if gui else "direct"),
+                                              release=lambda w: w.exit())
+        except ImpossibleStart as exc:
+            raise InputError(f"{exc} (the variation file draws starts that cannot be)", Location("--scenario"),
+                             suggestion=f"check the poses and `separation` of {vary}") from None
         given = {name for name in (a.partition("=")[0].strip() for a in params)}
         before = scenario.params
         scenario = scenario.varied(variant).with_params({k: v for k, v in before.items() if k in given})
+    else:
+        world = scenario.load_world(mode="gui" if gui else "direct")
     plan, world_path, values = scenario.plan, scenario.world_path, scenario.params
-    world = scenario.load_world(mode="gui" if gui else "direct")
     try:
         before = poses(world)
         view: Any

@@ -137,6 +137,13 @@ def _print(summary: dict[str, Any], prepared: PreparedSweep, plot_file: Path | N
                   f"scenarios (seed {summary['seed']}), results in {summary['results']}")
     console.plain(f"succeeded {ok} of {runs}: {_percent(summary['rate'])} "
                   f"(95 % interval {100 * lo:.1f}-{100 * hi:.1f} %)")
+    starts = summary["starts"]
+    if starts["redrawn"]:
+        console.plain(f"{starts['redrawn']} scenarios drawn again: their first draw could not start "
+                      f"(e.g. {starts['example']})")
+    if starts["invalid"]:
+        console.plain(f"{starts['invalid']} scenarios not run, no draw could start (not counted): "
+                      f"{starts['invalid_example']}")
     if summary["failures"]:
         console.plain("failures by type and node:")
         for failure in summary["failures"]:

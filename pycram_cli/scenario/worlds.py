@@ -2,7 +2,8 @@
 
     worlds = LoadedWorlds(scenario)
     for seed in seeds:
-        result = worlds.run(variations.sample(seed))   # same result as on a freshly loaded world
+        variant, world = worlds.possible(variations, seed)   # redrawn while impossible (starts.py)
+        result = scenario.varied(variant).run(world)         # same result as on a freshly loaded world
     worlds.close()
 
 A world is loaded once per *structure* (which bodies exist: see `Variant.structure`) and its
@@ -25,7 +26,8 @@ from ..world import BulletWorld
 from ..world.state import WorldState
 from ..worldfile.loader import load_spec
 from . import Scenario, reset
-from .variations import Variant
+from .starts import possible_variant
+from .variations import Variant, Variations
 
 #: worlds of different structures a process keeps loaded (a variation that drops two objects makes four)
 KEEP = 4
@@ -61,6 +63,10 @@ class LoadedWorlds:
         reset(loaded.world, loaded.state)
         variant.apply(loaded.world)
         return loaded.world
+
+    def possible(self, variations: Variations, seed: int, index: int | None = None) -> tuple[Variant, BulletWorld]:
+        """Scenario `seed`'s first possible draw (see starts.py) and its world; raises ImpossibleStart."""
+        return possible_variant(variations, seed, index, self.world_for)
 
     def run(self, variant: Variant, scenario: Scenario | None = None,
             observer: Observer | None = None) -> tuple[RunResult, float]:

@@ -21,7 +21,13 @@ def wilson(successes: int, runs: int, z: float = Z95) -> tuple[float, float]:
     return (max(0.0, centre - half), min(1.0, centre + half))
 
 
+#: the status of a scenario no draw of which could start (sweep/worker.py): not a run of the plan
+INVALID = "invalid"
+
+
 def _rate(records: list[dict[str, Any]]) -> dict[str, Any]:
+    """Successes among the runs; scenarios that could not start (INVALID) are not runs of the plan."""
+    records = [r for r in records if r["status"] != INVALID]
     runs = len(records)
     succeeded = sum(1 for r in records if r["status"] == "succeeded")
     lo, hi = wilson(succeeded, runs)
@@ -43,7 +49,7 @@ def summarise(records: list[dict[str, Any]], meta: dict[str, Any]) -> dict[str, 
     summary["statuses"] = dict(sorted(Counter(r["status"] for r in records).items()))
     groups: dict[tuple[str, str | None], list[dict[str, Any]]] = defaultdict(list)
     for record in records:
-        if record["status"] != "succeeded":
+        if record["status"] not in ("succeeded", INVALID):
             failure = record.get("failure") or {}
             groups[(failure.get("type") or record["status"], failure.get("path"))].append(record)
     failures = []
@@ -54,6 +60,7 @@ def summarise(records: list[dict[str, Any]], meta: dict[str, Any]) -> dict[str, 
                                      **({"alternative": example["alternative"]} if "alternative" in example else {}),
                                      "message": (example.get("failure") or {}).get("message")}})
     summary["failures"] = failures
+    summary["starts"] = _starts(records)
     durations = [r["timing"]["duration"] for r in records if r.get("timing")]
     setups = [r["timing"].get("setup", 0.0) for r in records if r.get("timing")]
     summary["time"] = {"median": round(statistics.median(durations), 4) if durations else None,
@@ -63,6 +70,18 @@ def summarise(records: list[dict[str, Any]], meta: dict[str, Any]) -> dict[str, 
     if alternatives:
         summary["compare"] = compare(records, meta["compare"]["param"], alternatives)
     return summary
+
+
+def _starts(records: list[dict[str, Any]]) -> dict[str, Any]:
+    """How many scenarios were drawn again because a draw could not start (scenario/starts.py), with an example
+    reason, and how many no draw made possible (INVALID)."""
+    redrawn = [r for r in records if r["status"] != INVALID and (r.get("varied") or {}).get("redrawn")]
+    invalid = [r for r in records if r["status"] == INVALID]
+    first = min(redrawn, key=lambda r: r["index"], default=None)
+    return {"redrawn": len(redrawn), "example": first["varied"]["redrawn"][0] if first else None,
+            "invalid": len(invalid),
+            "invalid_example": (min(invalid, key=lambda r: r["index"]).get("failure") or {}).get("message")
+            if invalid else None}
 
 
 def compare(records: list[dict[str, Any]], param: str, alternatives: list[dict[str, Any]]) -> dict[str, Any]:

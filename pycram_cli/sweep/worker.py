@@ -24,7 +24,9 @@ from typing import Any
 from ..jsonable import jsonable
 from ..plan.trace import comparable, normalised
 from ..scenario import Scenario, prepare
+from ..scenario.starts import ImpossibleStart
 from ..scenario.variations import Variations, read_variations
+from .summary import INVALID
 from ..scenario.worlds import LoadedWorlds
 
 
@@ -92,6 +94,12 @@ def error_record(task: Task, message: str, varied: dict[str, Any] | None = None,
     return outcome(task, "error", {"type": "InternalError", "message": message, "path": path}, varied or {})
 
 
+def invalid_record(task: Task, exc: ImpossibleStart, varied: dict[str, Any]) -> dict[str, Any]:
+    """A scenario no draw of which could start (see scenario/starts.py): not a run, not counted in the rate."""
+    return outcome(task, INVALID, {"type": "ImpossibleStart", "message": str(exc), "path": None},
+                   {**varied, "redrawn": exc.reasons})
+
+
 def outcome(task: Task, status: str, failure: dict[str, Any] | None, varied: dict[str, Any], steps: int = 0,
             digest: str | None = None, duration: float = 0.0, setup: float = 0.0) -> dict[str, Any]:
     record: dict[str, Any] = {"index": task.index, "seed": task.seed}
@@ -120,29 +128,39 @@ class Worker:
         self.worlds = LoadedWorlds(self.scenario)
 
     def run(self, task: Task) -> dict[str, Any]:
-        variant = self.variations.sample(task.seed, task.index)
         scenario = self.scenario if task.alternative is None else self.scenario.with_params(task.alternative)
         started = time.perf_counter()
         alarm = bool(self.job.timeout) and threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGALRM, _alarm) if alarm else None
+        variant = None
         try:
             if alarm:
                 signal.setitimer(signal.ITIMER_REAL, float(self.job.timeout))  # type: ignore[arg-type]
             try:
-                result, setup = self.worlds.run(variant, scenario)
+                variant, world = self.worlds.possible(self.variations, task.seed, task.index)
+                setup = time.perf_counter() - started
+                result = scenario.varied(variant).run(world)
             finally:
                 if alarm:
                     signal.setitimer(signal.ITIMER_REAL, 0)
+        except ImpossibleStart as exc:
+            return invalid_record(task, exc, self.variations.sample(task.seed, task.index).varied)
         except ScenarioTimeout:
-            self.worlds.discard(variant)
+            varied = (variant or self.variations.sample(task.seed, task.index)).varied
+            if variant is not None:
+                self.worlds.discard(variant)
             self.retire = threading.active_count() > self._threads
-            return timeout_record(task, self.job.timeout, variant.varied)
+            return timeout_record(task, self.job.timeout, varied)
         except Exception as exc:  # noqa: BLE001 - recorded, and the sweep goes on
-            self.worlds.discard(variant)
+            varied = (variant or self.variations.sample(task.seed, task.index)).varied
+            if variant is not None:
+                self.worlds.discard(variant)
+            else:
+                self.worlds.discard()
             self.retire = threading.active_count() > self._threads
             text = f"{type(exc).__name__}: {exc}"
             path = text.split(": ")[1] if type(exc).__name__ == "InternalError" and text.count(": ") >= 2 else None
-            return error_record(task, text, variant.varied, path)
+            return error_record(task, text, varied, path)
         finally:
             if alarm:
                 signal.signal(signal.SIGALRM, previous)
