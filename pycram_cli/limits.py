@@ -57,6 +57,8 @@ MAX_SWEEP_META_BYTES = 16 * 1024 * 1024
 MAX_SCENARIO_TIMEOUT = 86_400.0
 #: `sweep --workers` at most this many worker processes or Ray actors
 MAX_WORKERS = 256
+#: the most runs `pycram run --project N` projects before acting
+MAX_PROJECTED = 10_000
 
 
 def size_text(count: int) -> str:

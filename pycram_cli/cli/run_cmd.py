@@ -14,7 +14,9 @@ from ..files import check_writable
 from ..errors import InputError, Location
 from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
+from ..limits import MAX_PROJECTED
 from ..scenario.starts import ImpossibleStart, possible_variant
+from ..sweep.projection import Projection, project
 from ..scenario.variations import beside, read_variations
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
@@ -124,6 +126,11 @@ class QuietView:
               help="Run one scenario of a sweep: the world and parameters drawn from SEED (see `pycram sweep`).")
 @click.option("--vary", "vary_file", metavar="VARY.yaml",
               help="The variation file --scenario draws from (default: PLAN.vary.yaml beside the plan).")
+@click.option("--project", "project_runs", type=click.IntRange(1, MAX_PROJECTED), default=None, metavar="N",
+              help="Before acting, run the plan N times in prospection on scenarios drawn from the variation file "
+                   "(--vary) and print the success rate and the failures by cause.")
+@click.option("--require", type=Number(0.0, 1.0), default=None, metavar="P",
+              help="With --project: do not run (exit 1) when the projected success rate is below P (0-1).")
 @click.option("--follow/--no-follow", default=True, show_default=True,
               help="With --gui: the window's camera follows the robot (else it stays where it was put at the start).")
 @json_option
@@ -131,7 +138,8 @@ class QuietView:
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
         render_file: Path | None, camera: str | None, size: str, report_file: Path | None, pace: float | None,
-        scenario_seed: int | None, vary_file: str | None, follow: bool, as_json: bool, gui: bool) -> None:
+        scenario_seed: int | None, vary_file: str | None, project_runs: int | None, require: float | None,
+        follow: bool, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
@@ -150,9 +158,34 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report")):
         if output is not None:
             check_writable(output, key)  # a pipe, a device, no permission: before anything runs
+    if require is not None and project_runs is None:
+        raise InputError("sets the success rate --project must reach, but no --project N is given",
+                         Location("--require"), suggestion="add --project 20 (or leave --require out)")
+    if project_runs is not None and scenario_seed is not None:
+        raise InputError("projects the plan over scenarios, and --scenario runs one of them: give one of them",
+                         Location("--project"))
     scenario = prepare(plan_file, world_file, assignments=params)
-    if vary_file is not None and scenario_seed is None:
-        raise InputError("--vary draws a scenario only with --scenario SEED", Location("--vary"))
+    if vary_file is not None and scenario_seed is None and project_runs is None:
+        raise InputError("--vary draws a scenario only with --scenario SEED (or projections with --project N)",
+                         Location("--vary"))
+    if project_runs is not None:
+        given = {name for name in (a.partition("=")[0].strip() for a in params)}
+        projection = Projection(str(scenario.plan.path), vary_file, str(scenario.world_path),
+                                {k: v for k, v in scenario.params.items() if k in given}, project_runs)
+        try:
+            summary = project(projection)
+        except KeyboardInterrupt:
+            console.error("interrupted while projecting: nothing was run")
+            ctx.exit(interrupts.exit_code() or 130)
+        refused = require is not None and (summary["rate"] or 0.0) < require
+        if as_json and refused:
+            console.emit_json({"status": "not run", "projection": summary})
+        elif not as_json:
+            _projected(summary, scenario.plan.path, vary_file, require)
+        if refused:
+            console.error(f"not running {scenario.plan.path.name}: the projected success rate "
+                          f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")  # type: ignore[operator]
+            ctx.exit(EXIT_FAILED)
     if scenario_seed is not None:
         vary = Path(vary_file) if vary_file is not None else beside(scenario.plan.path)
         if vary is None:
@@ -218,7 +251,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             write_report(report_file, result.trace, scenario.world_path)
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
-                                          "duration": round(duration, 3), "trace": result.trace}))
+                                          "duration": round(duration, 3), "trace": result.trace,
+                                          **({"projection": summary} if project_runs is not None else {})}))
         else:
             _summary(plan, result, duration, trace_file)
         if gui and not interrupted:
@@ -229,6 +263,28 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         ctx.exit(interrupts.exit_code() or 130)
     if not result.succeeded:
         ctx.exit(EXIT_FAILED)
+
+
+def _percent(rate: float | None) -> str:
+    return "-" if rate is None else f"{100.0 * rate:.1f} %"
+
+
+def _projected(summary: dict[str, Any], plan_path: Path, vary_file: str | None, require: float | None) -> None:
+    """The projection's success rate and its failures by cause, each with the command that replays an example."""
+    lo, hi = summary["interval"]
+    console.info(f"projected {plan_path.name} {summary['scenarios']} times on scenarios of "
+                 f"{Path(summary['vary']).name}: succeeded {summary['succeeded']} of {summary['runs']}, "
+                 f"{_percent(summary['rate'])} (95 % interval {100 * lo:.1f}-{100 * hi:.1f} %)"
+                 + (f"; required {100 * require:.1f} %" if require is not None else ""))
+    starts = summary["starts"]
+    if starts["invalid"]:
+        console.info(f"  {starts['invalid']} scenarios could not start (not counted): {starts['invalid_example']}")
+    for failure in summary["failures"]:
+        example = failure["example"]
+        replay = f"pycram run {plan_path} --scenario {example['seed']}" + (f" --vary {vary_file}" if vary_file else "")
+        console.info(f"  {failure['count']:>4}  {failure['type']} at {failure['path'] or '-'}")
+        console.info(f"        e.g. {example['message']}")
+        console.info(f"        replay: {replay}")
 
 
 def _running(plan_path: Path, world_path: Path, values: dict[str, Any]) -> list[str]:

@@ -128,7 +128,6 @@ class Worker:
         self.worlds = LoadedWorlds(self.scenario)
 
     def run(self, task: Task) -> dict[str, Any]:
-        scenario = self.scenario if task.alternative is None else self.scenario.with_params(task.alternative)
         started = time.perf_counter()
         alarm = bool(self.job.timeout) and threading.current_thread() is threading.main_thread()
         previous = signal.signal(signal.SIGALRM, _alarm) if alarm else None
@@ -139,7 +138,10 @@ class Worker:
             try:
                 variant, world = self.worlds.possible(self.variations, task.seed, task.index)
                 setup = time.perf_counter() - started
-                result = scenario.varied(variant).run(world)
+                scenario = self.scenario.varied(variant)
+                if task.alternative is not None:  # --compare's value, or a projection's -p values: they win
+                    scenario = scenario.with_params(task.alternative)
+                result = scenario.run(world)
             finally:
                 if alarm:
                     signal.setitimer(signal.ITIMER_REAL, 0)
