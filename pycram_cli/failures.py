@@ -54,10 +54,15 @@ class LocationFailure(Failure):
     ("412 candidates: 380 collide, 32 out of reach")."""
 
 
+class ProjectionFailure(Failure):
+    """No alternative of a `project` step succeeded often enough in prospection; `details["table"]` has the
+    outcomes of every alternative."""
+
+
 FAILURES: dict[str, type[Failure]] = {
     cls.__name__: cls
     for cls in (Failure, PerceptionFailure, ReasoningFailure, NavigationFailure, ReachabilityFailure,
-                GripperFailure, ManipulationFailure, LocationFailure)
+                GripperFailure, ManipulationFailure, LocationFailure, ProjectionFailure)
 }
 # the design's own names for two of them (in plans, and as Python names: `raise ReasoningError`)
 ALIASES = {"PerceptionError": "PerceptionFailure", "ReasoningError": "ReasoningFailure"}

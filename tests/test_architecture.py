@@ -19,10 +19,10 @@ PLAN_DIR = Path(__file__).resolve().parents[1] / "pycram_cli" / "plan"
 PLAN_PACKAGE = "pycram_cli.plan"
 
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
-                       "actions", "params", "validate", "language"}
+                       "actions", "projecting", "params", "validate", "language"}
 PLAN_RUNNING_FLOOR = {"scheduler", "trace", "trace_schema", "executor", "replay"}
 PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
-PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions"}
+PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions", "projecting"}
 
 
 def _plan_modules() -> dict[str, Path]:

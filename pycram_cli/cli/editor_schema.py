@@ -35,10 +35,11 @@ from ..designators.actions import ACTIONS
 from ..designators.declaration import Slot
 from ..failures import ALIASES, FAILURES
 from ..kinds import KINDS
-from ..limits import MAX_MAGNITUDE, MAX_RETRIES, MAX_WAIT
+from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_WAIT
 from ..paths import resources_dir
 from ..plan.context import IDENTIFIER, NAME, REFERENCE
 from ..plan.language import NODE_TYPES
+from ..plan import projecting
 from ..plan.leaves import CONDITION_FORMS
 from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SCOPES, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
 from ..reasoning import QUERIES
@@ -92,6 +93,26 @@ HEAD_VALUES: dict[str, Schema] = {
     "log": {},
     "set": {"type": "object", "propertyNames": ref("name")},
     "wait": {"anyOf": [_number(0, MAX_WAIT, "seconds"), ref("dynamic")]},
+    "project": {
+        "type": "object", "required": ["alternatives"], "additionalProperties": False,
+        "properties": {
+            "alternatives": {"type": "object", "minProperties": 1, "additionalProperties": ref("steps"),
+                             "description": "named alternatives, each a list of steps"},
+            "runs": {"type": "integer", "minimum": 1, "maximum": MAX_PROJECTED,
+                     "description": f"projected runs per alternative (default {projecting.DEFAULT_RUNS})"},
+            "vary": {"type": "object", "description": "how each projected run's world differs from the world now",
+                     "additionalProperties": {
+                         "type": "object", "additionalProperties": False, "properties": {
+                             "noise": {"anyOf": [_number(0), {"type": "array", "items": _number(0),
+                                                              "minItems": 3, "maxItems": 3}],
+                                       "description": "uniform in ± per axis (m): a number (x and y) or [x, y, z]"},
+                             "yaw": _number(0, math.pi, "turned by a uniform angle in ±yaw (rad) about z")}}},
+            "choose": {"enum": list(projecting.CHOICES), "description": "how the alternative to run is chosen"},
+            "at-least": _number(0, 1, "the success rate the chosen alternative needs (else a ProjectionFailure)"),
+            "seed": {"type": "integer", "minimum": 0, "maximum": 2**32 - 1,
+                     "description": "the projected runs' draws come from it"},
+            "as": _with(ref("name"), "the variable bound to {name, value, table}"),
+        }},
 }
 #: what the keys beside a head take
 NODE_KEY_VALUES: dict[str, Schema] = {

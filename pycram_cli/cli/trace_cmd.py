@@ -60,6 +60,8 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
         folded = node["folded"]
         counts = "; ".join(f"{text} ×{count}" for text, count in (folded.get("failures") or {}).items())
         parts.append(f"{folded.get('steps')} entries folded" + (f" ({counts})" if counts else ""))
+    if isinstance(node.get("projection"), dict):
+        parts.append(describe_projection(node["projection"]))
     if "retries" in node and node["retries"]:
         parts.append(f"{node['retries']} retr{'y' if node['retries'] == 1 else 'ies'}")
     if "bound" in node:
@@ -70,6 +72,16 @@ def describe_node(node: dict[str, Any], timing: bool = True) -> str:
     if timing and isinstance(node.get("timing"), dict) and node["timing"].get("duration") is not None:
         parts.append(f"{node['timing']['duration']:.2f} s")
     return "  ".join(p for p in parts if p)
+
+
+def describe_projection(record: dict[str, Any]) -> str:
+    """`projected: left 18/20 (2 GripperFailure), right 20/20 → right (the most successful (20 of 20 runs))`."""
+    rows = []
+    for name, row in (record.get("alternatives") or {}).items():
+        causes = ", ".join(f"{count} {kind}" for kind, count in (row.get("failures") or {}).items())
+        rows.append(f"{name} {row.get('succeeded')}/{row.get('runs')}" + (f" ({causes})" if causes else ""))
+    choice = record.get("choice")
+    return f"projected: {', '.join(rows)} → {choice if choice else 'none'} ({record.get('why')})"
 
 
 def describe_location(record: dict[str, Any]) -> str:

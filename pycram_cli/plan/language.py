@@ -11,7 +11,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..paths import find_plan
 from ..world import BulletWorld
-from . import actions, composites, decorators, leaves  # noqa: F401  (importing them registers their node types)
+from . import actions, composites, decorators, leaves, projecting  # noqa: F401  (importing them registers their node types)
 from .syntax import NODE_TYPES, Plan, read_plan
 from .validate import check_plan
 

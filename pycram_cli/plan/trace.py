@@ -103,7 +103,7 @@ class TraceNode:
             summary = next((c for c in self.children if c.type == "folded" and c.label == label), None)
             if summary is None:
                 summary = TraceNode(f"{self.path}/{label}", "folded", None, self._budget, self.depth + 1)
-                summary.status = "failed"
+                summary.status = "succeeded"  # until a failed step is folded in (a retry folds only failed attempts)
                 summary.info["folded"] = {"steps": 0, "failures": {}}
                 self._budget.used += 1  # cannot fail: the child it replaces is given back below
                 self.children.insert(index, summary)
@@ -112,6 +112,8 @@ class TraceNode:
         self._budget.give_back(sum(1 for _ in child.walk()))
         folded = summary.info["folded"]
         folded["steps"] += 1
+        if child.status != "succeeded":
+            summary.status = "failed"
         if child.failure is not None:
             text = f"{child.failure.get('type')}: {child.failure.get('message')}"
             failures = folded["failures"]

@@ -218,7 +218,8 @@ class _Checker:
                            {"failure": self.failure, "timing": self.timing, "source": self.string,
                             "designator": self.designator, "query": self.query, "condition": self.condition,
                             "call": self.call, "caught": self.caught, "bound": self.obj, "message": self.string,
-                            "retries": self.count, "items": self.list_of_anything, "folded": self.folded}):
+                            "retries": self.count, "items": self.list_of_anything, "folded": self.folded,
+                            "projection": self.obj}):
             return []
         if depth > MAX_STEP_DEPTH + 2:
             self.add(path, f"steps nested deeper than {MAX_STEP_DEPTH} levels")

@@ -32,18 +32,8 @@ from .variations import Variant
 
 
 def reset(world: BulletWorld, state: WorldState) -> None:
-    """Put `world` back to `state` as if it had just been loaded, and in the same way whatever ran since.
-
-    PyBullet's restoreState puts poses, joints and velocities back bitwise, but not the contact
-    caches a run leaves behind (nor sleep): one physics step from the restored state refreshes
-    them, a second restore undoes the step. Worlds reset like this give byte-identical traces
-    whatever ran on them before (tests/scenario/test_variations.py), which is what makes a
-    sweep's outcomes independent of its number of workers and of the order of its scenarios.
-    """
-    world.restore_state(state)
-    world.step()
-    world.restore_state(state)
-    world.wake_free_objects()
+    """Put `world` back to `state` as if it had just been loaded (`BulletWorld.reset_to`)."""
+    world.reset_to(state)
 
 
 @dataclass

@@ -4,13 +4,9 @@ A variation file draws poses without looking at the world: the cereal can land i
 (`separation` keeps centres apart, not shapes), a region's box can put the milk in the air or half
 over a counter's edge, a swapped model can sink into the counter. Such a scenario tests nothing a
 robot will meet, and its failure would be counted against the plan. So each drawn scenario is
-checked on its loaded world before it runs:
-
-- **inside**: a varied or swapped object (or the moved robot) more than START_DEPTH inside
-  another body;
-- **unsupported**: a varied or swapped object whose centre of mass is not over something within
-  SUPPORT_GAP below its bottom (straight down from the centre of mass: past a counter's edge, or
-  in the air).
+checked on its loaded world before it runs (worldfile/starts.py): a varied or swapped object (or the
+moved robot) more than 3 mm inside another body, or a varied object whose centre of mass is not
+over something just below its bottom (past a counter's edge, or in the air).
 
 An impossible draw is drawn again from `redraw_seed(seed, k)`, up to REDRAWS times, so a
 scenario stays a function of its seed alone (the same on every worker, and for `pycram run
@@ -23,18 +19,14 @@ from __future__ import annotations
 import hashlib
 from typing import TYPE_CHECKING, Callable
 
-from ..worldfile.loader import START_DEPTH
+from ..worldfile.starts import start_problems
 
 if TYPE_CHECKING:
-    from ..world import BulletWorld, Object
+    from ..world import BulletWorld
     from .variations import Variant, Variations
 
 #: draws after the first before a scenario is given up as impossible
 REDRAWS = 20
-#: how far below an object's bottom what it stands on may be (m): resting contact is about 0.01 mm; more is in the air
-SUPPORT_GAP = 0.01
-#: how far straight down from the centre of mass the support is looked for (m)
-LOOK_DOWN = 3.0
 
 
 class ImpossibleStart(Exception):
@@ -52,47 +44,10 @@ def redraw_seed(seed: int, attempt: int) -> int:
 
 
 def impossible(world: "BulletWorld", variant: "Variant") -> list[str]:
-    """Why the variant, applied to `world`, cannot start (empty: it can)."""
+    """Why the variant, applied to `world`, cannot start (empty: it can): its moved and swapped objects."""
     names = sorted(set(variant.poses) | set(variant.swaps))
-    problems: list[str] = []
-    reported: set[frozenset[str]] = set()
-    for name in names:
-        obj = world.robot if name == "robot" else world.get_object_by_name(name)
-        if obj is None:
-            continue
-        inside = _inside(world, obj, reported)
-        if inside:
-            problems.append(inside)
-        elif obj is not world.robot and not obj.fixed:
-            unsupported = _unsupported(world, obj)
-            if unsupported:
-                problems.append(unsupported)
-    return problems
-
-
-def _inside(world: "BulletWorld", obj: "Object", reported: set[frozenset[str]]) -> str | None:
-    for other in world.objects:
-        pair = frozenset((obj.name, other.name))
-        if other is obj or pair in reported or other in obj.attachments or obj in other.attachments:
-            continue
-        depth = -world.distance(obj, other, 0.0)
-        if depth > START_DEPTH:
-            reported.add(pair)
-            return f"{obj.name} starts {depth * 1000:.0f} mm inside {other.name}"
-    return None
-
-
-def _unsupported(world: "BulletWorld", obj: "Object") -> str | None:
-    (x, y, z), _ = obj.get_com_pose()
-    bottom = obj.get_aabb()[0][2]
-    hit = world.cast_rays([(x, y, z)], [(x, y, z - LOOK_DOWN)], ignore=[obj])[0]
-    if hit is None:
-        return f"{obj.name} has nothing under its centre of mass"
-    gap = bottom - hit.position[2]
-    if gap <= SUPPORT_GAP:
-        return None
-    under = hit.object.name if hit.object is not None else "something"
-    return f"{obj.name} is not supported: its centre of mass is {gap * 1000:.0f} mm above {under}"
+    objects = [world.robot if name == "robot" else world.get_object_by_name(name) for name in names]
+    return start_problems(world, [obj for obj in objects if obj is not None])
 
 
 def possible_variant(variations: "Variations", seed: int, index: int | None,

@@ -560,6 +560,20 @@ class BulletWorld:
         self._check_alive()
         self._states.restore(state)
 
+    def reset_to(self, state: WorldState) -> None:
+        """Put the world back to `state` as if it had just been loaded, the same way whatever ran since.
+
+        PyBullet's restoreState puts poses, joints and velocities back bitwise, but not the contact
+        caches a run leaves behind (nor sleep): one physics step from the restored state refreshes
+        them, a second restore undoes the step. Worlds reset like this give byte-identical traces
+        whatever ran on them before (tests/scenario/test_variations.py): what makes a sweep's
+        outcomes independent of its workers, and a projection's of the runs before it.
+        """
+        self.restore_state(state)
+        self.step()
+        self.restore_state(state)
+        self.wake_free_objects()
+
     def release_state(self, state: WorldState) -> None:
         """Free the memory PyBullet holds for a saved state (once nobody holds it any more)."""
         self._states.release(state)
