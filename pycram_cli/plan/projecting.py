@@ -153,8 +153,8 @@ class Project(Node):
             choice, why = self._choose(table)
             tn.info["projection"] = {"runs": self.runs, "seed": self.seed, "choose": self.choose,
                                      "at-least": self.at_least, "alternatives": table, "choice": choice, "why": why}
-        finally:
-            with ex.world_action():
+        finally:  # also when cancelled (no cancellation check): the trace's final state is the real world's
+            with world.lock:
                 world.reset_to(state)  # bitwise the state before the node, and the same whatever was projected
                 world.release_state(state)
         if choice is None:

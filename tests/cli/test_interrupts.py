@@ -80,6 +80,8 @@ def statuses(trace: dict) -> list[str]:
     (signal.SIGINT, 130, "- log: waiting\n- wait: 60\n- log: never\n"),
     (signal.SIGTERM, 143, "- log: waiting\n- par:\n    - wait: 60\n    - seq: [{wait: 50}, {log: never}]\n"
                           "    - seq: [{log: sibling}, {wait: 40}]\n"),
+    (signal.SIGINT, 130, "- log: waiting\n- project:\n    alternatives: {slow: [{wait: 60}], quick: [{log: x}]}\n"
+                         "    vary: {box: {noise: 0.05}}\n"),
 ])
 def test_a_signal_during_wait_ends_the_run_within_a_second_with_its_trace(tmp_path, signum, code, body):
     plan = plan_files(tmp_path, body)
@@ -97,6 +99,8 @@ def test_a_signal_during_wait_ends_the_run_within_a_second_with_its_trace(tmp_pa
     assert data["status"] == "interrupted" and data["interrupted"] == {"signal": signal.Signals(signum).name}
     assert not {"pending", "running"} & set(statuses(data)), "the trace is not finished"
     assert "cancelled" in statuses(data)
+    if "project" in body:  # the world the trace ends with is the real one, not a projected run's
+        assert data["final_state"]["objects"]["box"]["position"] == [0.5, 0.0, 0.025]
 
 
 _buffers: dict[int, bytearray] = {}
