@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""What the `project` step costs: 2 alternatives x RUNS projected runs of one pick-up (issue 27's target: <= 2 s).
+
+    python bench/project.py              # 3 repetitions, 20 runs per alternative
+    python bench/project.py --runs 5 --repeat 1
+
+Measured in one process on the bundled kitchen, PR2 at the counter:
+
+- `project`: a plan whose one step projects `pick-up milk` with the left and with the right arm,
+  RUNS runs each, the milk moved by up to 2 cm and turned by up to 0.3 rad, then runs the chosen
+  one (timed: the whole plan minus the chosen pick-up);
+- baseline: what a person would otherwise do by hand — the same 2 x RUNS pick-ups, each run as a
+  plan of its own on the world put back with `reset_to` and the milk moved by the same kind of draw.
+
+Both print medians over the repetitions, and their ratio: the step's own overhead (saving,
+resetting, drawing, checking starts, folding the trace) on top of the pick-ups themselves.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import random
+import statistics
+import sys
+import tempfile
+import textwrap
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+from pycram_cli.plan import load_plan, run_plan  # noqa: E402
+from pycram_cli.world.pose import quat_multiply, yaw_quaternion  # noqa: E402
+from pycram_cli.worldfile.loader import load_world  # noqa: E402
+
+COUNTER = "{target: [0.65, 0.7, 0], orientation: [0, 0, 0, 1]}"
+
+
+def project_plan(folder: Path, runs: int) -> Path:
+    path = folder / "project.yaml"
+    path.write_text(textwrap.dedent(f"""\
+        world: kitchen
+        body:
+          - moving: {COUNTER}
+          - project:
+              alternatives:
+                left: [{{pick-up: {{object: milk, arm: left}}}}]
+                right: [{{pick-up: {{object: milk, arm: right}}}}]
+              runs: {runs}
+              vary: {{milk: {{noise: [0.02, 0.02, 0], yaw: 0.3}}}}
+        """))
+    return path
+
+
+def one_plan(folder: Path, arm: str) -> Path:
+    path = folder / f"pick_{arm}.yaml"
+    path.write_text(f"world: kitchen\nbody:\n  - pick-up: {{object: milk, arm: {arm}}}\n")
+    return path
+
+
+def chosen_seconds(trace: dict) -> float:
+    project = trace["root"]["children"][1]
+    chosen = next(c for c in project["children"] if c["path"].endswith(("chosen left", "chosen right")))
+    return float(chosen["timing"]["duration"])
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=20, help="projected runs per alternative (default 20)")
+    parser.add_argument("--repeat", type=int, default=3, help="repetitions (default 3)")
+    args = parser.parse_args()
+    world = load_world("kitchen")
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        project = load_plan(project_plan(folder, args.runs), world)
+        singles = {arm: load_plan(one_plan(folder, arm), world) for arm in ("left", "right")}
+        (folder / "move.yaml").write_text(f"world: kitchen\nbody:\n  - moving: {COUNTER}\n")
+        mover = load_plan(folder / "move.yaml", world)
+        start = world.save_state()
+        milk = world.get_object_by_name("milk")
+        assert milk is not None
+        timed: list[float] = []
+        baseline: list[float] = []
+        for _ in range(args.repeat):
+            world.reset_to(start)
+            began = time.perf_counter()
+            result = run_plan(project, world)
+            timed.append(time.perf_counter() - began - chosen_seconds(result.trace))
+            assert result.succeeded, result.failure
+            world.reset_to(start)
+            run_plan(mover, world)
+            at_counter = world.save_state()
+            (x, y, z), orientation = milk.get_pose()
+            rng = random.Random(0)
+            began = time.perf_counter()
+            for arm in ("left", "right"):
+                for _ in range(args.runs):
+                    world.reset_to(at_counter)
+                    turned = quat_multiply(yaw_quaternion(rng.uniform(-0.3, 0.3)), orientation)
+                    milk.set_position_and_orientation((x + rng.uniform(-0.02, 0.02), y + rng.uniform(-0.02, 0.02), z),
+                                                      turned)
+                    run_plan(singles[arm], world)
+            baseline.append(time.perf_counter() - began)
+        world.exit()
+    step, plain = statistics.median(timed), statistics.median(baseline)
+    load = os.getloadavg()[0]
+    print(f"project step, 2 x {args.runs} projected pick-ups: median {step:.2f} s over {args.repeat} "
+          f"(target <= 2 s)")
+    print(f"baseline, the same pick-ups as plans of their own: median {plain:.2f} s")
+    print(f"ratio step / baseline: {step / plain:.2f}   (load average {load:.2f} on {os.cpu_count()} cores)")
+
+
+if __name__ == "__main__":
+    main()
