@@ -17,7 +17,9 @@ from ..errors import InputError, InputErrors, Location, as_list, raise_if_any
 from ..paths import find_plan, find_world
 from ..scenario import prepare
 from ..scenario.variations import SUFFIX, parse_variations
+from ..world import BulletWorld
 from ..worldfile.loader import load_spec
+from ..worldfile.starts import unsupported
 from ..worldfile.spec import WorldSpec, parse_world
 from ..yamlsource import LMap, load_yaml
 from . import console
@@ -66,6 +68,18 @@ def warn_missing_meshes(world: WorldSpec) -> None:
                             f"without it: {uri} (in {spec.file})")
 
 
+def warn_unsupported(spec: WorldSpec, sim: BulletWorld) -> None:
+    """A warning for each free object with nothing just below its centre of mass (off a table's edge, in the air):
+    it falls as soon as anything is simulated. A warning, not an error: a world may mean it."""
+    for item in spec.objects:
+        obj = sim.get_object_by_name(item.name)
+        if obj is None or obj.fixed or obj is sim.robot or any(obj in o.attachments for o in sim.objects):
+            continue
+        problem = unsupported(sim, obj)
+        if problem:
+            console.warning(f"{item.where}: {problem}: it falls as soon as anything is simulated")
+
+
 def check_variations(path: Path, world_file: str | None, params: tuple[str, ...] = ()) -> None:
     """A variation file against its plan and world."""
     data = load_yaml(path)
@@ -103,7 +117,11 @@ def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, 
                 if world.robot_description is not None:
                     raise_if_any(process_module_problems(world.robot_description))
                 warn_missing_meshes(world)
-                load_spec(world).exit()  # loaded too: what starts inside what is found here, not at run
+                sim = load_spec(world)  # loaded too: what starts inside what is found here, not at run
+                try:
+                    warn_unsupported(world, sim)
+                finally:
+                    sim.exit()
             elif kind == "variation":
                 check_variations(path, world_file, params)
             else:

@@ -153,16 +153,30 @@ def _links(world: BulletWorld) -> dict[str, Object]:
 
 
 def find_surface(world: BulletWorld, value: Any) -> Surface:
-    """An object (its top) or a link of one (`kitchen_island_surface`)."""
+    """An object (its top), a link of one (`kitchen_island_surface`), or `OBJECT/LINK` (`table_b/baseLink`): a link
+    name that several objects have (two tables of one model) must say whose."""
     if isinstance(value, Object):
         return Surface(find_object(world, value, "on"), None)
     name = str(value)
     obj = world.get_object_by_name(name)
     if obj is not None and obj is not world.robot:
         return Surface(obj, None)
+    owner, slash, link = name.partition("/")
+    if slash:
+        holder = world.get_object_by_name(owner)
+        if holder is None or holder is world.robot:
+            raise _error("on", f"no object '{owner}' (in '{name}')",
+                         did_you_mean(owner, [o.name for o in world.objects if o is not world.robot]))
+        if link not in holder.link_names:
+            raise _error("on", f"'{owner}' has no link '{link}'", did_you_mean(link, holder.link_names))
+        return Surface(holder, link)
+    holders = [o for o in world.objects if o is not world.robot and name in o.link_names]
+    if len(holders) > 1:
+        raise _error("on", f"'{name}' is a link of {' and '.join(o.name for o in holders)}: say whose",
+                     f"e.g. on: {holders[-1].name}/{name}")
+    if holders:
+        return Surface(holders[0], name)
     links = _links(world)
-    if name in links:
-        return Surface(links[name], name)
     candidates = [*links, *(o.name for o in world.objects if o is not world.robot)]
     raise _error("on", f"no surface '{name}': neither an object nor a link of one", did_you_mean(name, candidates))
 

@@ -126,9 +126,21 @@ class ActionStep(Node):
         elif what == "link" and links is not None and name not in links:
             v.error(f"'{key}': the world has no link '{name}'{origin}", where, key=key,
                     suggestion=did_you_mean(name, sorted(links)))
-        elif what == "object or link" and name not in objects and links is not None and name not in links:
-            v.error(f"'{key}': the world has no object or link '{name}'{origin}", where, key=key,
-                    suggestion=did_you_mean(name, [*objects, *sorted(links)]))
+        elif what == "object or link" and name not in objects:
+            owner, slash, link = name.partition("/")
+            holders = [o for o, names in facts.links.items() if o != facts.robot and name in names]
+            if slash and owner not in objects:
+                v.error(f"'{key}': the world has no object '{owner}' (in '{name}'){origin}", where, key=key,
+                        suggestion=did_you_mean(owner, objects))
+            elif slash and owner in facts.links and link not in facts.links[owner]:
+                v.error(f"'{key}': '{owner}' has no link '{link}'{origin}", where, key=key,
+                        suggestion=did_you_mean(link, facts.links[owner]))
+            elif not slash and name not in links:
+                v.error(f"'{key}': the world has no object or link '{name}'{origin}", where, key=key,
+                        suggestion=did_you_mean(name, [*objects, *sorted(links)]))
+            elif not slash and len(holders) > 1:
+                v.error(f"'{key}': '{name}' is a link of {' and '.join(holders)}: say whose{origin}", where, key=key,
+                        suggestion=f"e.g. {holders[-1]}/{name}")
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
         values = ex.evaluate(dict(self.slots))

@@ -122,7 +122,7 @@ class Validator:
                 problem = type_problem(param, param.default, self.robots)
                 if problem:
                     self.error(f"the default of {problem}", param.default_where, key=param.name)
-                else:
+                elif self.values.get(param.name, param.default) == param.default:  # a value given (-p) replaces it
                     self.world_value(param, param.default, param.default_where, param.name, "the default of ")
 
     def world_value(self, param: Param, value: Any, where: Location, key: str, prefix: str = "",

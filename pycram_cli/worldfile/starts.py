@@ -30,9 +30,9 @@ def start_problems(world: "BulletWorld", objects: Iterable["Object"]) -> list[st
         if inside:
             problems.append(inside)
         elif obj is not world.robot and not obj.fixed:
-            unsupported = _unsupported(world, obj)
-            if unsupported:
-                problems.append(unsupported)
+            floating = unsupported(world, obj)
+            if floating:
+                problems.append(floating)
     return problems
 
 
@@ -48,7 +48,8 @@ def _inside(world: "BulletWorld", obj: "Object", reported: set[frozenset[str]]) 
     return None
 
 
-def _unsupported(world: "BulletWorld", obj: "Object") -> str | None:
+def unsupported(world: "BulletWorld", obj: "Object") -> str | None:
+    """Why `obj` is not supported (nothing within SUPPORT_GAP under its centre of mass), or None when it is."""
     (x, y, z), _ = obj.get_com_pose()
     bottom = obj.get_aabb()[0][2]
     hit = world.cast_rays([(x, y, z)], [(x, y, z - LOOK_DOWN)], ignore=[obj])[0]
