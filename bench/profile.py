@@ -76,9 +76,12 @@ PHASES: dict[str, tuple[str, ...]] = {
                                "pycram_cli.world.bullet_world:BulletWorld.segmentation_of",
                                "pycram_cli.world.bullet_world:BulletWorld.picture_of"),
     "locations": ("pycram_cli.locations.resolve:resolution", "pycram_cli.locations.resolve:take_from_here",
-                  "pycram_cli.locations.resolve:_Resolution.next", "pycram_cli.locations.resolve:_Resolution.prepare",
-                  "pycram_cli.locations.resolve:floor_map"),
-    "other (process modules, designators)": ("pycram_cli.designators.performing:perform",),
+                  "pycram_cli.locations.resolve:_Resolution.prepare", "pycram_cli.locations.resolve:floor_map",
+                  "pycram_cli.locations.resolve:BasePoseResolution.next",
+                  "pycram_cli.locations.resolve:SpotResolution.next",
+                  "pycram_cli.designators.actions.actor:Finder.next"),
+    "other (process modules, designators)": ("pycram_cli.designators.performing:perform",
+                                             "pycram_cli.plan.actions:ActionStep.execute"),
     "bookkeeping / trace": ("pycram_cli.plan.executor:run_plan",),
 }
 LOADING = "world loading"
