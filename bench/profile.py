@@ -20,8 +20,8 @@ resolution, driving the base, the glue between phases). Loading the world is rep
 `pycram run` reports plan time without it.
 
 cProfile slows pure Python far more than calls into PyBullet, so under it the Python-heavy phases
-look dearer than they are: `--no-cprofile` measures the phases alone (the wrappers cost about a
-microsecond per call), at full speed. The top functions come from cProfile (own time, and time with
+look dearer than they are: `--no-cprofile` measures the phases alone (only the wrappers' few
+microseconds per entry added), at nearly full speed. The top functions come from cProfile (own time, and time with
 callees). `--unit` also measures the machine unit (one second of simulated physics of the bundled
 kitchen, 240 steps, in the same process) and states plan time in it, so that runs on a loaded
 machine compare.
