@@ -40,7 +40,7 @@ import numpy as np
 
 from ..failures import ManipulationFailure
 from ..world import Object
-from ..world.pose import quat_to_matrix
+from ..world.pose import quat_to_matrix, quats_to_matrices
 from .base import Robot
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
@@ -293,7 +293,8 @@ class Motion:
         poses = self.body.link_poses(self._indices)  # read at once (the same numbers as one by one)
         frames = [poses[index] for index in self._indices]
         origins = np.array([f[0] for f in frames])
-        axes = np.einsum("nij,nj->ni", np.array([quat_to_matrix(f[1]) for f in frames]), self._joint_axes)
+        axes = np.einsum("nij,nj->ni", quats_to_matrices(np.array([f[1] for f in frames], dtype=float).reshape(-1, 4)),
+                         self._joint_axes)
         rel = corners[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
         along = np.einsum("nmcd,nd->nmc", rel, axes)
         perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
