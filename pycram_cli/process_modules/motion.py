@@ -31,14 +31,16 @@ geometry comes from the world (`closest_points`, boxes); nothing here calls PyBu
 from __future__ import annotations
 
 import math
+import weakref
+from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Iterable, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 
 from ..failures import ManipulationFailure
 from ..world import Object
-from ..world.pose import quat_to_matrix
+from ..world.pose import quat_to_matrix, quats_to_matrices
 from .base import Robot
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
@@ -53,6 +55,9 @@ LEVER_REFRESH = 0.1
 PRECISION = 0.001
 #: an approach that stops at contact lets a contact that exists where it starts get this much deeper (m: numeric noise)
 STILL = 1e-5
+#: how many walks and searches each world remembers (the newest; see `Motion.situation`)
+MEMO_SIZE = 512
+_MEMO: "weakref.WeakKeyDictionary[Any, OrderedDict[tuple, Any]]" = weakref.WeakKeyDictionary()
 
 
 @dataclass(frozen=True)
@@ -100,6 +105,7 @@ class Motion:
         body = self.body = robot.body
         self.world = body.world
         self.joints = [body.joint(name) for name in joints if body.joint(name).movable]
+        self._indices = [j.index for j in self.joints]
         self.links = sorted(body.links_below(j.name for j in self.joints))
         # what the moving links hold moves with them; what the robot holds elsewhere (in the other hand, or in
         # this gripper's palm while its fingers move) is something to avoid like anything else
@@ -107,6 +113,7 @@ class Motion:
         skip = {body, *self.held, *ignore}
         self.obstacles = [obj for obj in self.world.objects if obj not in skip]
         skip_links = set((obj.id, link) for obj, link in ignore_links)
+        self._skip_links = frozenset(skip_links)
         # every obstacle link's box (kept by the objects while they do not change), but the links to ignore
         self._obstacle_boxes = [(obj, link) for obj in self.obstacles for link in range(-1, len(obj.joints))
                                 if (obj.id, link) not in skip_links]
@@ -123,6 +130,45 @@ class Motion:
         self._joint_axes = np.array([quat_to_matrix(j.inertial_frame[1]) @ np.asarray(j.axis, dtype=float)
                                      / (np.linalg.norm(j.axis) or 1.0) for j in self.joints]).reshape(-1, 3)
         self._prismatic = np.array([j.type == "prismatic" for j in self.joints], dtype=bool)
+
+    def situation(self) -> tuple | None:
+        """Everything a walk or search of this motion depends on, exactly: the robot's configuration (where each of
+        its links is), what follows it (re-placed by its links at every step of a path: by configuration and how it
+        is held), every other object's version (an unchanged version is an unchanged object, see
+        `BulletWorld.version`), the moving joints and what may be touched. Equal situations give equal walks and
+        searches, bitwise, so each is made once (`remembered`): a way tried again — a departure re-tried for each
+        arrival in `arms.move_over`, the way a location test found, then moved along — costs a look-up. None where
+        versions do not see every change (a GUI, real time) or in a private copy: nothing is remembered there."""
+        world = self.world
+        if not world.tracks_changes or world.is_copy:
+            return None
+        body = self.body
+        attached = followers(body)
+        placed = set(attached)
+        return (body.id, body.configuration(), tuple(j.index for j in self.joints),
+                tuple((obj.id, obj.configuration(), tuple((other.id, att.parent_link, att.child_link, att.transform)
+                                                          for other, att in obj.attachments.items()))
+                      for obj in attached),
+                tuple((obj.id, world.version_of(obj)) for obj in self.obstacles if obj not in placed),
+                self._skip_links)
+
+    def remembered(self, key: tuple | None) -> Any:
+        """What was found for `key` (a situation and the question asked in it) in this world, or None."""
+        if key is None:
+            return None
+        memo = _MEMO.get(self.world)
+        found = memo.get(key) if memo is not None else None
+        if found is not None:
+            memo.move_to_end(key)  # type: ignore[union-attr]
+        return found
+
+    def remember(self, key: tuple | None, answer: Any) -> None:
+        if key is None:
+            return
+        memo = _MEMO.setdefault(self.world, OrderedDict())
+        memo[key] = answer
+        while len(memo) > MEMO_SIZE:
+            memo.popitem(last=False)
 
     def _holder(self, obj: Object) -> int | None:
         """The robot link `obj` hangs from (through other held objects, if need be)."""
@@ -141,12 +187,18 @@ class Motion:
 
     # -- where the moving part is -----------------------------------------------------------------
     def _mover_boxes(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.body.link_aabbs(self.links)
+        rows = self.body.aabb_rows(self.links)
         if self.held:
-            boxes = [obj.get_aabb() for obj in self.held]
-            lo = np.concatenate([lo, np.array([b[0] for b in boxes]).reshape(-1, 3)])
-            hi = np.concatenate([hi, np.array([b[1] for b in boxes]).reshape(-1, 3)])
-        return lo, hi
+            rows += [obj.get_aabb() for obj in self.held]
+        boxes = np.array(rows, dtype=float).reshape(-1, 2, 3)  # one array for all (a check's hot path)
+        return boxes[:, 0], boxes[:, 1]
+
+    def _distance(self, k: int, o: int, within: float) -> float:
+        """The distance between mover k and obstacle box o (negative: inside), inf when farther than `within`."""
+        obj, link = self._obstacle_boxes[o]
+        if k < len(self.links):
+            return self.world.distance(self.body, obj, within, link_a=self.links[k], link_b=link)
+        return self.world.distance(self.held[k - len(self.links)], obj, within, link_b=link)
 
     def _mover_name(self, k: int) -> str:
         if k < len(self.links):
@@ -154,32 +206,48 @@ class Motion:
         return f"the held {self.held[k - len(self.links)].name}"
 
     def scan(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, list[Hit]]:
-        """At the current configuration: a lower bound of the gap between the moving part and the obstacles (only
-        meaningful above SPACING), and what the moving part is inside of (beyond PENETRATION and the allowed)."""
+        """At the current configuration: a lower bound of the gap between the moving part and the obstacles (exact
+        above SPACING; at or below it, some value at or below SPACING: all a path's checks need), and what the
+        moving part is inside of (beyond PENETRATION and the allowed).
+
+        Only boxes that overlap can hold parts inside each other (PyBullet's boxes enclose the shapes), so only
+        their pairs are measured for hits; a pair whose boxes are apart (but nearer than NEAR) is measured only
+        while it can still lower the clearance: nearest boxes first, until the clearance is at SPACING or the next
+        box gap is beyond it (the distance between two parts is never below the gap between their boxes)."""
         if not self.links and not self.held:
             return math.inf, []
         m_lo, m_hi = boxes if boxes is not None else self._mover_boxes()
         if not len(self._o_lo):
             return math.inf, []
-        gap = np.maximum(0.0, np.maximum(self._o_lo[None, :, :] - m_hi[:, None, :], m_lo[:, None, :] - self._o_hi[None, :, :]))
-        gaps = np.sqrt(np.sum(gap * gap, axis=2))  # (movers, obstacle links)
-        near = np.argwhere(gaps < NEAR)
-        far = gaps[gaps >= NEAR]
-        clearance = float(far.min()) if far.size else math.inf
+        # the gaps between the boxes, (movers, obstacle links), computed in place (a check's hot path)
+        gap = np.subtract(self._o_lo[None, :, :], m_hi[:, None, :])
+        np.maximum(gap, np.subtract(m_lo[:, None, :], self._o_hi[None, :, :]), out=gap)
+        np.maximum(gap, 0.0, out=gap)
+        np.multiply(gap, gap, out=gap)
+        gaps = np.sqrt(np.sum(gap, axis=2))
+        near = gaps < NEAR
+        clearance = float(np.min(gaps, where=~near, initial=math.inf))
         hits: dict[tuple[int, int, int], Hit] = {}
-        for k, o in near:
-            obj, link = self._obstacle_boxes[o][0], self._obstacle_boxes[o][1]
-            if k < len(self.links):
-                distance = self.world.distance(self.body, obj, NEAR, link_a=self.links[k], link_b=link)
-            else:
-                distance = self.world.distance(self.held[k - len(self.links)], obj, NEAR, link_b=link)
+        if not near.any():
+            return clearance, []
+        for k, o in np.argwhere(gaps == 0.0):
+            distance = self._distance(k, o, NEAR)
             clearance = min(clearance, max(distance, 0.0) if distance < NEAR else NEAR)
             if distance >= 0.0:
                 continue
             depth = -distance
+            obj, link = self._obstacle_boxes[o]
             key = (self._mover_name(k), obj.id, link)
             if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
                 hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
+        apart_k, apart_o = np.nonzero(near & (gaps > 0.0))
+        if len(apart_k) and clearance > SPACING:
+            apart = gaps[apart_k, apart_o]
+            for i in np.argsort(apart, kind="stable"):
+                if clearance <= SPACING or apart[i] > clearance:
+                    break  # nothing further can change the clearance where it matters
+                distance = self._distance(apart_k[i], apart_o[i], NEAR)
+                clearance = min(clearance, max(distance, 0.0) if distance < NEAR else NEAR)
         return clearance, sorted(hits.values(), key=lambda h: -h.depth)
 
     def allow_current(self) -> None:
@@ -222,9 +290,11 @@ class Motion:
         `below[i, k]` says whether mover k hangs below joint i.
         """
         corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
-        frames = [self.body.get_link_position_and_orientation(j.index) for j in self.joints]
+        poses = self.body.link_poses(self._indices)  # read at once (the same numbers as one by one)
+        frames = [poses[index] for index in self._indices]
         origins = np.array([f[0] for f in frames])
-        axes = np.einsum("nij,nj->ni", np.array([quat_to_matrix(f[1]) for f in frames]), self._joint_axes)
+        axes = np.einsum("nij,nj->ni", quats_to_matrices(np.array([f[1] for f in frames], dtype=float).reshape(-1, 4)),
+                         self._joint_axes)
         rel = corners[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
         along = np.einsum("nmcd,nd->nmc", rel, axes)
         perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
@@ -279,7 +349,7 @@ class Motion:
         return start, short_way(self.body, names, start, end)
 
     def _put(self, values: np.ndarray) -> None:
-        self.body.reset_joints({j.name: float(v) for j, v in zip(self.joints, values)})
+        self.body.reset_joint_indices(self._indices, values)
         self.body.move_attached()
 
     def walk(self, goal: Mapping[str, float], stop_at_contact: bool = False) -> tuple[float, list[Hit], dict[str, float]]:
@@ -292,12 +362,20 @@ class Motion:
         names = [j.name for j in self.joints]
         if not len(start):
             return 1.0, [], {}
+        situation = self.situation()
+        key = None if situation is None else (situation, "walk", start.tobytes(), end.tobytes(), stop_at_contact)
+        known = self.remembered(key)
+        if known is not None:
+            self._put(start)  # as a walk leaves it: the joints put back, what they hold placed by them
+            return known[0], list(known[1]), dict(known[2])
         self._prune(self._levers())
         self.allow_current()
         self.deepen = STILL if stop_at_contact else PENETRATION
         last_free, hits = self._follow(start, end, stop_at_contact)
         reached = start + last_free * (end - start)
-        return (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
+        answer = (1.0 if not hits else last_free), hits, {n: float(v) for n, v in zip(names, reached)}
+        self.remember(key, (answer[0], list(hits), dict(answer[2])))
+        return answer
 
     def _follow(self, start: np.ndarray, end: np.ndarray, stop_at_contact: bool = False) -> tuple[float, list[Hit]]:
         """The checks of `walk` along the straight path from `start` to `end` (the joints are put back at `start`):
@@ -443,7 +521,8 @@ def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object
     RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
     configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
     other; the way found is then shortened by joining its waypoints directly wherever that is free. The random
-    numbers come from a fixed seed, so the same world gives the same way.
+    numbers come from a fixed seed, so the same world gives the same way; a search made again in the same situation
+    (`Motion.situation`) is answered from memory.
     """
     names = [name for name in goal]
     motion = Motion(robot, names, ignore)
@@ -451,6 +530,20 @@ def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object
     order = [j.name for j in motion.joints]
     if not order:
         return []
+    situation = motion.situation()
+    key = None if situation is None else (situation, "search", start_values.tobytes(), end_values.tobytes(), edges)
+    known = motion.remembered(key)
+    if known is not None:
+        motion._put(start_values)  # as a search leaves it
+        return None if known[0] is None else [dict(values) for values in known[0]]
+    way = _search(motion, start_values, end_values, order, edges)
+    motion.remember(key, (None if way is None else [dict(values) for values in way],))
+    return way
+
+
+def _search(motion: Motion, start_values: np.ndarray, end_values: np.ndarray, order: list[str],
+            edges: int) -> list[dict[str, float]] | None:
+    """The search of `search_path` (RRT-connect, then shortened), from `start_values` to `end_values`."""
     lows, highs = [], []
     for joint, value in zip(motion.joints, start_values):
         if joint.limited:

@@ -283,16 +283,29 @@ def _angle(target: np.ndarray, current: np.ndarray) -> float:
     return math.acos(max(-1.0, min(1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0)))
 
 
+#: the seeds after the first (the middle of the ranges, then the pseudo-random ones) by joint ranges and count: the
+#: same for every search of the same joints, so made once (drawing them cost as much as an iteration of the search)
+_FIXED_SEEDS: dict[tuple[bytes, bytes, int], np.ndarray] = {}
+
+
 def _seeds(problem: _Problem, count: int, current: np.ndarray | None = None) -> np.ndarray:
     """Deterministic starting points: where the arm is (or `current`), the middle of its range, then fixed
     pseudo-random ones."""
-    lo = np.where(np.isfinite(problem.lo), problem.lo, -math.pi)
-    hi = np.where(np.isfinite(problem.hi), problem.hi, math.pi)
-    seeds = [(problem.current if current is None else current).copy(), (lo + hi) / 2.0]
-    rng = np.random.default_rng(SEED)
-    while len(seeds) < count:
-        seeds.append(lo + rng.random(len(lo)) * (hi - lo))
-    return np.clip(np.array(seeds[:count]), problem.lo, problem.hi)
+    first = np.clip((problem.current if current is None else current)[None, :], problem.lo, problem.hi)
+    if count <= 1:
+        return first
+    key = (problem.lo.tobytes(), problem.hi.tobytes(), count)
+    rest = _FIXED_SEEDS.get(key)
+    if rest is None:
+        lo = np.where(np.isfinite(problem.lo), problem.lo, -math.pi)
+        hi = np.where(np.isfinite(problem.hi), problem.hi, math.pi)
+        seeds = [(lo + hi) / 2.0]
+        rng = np.random.default_rng(SEED)
+        while len(seeds) < count - 1:
+            seeds.append(lo + rng.random(len(lo)) * (hi - lo))
+        rest = _FIXED_SEEDS[key] = np.clip(np.array(seeds), problem.lo, problem.hi)
+        rest.flags.writeable = False
+    return np.concatenate([first, rest])
 
 
 Found = tuple[np.ndarray, float, "float | None"]

@@ -224,6 +224,11 @@ class BulletWorld:
         return not self._realtime and self.mode != "gui"
 
     @property
+    def is_copy(self) -> bool:
+        """Whether this is a world's private copy (prospection.py), whose objects are written without versions."""
+        return self._hidden
+
+    @property
     def version(self) -> int:
         """A number that changes whenever the world does, and only then: teleports, joint changes,
         attachments, simulation steps, gravity, objects added or removed (see `mark_changed`).

@@ -393,6 +393,12 @@ class Object:
         return (np.array([r[0] for r in rows], dtype=float).reshape(-1, 3),
                 np.array([r[1] for r in rows], dtype=float).reshape(-1, 3))
 
+    def aabb_rows(self, links: Iterable[int]) -> list[tuple[Any, Any]]:
+        """PyBullet's boxes of some links as it gives them, a (min corner, max corner) pair per link: the rows
+        `link_aabbs` makes arrays of, for a caller that adds rows of its own before making one array of them all."""
+        cid = self.world.client_id
+        return [p.getAABB(self.id, i, physicsClientId=cid) for i in links]
+
     def get_local_aabb(self) -> tuple[Vec3, Vec3]:
         """The box of the object's collision shapes in its own frame (min corner, max corner): for a mesh, its
         vertices' bounds (no collision margin); otherwise every link's box, turned into the object's frame (exact
@@ -421,6 +427,17 @@ class Object:
             return {}
         states = p.getJointStates(self.id, [j.index for j in joints], physicsClientId=self.world.client_id)
         return {j.name: float(s[0]) for j, s in zip(joints, states)}
+
+    def configuration(self) -> tuple[Any, ...]:
+        """Where PyBullet holds the object's links now, exactly: its base's pose and every joint's position, as
+        PyBullet reports them. Equal configurations place every link alike, bitwise: a key for results computed
+        from where the object is (what `version` cannot be for an object re-placed to the same spot)."""
+        cid = self.world.client_id
+        pose = p.getBasePositionAndOrientation(self.id, physicsClientId=cid)
+        if not self.joints:
+            return (pose,)
+        states = p.getJointStates(self.id, range(len(self.joints)), physicsClientId=cid)
+        return pose, tuple(s[0] for s in states)
 
     def set_joint_position(self, name: str, value: float) -> None:
         self.set_joint_positions({name: value})
@@ -460,6 +477,15 @@ class Object:
         ids = [self.get_joint_id(name) for name in positions]
         # one call for all of them (what collision-checked motions do at every step of a path)
         p.resetJointStatesMultiDof(self.id, ids, [[float(v)] for v in positions.values()], [[0.0]] * len(ids),
+                                   physicsClientId=self.world.client_id)
+        self.world.mark_changed(self)
+
+    def reset_joint_indices(self, indices: Sequence[int], values: Iterable[float]) -> None:
+        """`reset_joints` by joint index, in one call: for a caller that moves the same joints many times (every
+        step of a collision-checked path), with the indices looked up once."""
+        if not indices:
+            return
+        p.resetJointStatesMultiDof(self.id, indices, [[float(v)] for v in values], [[0.0]] * len(indices),
                                    physicsClientId=self.world.client_id)
         self.world.mark_changed(self)
 

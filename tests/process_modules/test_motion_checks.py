@@ -1,0 +1,175 @@
+"""Collision-checked paths cost what they must and answer as before: a walk or search made again in the same
+situation is answered from memory (and from nowhere else: any change of the robot, of what it holds or of another
+object asks again), and a check measures only the pairs of parts whose distance can matter."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from pycram_cli import load_world
+from pycram_cli.process_modules import Robot, motion
+from pycram_cli.process_modules.arms import arm_configuration
+
+
+@pytest.fixture(scope="module")
+def kitchen():
+    world = load_world()
+    yield world
+    world.exit()
+
+
+@pytest.fixture
+def world(kitchen):
+    with kitchen.snapshot():
+        motion._MEMO.pop(kitchen, None)
+        yield kitchen
+        motion._MEMO.pop(kitchen, None)
+
+
+def at_the_counter(world):
+    """The PR2 before the counter (as the demo stands to take the milk), its left arm parked; the arm's joints, and
+    a goal reaching out over the counter."""
+    world.robot.set_position_and_orientation((0.65, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
+    robot = Robot.of(world)
+    park = arm_configuration(robot, "left", "park")
+    world.robot.reset_joints(park)
+    joints = list(park)
+    out = dict(zip(joints, [0.3, -0.2, 0.5, -1.0, 0.0, -0.5, 0.0]))
+    return robot, joints, out
+
+
+def counting(monkeypatch, name):
+    calls = []
+    original = getattr(motion.Motion, name) if name != "_search" else motion._search
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return original(*args, **kwargs)
+
+    if name == "_search":
+        monkeypatch.setattr(motion, "_search", counted)
+    else:
+        monkeypatch.setattr(motion.Motion, name, counted)
+    return calls
+
+
+def test_a_walk_made_again_in_the_same_situation_is_remembered(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    follows = counting(monkeypatch, "_follow")
+    first = motion.Motion(robot, joints).walk(out)
+    before = world.robot.get_joint_positions(joints)
+    again = motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 1
+    assert again == first
+    assert world.robot.get_joint_positions(joints) == before  # left as a walk leaves it: where it started
+
+
+def test_a_remembered_answer_is_a_copy(world):
+    robot, joints, out = at_the_counter(world)
+    first = motion.Motion(robot, joints).walk(out)
+    first[1].append("changed by the caller")
+    first[2].clear()
+    again = motion.Motion(robot, joints).walk(out)
+    assert "changed by the caller" not in again[1] and again[2]
+
+
+def test_an_object_moved_into_the_way_is_seen(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    fraction, hits, _ = motion.Motion(robot, joints).walk(out)
+    assert fraction == 1.0 and not hits
+    milk = world.get_object_by_name("milk")
+    with robot.body.joints_kept(joints):  # where the hand ends up: the milk goes there
+        robot.body.reset_joints(out)
+        hand = robot.body.get_link_position(robot.description.arm("left").tool_frame)
+    milk.set_position((hand[0], hand[1], hand[2] - 0.05))
+    follows = counting(monkeypatch, "_follow")
+    fraction, hits, _ = motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 1
+    assert hits and fraction < 1.0
+
+
+def test_the_robot_elsewhere_or_holding_something_asks_again(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    motion.Motion(robot, joints).walk(out)
+    follows = counting(monkeypatch, "_follow")
+    world.robot.set_position_and_orientation((0.64, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
+    motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 1
+    spoon = world.get_object_by_name("spoon") or world.get_object_by_name("cereal")
+    tool = robot.description.arm("left").tool_frame
+    world.robot.attach(spoon, tool)
+    motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 2
+
+
+def test_a_state_restored_is_the_situation_it_was(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    with world.snapshot():
+        first = motion.Motion(robot, joints).walk(out)
+        world.get_object_by_name("milk").set_position((5.0, 5.0, 0.5))
+    follows = counting(monkeypatch, "_follow")
+    assert motion.Motion(robot, joints).walk(out) == first
+    assert not follows
+
+
+def test_a_world_that_does_not_track_its_changes_remembers_nothing(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    monkeypatch.setattr(type(world), "tracks_changes", property(lambda self: False))
+    assert motion.Motion(robot, joints).situation() is None
+    follows = counting(monkeypatch, "_follow")
+    motion.Motion(robot, joints).walk(out)
+    motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 2
+
+
+def test_a_search_made_again_is_remembered_even_when_it_found_nothing(world, monkeypatch):
+    robot, joints, out = at_the_counter(world)
+    searches = counting(monkeypatch, "_search")
+    first = motion.search_path(robot, out, edges=3)
+    again = motion.search_path(robot, out, edges=3)
+    assert again == first and len(searches) == 1
+    motion.search_path(robot, out, edges=4)  # another budget is another question
+    assert len(searches) == 2
+
+
+def every_pair(m: motion.Motion) -> tuple[float, list[tuple[str, str, float]]]:
+    """The check as it was before pairs were skipped: every pair of boxes nearer than NEAR measured."""
+    m_lo, m_hi = m._mover_boxes()
+    gap = np.maximum(0.0, np.maximum(m._o_lo[None] - m_hi[:, None], m_lo[:, None] - m._o_hi[None]))
+    gaps = np.sqrt(np.sum(gap * gap, axis=2))
+    far = gaps[gaps >= motion.NEAR]
+    clearance = float(far.min()) if far.size else math.inf
+    hits = []
+    for k, o in np.argwhere(gaps < motion.NEAR):
+        distance = m._distance(k, o, motion.NEAR)
+        clearance = min(clearance, max(distance, 0.0) if distance < motion.NEAR else motion.NEAR)
+        if distance < -motion.PENETRATION:
+            hits.append((m._mover_name(k), m._obstacle_boxes[o][0].name, -distance))
+    return clearance, sorted(hits, key=lambda h: -h[2])
+
+
+def test_a_check_skips_only_pairs_that_cannot_matter(world):
+    """Along the arm's way from park down into the counter: the same hits as measuring every pair, and the same
+    clearance wherever it is above SPACING (below it, every check steps SPACING anyway)."""
+    robot, joints, out = at_the_counter(world)
+    down = {**out, joints[1]: 1.2}
+    m = motion.Motion(robot, joints)
+    start, end = m._endpoints(down)
+    seen_hits = seen_clear = 0
+    try:
+        for t in np.linspace(0.0, 1.0, 41):
+            m._put(start + t * (end - start))
+            clearance, hits = m.scan()
+            reference, expected = every_pair(m)
+            assert [(h.mover, h.obstacle.name, h.depth) for h in hits] == expected
+            if reference > motion.SPACING:
+                assert clearance == reference
+                seen_clear += 1
+            else:
+                assert clearance <= motion.SPACING
+            seen_hits += bool(hits)
+    finally:
+        m._put(start)
+    assert seen_hits and seen_clear  # the way passes free space and goes into the counter
