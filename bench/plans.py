@@ -149,16 +149,6 @@ def run_child(case: Case) -> dict[str, Any]:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
-def commit() -> dict[str, Any]:
-    """The commit measured, and whether the work tree had changes beside it."""
-    def git(*args: str) -> str:
-        return subprocess.run(["git", *args], cwd=REPO, capture_output=True, text=True).stdout.strip()
-
-    return {"commit": git("rev-parse", "--short=12", "HEAD"),
-            "dirty": bool(git("status", "--porcelain", "--untracked-files=no", "--", "pycram_cli", "plans", "worlds",
-                              "resources"))}
-
-
 def measure(case: Case, runs: int) -> dict[str, Any]:
     """Medians over `runs` of the command and of the child, with the load before each run."""
     commands, children, loads = [], [], []
@@ -224,7 +214,10 @@ def main() -> None:
         for case in chosen:
             print(f"{case.name} ...", file=sys.stderr, flush=True)
             results["plans"][case.name] = measure(case, args.runs)
-        results.update(commit())
+        from results_file import provenance  # bench/results_file.py (this script's folder is on sys.path)
+
+        measured = provenance()
+        results.update({"commit": measured["commit"], "dirty": measured["dirty"]})
         results.update({"runs": args.runs, "date": time.strftime("%Y-%m-%d", time.gmtime()),
                         "machine": {"cpus": os.cpu_count(), "python": platform.python_version(),
                                     "system": platform.system()}})

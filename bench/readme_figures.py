@@ -168,10 +168,12 @@ def plans_table(results: dict[str, Any]) -> str:
         rows.append(f"| {plan} | {world} | {result} | {case['plan_s']:.2f} s | {case['process_s']:.2f} s | "
                     f"{case['units']:.1f} | {case['load']:.1f} | {aim} |")
     units = [c["unit_s"] for c in results["plans"].values()]
+    counts = sorted({len(c["runs"]["plan_s"]) for c in results["plans"].values()})  # --only may mix them
+    runs = str(counts[0]) if len(counts) == 1 else f"{counts[0]}–{counts[-1]}"
     loads = [c["load"] for c in results["plans"].values()]
     note = (f"Measured by `python bench/plans.py` on commit {results['commit']}"
             f"{' (with uncommitted changes)' if results['dirty'] else ''} ({results['date']}, "
-            f"{results['machine']['cpus']} cores), medians of {results['runs']} runs each; the load column is the "
+            f"{results['machine']['cpus']} cores), medians of {runs} runs each; the load column is the "
             f"load average (1 min) before the runs, {min(loads):.1f}–{max(loads):.1f} over the table. *Plan time* is "
             f"what `pycram run --json` reports, *process start to exit* a fresh `pycram run` process. A *machine unit* "
             f"is one second of simulated physics of the bundled kitchen (240 steps), timed in the same process as the "
