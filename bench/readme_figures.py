@@ -178,9 +178,9 @@ def plans_table(results: dict[str, Any]) -> str:
             f"what `pycram run --json` reports, *process start to exit* a fresh `pycram run` process. A *machine unit* "
             f"is one second of simulated physics of the bundled kitchen (240 steps), timed in the same process as the "
             f"plan just before it ({statistics.median(units) * 1000:.0f} ms here, median), so that the machine's load "
-            f"weighs on both; under a heavy load units still grow (over a long plan the process meets other jobs "
-            f"differently than over one second), less than seconds do. The targets are issue 28's, for an idle "
-            f"machine.")
+            f"weighs on both: units vary less with the load than seconds do, but do not escape it (over a long plan "
+            f"the process meets other jobs differently than over one second). The targets are issue 28's, for an "
+            f"idle machine.")
     return "\n".join(rows) + "\n\n" + note + "\n"
 
 
