@@ -4,6 +4,9 @@
     python bench/locations.py            # full run (a few minutes: the baseline is slow)
     python bench/locations.py --quick    # fewer repetitions
 
+A full run keeps its table in bench/results.json (`tables.locations`, with the commit and the load average),
+from which the README's table is written (bench/readme_figures.py).
+
 Ours: `locate(world, LOCATION).next()` on the bundled kitchen, from scratch every time (the
 floor map is built again: the cache is cleared before each run), so each figure is the whole
 cost of a first pose. "warm" repeats it with the floor map kept (the world has not moved).
@@ -23,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import sys
 import time
@@ -34,6 +38,7 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 from pycram_cli.locations import locate, parse_location  # noqa: E402
 from pycram_cli.locations import resolve as resolving  # noqa: E402
 from pycram_cli.locations.resolve import BasePoseResolution, Candidates  # noqa: E402
@@ -113,6 +118,7 @@ def main(argv: list[str] | None = None) -> int:
         ("fetch: reachable-for + visible-for milk", FETCH, {"reachable-for": "milk", "visible-for": "milk"}, 300.0),
     ]
     rows = []
+    load_before = os.getloadavg()[0]
     for label, path, location, target in cases:
         ours_world, base_world = load_world(path), load_world(path)
         try:
@@ -137,10 +143,10 @@ def main(argv: list[str] | None = None) -> int:
               "met?", "ours says", "random sampling")
     widths = [max(len(str(r[k])) for r in [header, *rows]) for k in range(len(header))]
     line = lambda r: "| " + " | ".join(str(c).ljust(w) for c, w in zip(r, widths)) + " |"  # noqa: E731
-    print(line(header))
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for row in rows:
-        print(line(row))
+    lines = [line(header), "|" + "|".join("-" * (w + 2) for w in widths) + "|", *(line(row) for row in rows)]
+    print("\n".join(lines))
+    if not opts.quick:
+        print(f"wrote {results_file.record_table('locations', chr(10).join(lines), load_before)}", file=sys.stderr)
     print(f"\nPyCRAM's CostmapLocation(reachable_for=...) on the thesis kitchen, for reference: {PYCRAM_FIGURE}.")
     return 0
 

@@ -4,6 +4,9 @@
     python bench/reasoning.py            # full run (about 15 s)
     python bench/reasoning.py --quick    # fewer repetitions
 
+A full run keeps its table in bench/results.json (`tables.reasoning`, with the commit and the load average),
+from which the README's table is written (bench/readme_figures.py).
+
 Both run on the default kitchen world (`worlds/kitchen.yaml`), each in its own copy of it
 loaded in the same process (the baseline hides bodies by changing their colours, which
 must not disturb ours). Perception, contact and stability queries run on the world as
@@ -24,6 +27,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import math
+import os
 import statistics
 import sys
 import time
@@ -40,6 +44,8 @@ import pybullet as p  # noqa: E402
 from pycram_cli.reasoning import blocking, contact, occluding, reachable, stable, supporting, visible  # noqa: E402
 from pycram_cli.robots import description_for  # noqa: E402
 from pycram_cli.world.pose import quat_multiply  # noqa: E402
+
+import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 
 WORLD = REPO / "worlds" / "kitchen.yaml"
 COUNTER_POSE = ((0.65, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
@@ -205,6 +211,7 @@ def main(argv: list[str] | None = None) -> int:
                      short(ours_answer), short(base_answer)))
         print(f"  {label}: ours {fmt_ms(ours_ms)}, baseline {fmt_ms(base_ms)}", file=sys.stderr, flush=True)
 
+    load_before = os.getloadavg()[0]
     print(f"benchmarking on {WORLD.relative_to(REPO)} ({'quick' if opts.quick else 'full'} run)", file=sys.stderr)
     run("visible bottle", lambda: visible(o["bottle"]), lambda: base.visible(b["bottle"]), 5.0, fast, slow * 3)
     run("occluding spoon", lambda: occluding(o["spoon"]), lambda: base.occluding(b["spoon"]), 5.0, fast, slow * 3)
@@ -245,10 +252,12 @@ def main(argv: list[str] | None = None) -> int:
     table = [header] + [(r[0], fmt_ms(r[1]), fmt_ms(r[2]), f"{r[3]:.0f}×", "≤ " + r[4], "yes" if r[5] else "NO",
                          r[6], r[7]) for r in rows]
     widths = [max(len(row[i]) for row in table) for i in range(len(header))]
-    print("| " + " | ".join(h.ljust(w) for h, w in zip(header, widths)) + " |")
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for row in table[1:]:
-        print("| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |")
+    lines = ["| " + " | ".join(h.ljust(w) for h, w in zip(header, widths)) + " |",
+             "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
+    lines += ["| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |" for row in table[1:]]
+    print("\n".join(lines))
+    if not opts.quick:
+        print(f"wrote {results_file.record_table('reasoning', chr(10).join(lines), load_before)}", file=sys.stderr)
     ow.exit()
     bw.exit()
     return 0 if all(r[5] for r in rows) else 1

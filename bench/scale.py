@@ -5,6 +5,9 @@
     python bench/scale.py --quick          # fewer repetitions, plans with 4, 10 and 20 cubes
     python bench/scale.py --only design    # one part: design, crowded or plans
 
+A full run of the design and crowded parts keeps their tables in bench/results.json (`tables.scale_design`,
+`tables.scale_crowded`, `tables.scale_plans`, with the commit and the load average); the README's tables are written from them.
+
 Each row measures ours and today's method (bench/today.py: the code before issue 15) in the same run,
 on the same world, and prints medians, the ratio and the target:
 
@@ -22,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import statistics
 import sys
 import time
@@ -35,6 +39,7 @@ sys.path.insert(0, str(HERE))
 
 import numpy as np  # noqa: E402
 
+import results_file  # noqa: E402  (bench/results_file.py)
 import scenes  # noqa: E402  (bench/scenes.py)
 import today  # noqa: E402  (bench/today.py)
 from reasoning import fmt_ms, median_ms  # noqa: E402  (bench/reasoning.py: the same timing and format)
@@ -65,7 +70,8 @@ def compare(rows: list[Row], label: str, ours: Callable[[], Any], base: Callable
     print(f"  {label}: ours {fmt_ms(ours_ms)}, today {fmt_ms(base_ms)}", file=sys.stderr, flush=True)
 
 
-def print_table(title: str, rows: list[Row]) -> bool:
+def print_table(title: str, rows: list[Row], name: str | None = None, load_before: float = 0.0) -> bool:
+    """Print the rows as a Markdown table; with a name, also keep it in bench/results.json (`tables.NAME`)."""
     header = ("", "ours (median)", "today (median)", "ratio", "target", "met?", "ours says", "today says")
     table = [header]
     met = True
@@ -76,11 +82,13 @@ def print_table(title: str, rows: list[Row]) -> bool:
                       "—" if target is None else "≤ " + fmt_ms(target), "—" if target is None else "yes" if ok else "NO",
                       ours_says, base_says))
     widths = [max(len(row[i]) for row in table) for i in range(len(header))]
+    lines = ["| " + " | ".join(h.ljust(w) for h, w in zip(header, widths)) + " |",
+             "|" + "|".join("-" * (w + 2) for w in widths) + "|"]
+    lines += ["| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |" for row in table[1:]]
     print(f"\n{title}")
-    print("| " + " | ".join(h.ljust(w) for h, w in zip(header, widths)) + " |")
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for row in table[1:]:
-        print("| " + " | ".join(c.ljust(w) for c, w in zip(row, widths)) + " |")
+    print("\n".join(lines))
+    if name is not None:
+        print(f"wrote {results_file.record_table(name, chr(10).join(lines), load_before)}", file=sys.stderr)
     return met
 
 
@@ -139,6 +147,7 @@ def design_part(quick: bool) -> bool:
     o = {x.name: x for x in world.objects}
     fast, slow = (9, 5) if quick else (41, 15)
     rows: list[Row] = []
+    load_before = os.getloadavg()[0]
     print("benchmarking the design's scene on the real models", file=sys.stderr)
     compare(rows, "visible milk", lambda: visible(o["milk"]), lambda: today.visible(o["milk"]), 5.0, fast, slow)
     compare(rows, "occluding spoon", lambda: occluding(o["spoon"]), lambda: today.occluding(o["spoon"]), 5.0,
@@ -152,7 +161,8 @@ def design_part(quick: bool) -> bool:
     ours = median_of(lambda: snapshots_per_query(world, True), repeat)
     base = median_of(lambda: snapshots_per_query(world, False), repeat)
     rows.append(("world snapshot, 10 queries", ours, base, None, "per query", "per query"))
-    met = print_table("the design's scene: real PR2, real IAI kitchen, the design's objects (medians)", rows)
+    met = print_table("the design's scene: real PR2, real IAI kitchen, the design's objects (medians)", rows,
+                      None if quick else "scale_design", load_before)
     world.exit()
     return met
 
@@ -162,13 +172,15 @@ def crowded_part(quick: bool) -> bool:
     o = {x.name: x for x in world.objects}
     fast, slow = (9, 5) if quick else (41, 15)
     rows: list[Row] = []
+    load_before = os.getloadavg()[0]
     print("benchmarking the bundled world with 200 extra cubes", file=sys.stderr)
     compare(rows, "visible bottle", lambda: visible(o["bottle"]), lambda: today.visible(o["bottle"]), 5.0, fast, slow)
     compare(rows, "occluding spoon", lambda: occluding(o["spoon"]), lambda: today.occluding(o["spoon"]), 5.0,
             fast, slow)
     compare(rows, "stable milk", lambda: stable(o["milk"]), lambda: today.stable(o["milk"]), 60.0,
             max(5, fast // 3), max(3, slow // 3))
-    met = print_table("the bundled world with 200 extra small objects on the counter and the floor (medians)", rows)
+    met = print_table("the bundled world with 200 extra small objects on the counter and the floor (medians)", rows,
+                      None if quick else "scale_crowded", load_before)
     world.exit()
     return met
 
@@ -228,6 +240,7 @@ def plans_part(quick: bool) -> bool:
     repeat = 1 if quick else 3
     saved = (queries.stable, queries.visible, queries.occluding, perception.visible, perception.occluding)
     ours, base = [], []
+    load_before = os.getloadavg()[0]
     for n in ns:
         print(f"  moving {n} cubes", file=sys.stderr, flush=True)
         ours.append(statistics.median(plan_seconds(n) for _ in range(repeat)))
@@ -236,15 +249,17 @@ def plans_part(quick: bool) -> bool:
             base.append(statistics.median(plan_seconds(n) for _ in range(max(1, repeat - 2))))
         finally:
             queries.stable, queries.visible, queries.occluding, perception.visible, perception.occluding = saved
-    print("\nplan time of bench/plans/move_cubes.yaml, n cubes from the counter to the island (medians)")
-    print("| cubes | ours   | today  | ratio |")
-    print("|-------|--------|--------|-------|")
-    for n, a, b in zip(ns, ours, base):
-        print(f"| {n:<5} | {a:5.2f} s | {b:5.2f} s | {b / a:4.1f}× |")
     k_ours, k_base = exponent(ns, ours), exponent(ns, base)
     met = k_ours <= 1.15
-    print(f"fitted exponent (time ∝ n^k): ours k = {k_ours:.2f}, today k = {k_base:.2f}; "
-          f"target k ≤ 1.15: {'met' if met else 'MISSED'}")
+    lines = ["| cubes | ours   | today  | ratio |", "|-------|--------|--------|-------|"]
+    lines += [f"| {n:<5} | {a:5.2f} s | {b:5.2f} s | {b / a:4.1f}× |" for n, a, b in zip(ns, ours, base)]
+    lines.append("")
+    lines.append(f"Fitted exponent (time ∝ n^k): ours k = {k_ours:.2f}, today k = {k_base:.2f}; "
+                 f"target k ≤ 1.15: {'met' if met else '**missed**'}.")
+    print("\nplan time of bench/plans/move_cubes.yaml, n cubes from the counter to the island (medians)")
+    print("\n".join(lines))
+    if not quick:
+        print(f"wrote {results_file.record_table('scale_plans', chr(10).join(lines), load_before)}", file=sys.stderr)
     return met
 
 

@@ -4,6 +4,9 @@
     python bench/world_state.py            # 2000 repetitions
     python bench/world_state.py --reps 500
 
+Its medians go into bench/results.json under `world_state` (with the commit and the load average), which
+the README's Benchmarks table quotes (bench/readme_figures.py).
+
 Ours is `world.save_state()` / `world.restore_state(state)`: PyBullet's saveState/restoreState
 plus our attachment records; positions come back bitwise. A world saves once per change: "save"
 is a save after a change, "save again" one while nothing changed (the saved state is reused). The baseline is the straightforward
@@ -14,6 +17,7 @@ centre of mass is off their origin). Both run on the same kitchen world in the s
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import sys
 import time
@@ -25,6 +29,8 @@ sys.path.insert(0, str(REPO))
 
 from pycram_cli import load_world  # noqa: E402  (imports pybullet quietly)
 import pybullet as p  # noqa: E402
+
+import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 
 TARGET_MS = 1.0
 
@@ -62,6 +68,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--reps", type=int, default=2000)
     args = parser.parse_args()
+    load_before = os.getloadavg()[0]
     world = load_world(REPO / "worlds" / "kitchen.yaml")
     world.robot.attach(world.get_object_by_name("milk"), "r_gripper_tool_frame")
     world.simulate(0.1)
@@ -85,6 +92,10 @@ def main() -> None:
         print(f"{name:<11}{mo:>9.3f}{mb:>10.3f}{mb / mo:>7.1f}x")
     restore = statistics.median(rows[0][1])
     print(f"target: restore < {TARGET_MS:.0f} ms: {'met' if restore < TARGET_MS else 'MISSED'} ({restore:.3f} ms)")
+    figures = {f"{name.replace(' ', '_')}_ms": round(statistics.median(ours), 4) for name, ours, _ in rows}
+    figures.update({f"{name.replace(' ', '_')}_baseline_ms": round(statistics.median(base), 4) for name, _, base in rows})
+    figures.update({"reps": args.reps, **results_file.provenance(), "load_before": round(load_before, 2)})
+    print(f"wrote {results_file.update('world_state', figures)}")
 
 
 if __name__ == "__main__":

@@ -33,6 +33,14 @@ def world() -> Iterator[BulletWorld]:
     w.exit()
 
 
+@pytest.fixture(scope="module")
+def kitchen() -> Iterator[BulletWorld]:
+    """The bundled kitchen, loaded once per test module: tests take it through a snapshot, or only read it."""
+    world = load_world()
+    yield world
+    world.exit()
+
+
 @pytest.fixture
 def data_dir() -> Path:
     return DATA

@@ -35,13 +35,6 @@ ACTION_SLOTS = {
 }
 
 
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
-
-
 @pytest.fixture
 def world(kitchen):
     with kitchen.snapshot():

@@ -22,13 +22,6 @@ HANDLE = "sink_area_left_upper_drawer_handle"
 
 
 @pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
-
-
-@pytest.fixture(scope="module")
 def fetch_kitchen():
     world = load_world(worlds_dir() / "kitchen_fetch.yaml")
     yield world

@@ -14,13 +14,6 @@ from pycram_cli.paths import worlds_dir
 from pycram_cli.worldfile.loader import load_world
 
 
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
-
-
 @pytest.fixture
 def world(kitchen):
     with kitchen.snapshot():

@@ -7,7 +7,6 @@ import math
 
 import pytest
 
-from pycram_cli import load_world
 from pycram_cli.designators import perform
 from pycram_cli.failures import ManipulationFailure
 from pycram_cli.process_modules import Robot, motion
@@ -18,13 +17,6 @@ from pycram_cli.world.pose import yaw_quaternion
 #: brushes the oven's cabinet (oven_area_area) 44 % of the way, and the way around needs a search longer than a tool
 #: motion's (found with 341 legs checked; move-tcp's budget is 300)
 BESIDE_THE_OVEN = ((0.559, 1.407, 0.0), -45.0, "left", [-0.569, 0.622, 1.89, -1.264, -3.085, -1.048, -2.348])
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
 
 
 @pytest.fixture

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from pycram_cli import Object, load_world
+from pycram_cli import Object
 from pycram_cli.designators import perform
 from pycram_cli.failures import ManipulationFailure, NavigationFailure
 from pycram_cli.process_modules import Robot
@@ -18,13 +18,6 @@ from pycram_cli.reasoning import stable, supporting
 from pycram_cli.world.pose import quat_to_matrix, yaw_quaternion
 
 COUNTER = {"target": [0.65, 0.7, 0], "orientation": [0, 0, 0, 1]}
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
 
 
 @pytest.fixture

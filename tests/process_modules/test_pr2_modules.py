@@ -6,7 +6,6 @@ import math
 import numpy as np
 import pytest
 
-from pycram_cli import load_world
 from pycram_cli.designators import DESIGNATORS, perform
 from pycram_cli.errors import InputError
 from pycram_cli.failures import (GripperFailure, ManipulationFailure, NavigationFailure, PerceptionFailure,
@@ -19,13 +18,6 @@ COUNTER = {"target": [0.65, 0.7, 0], "orientation": [0, 0, 0, 1]}
 ISLAND = {"target": [-0.3, 1.0, 0], "orientation": [0, 0, 1, 0]}
 DRAWER = {"drawer-joint": "sink_area_left_upper_drawer_main_joint",
           "drawer-handle": "sink_area_left_upper_drawer_handle", "part-of": "kitchen", "arm": "left", "distance": 0.3}
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
 
 
 @pytest.fixture

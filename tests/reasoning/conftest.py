@@ -1,17 +1,10 @@
-"""Fixtures for the reasoning tests: one kitchen world per module, put back exactly after every test."""
+"""Fixtures for the reasoning tests: the module's kitchen world (tests/conftest.py), put back exactly after every test."""
 from __future__ import annotations
 
 from typing import Any, Iterator
 
 import pytest
-from scenes import kitchen_world, wake
-
-
-@pytest.fixture(scope="module")
-def kitchen() -> Iterator[Any]:
-    world = kitchen_world()
-    yield world
-    world.exit()
+from scenes import wake
 
 
 @pytest.fixture

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from pycram_cli import Object, load_world
+from pycram_cli import Object
 from pycram_cli.world import display
 from pycram_cli.world.camera import (IMAGE_FORMATS, VIEWS, encode_image, image_format, movable_objects, moved_since,
                                      named_camera, poses, render, robot_camera)
@@ -57,13 +57,6 @@ def test_image_formats_follow_the_extension():
     assert image_format(".gif") is None
     with pytest.raises(ValueError, match="unknown image type"):
         encode_image(rgb, ".gif")
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
 
 
 def test_named_views_frame_what_they_name(kitchen):

@@ -6,17 +6,9 @@ import math
 import pytest
 from click.testing import CliRunner
 
-from pycram_cli import load_world
 from pycram_cli.cli.main import cli
 from pycram_cli.paths import default_world
 from pycram_cli.world.pose import angle_between
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
 
 
 def test_the_default_world_is_the_kitchen_with_the_demo_objects(kitchen):
