@@ -9,7 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pycram_cli.locations import locate
+from pycram_cli.designators import perform
+from pycram_cli.failures import LocationFailure
+from pycram_cli.locations import LocationSpec, find_handle, locate
 from pycram_cli.locations.resolve import (STEP, ArmGeometry, aligned_reach_line, line_poses, pull_aligned_poses,
                                           straight_reach_line)
 from pycram_cli.process_modules import Robot
@@ -82,3 +84,63 @@ def test_the_pr2s_arms_get_none():
         assert all(aligned_reach_line(robot, arm) is None for arm in robot.description.arms)
     finally:
         world.exit()
+
+
+# -- accessing from the pose found: the location's test is the pull itself ------------------------------------
+
+JOINT = "sink_area_left_upper_drawer_main_joint"
+
+
+@pytest.fixture(scope="module")
+def zoo11(tmp_path_factory):
+    world = load_world(write_world(generate(11), Path(tmp_path_factory.mktemp("zoo11"))))
+    yield world
+    world.exit()
+
+
+def _pull_from(world, pose, distance):
+    """Stand at `pose` and pull the drawer to `distance` with the pose's arm (the accessing process module)."""
+    perform(world, "moving", {"target": list(pose.position), "orientation": list(pose.orientation)})
+    perform(world, "accessing", {"drawer-handle": HANDLE, "drawer-joint": JOINT, "part-of": "kitchen",
+                                 "distance": distance, "arm": pose.arm})
+
+
+def test_a_five_joint_arm_pulls_the_drawer_from_where_its_location_says_it_can(zoo11):
+    """Seed 11 (pan, three pitches, a wrist roll) reaches the handle fully open only with the tool turned off its
+    grasp by a degree: the location tests the pull as accessing makes it (the hold on the handle's box, step by step),
+    so it gives no pose to open it all the way rather than one the pull fails from half a step short."""
+    kitchen = zoo11.get_object_by_name("kitchen")
+    full = kitchen.joint(JOINT).upper - kitchen.joint(JOINT).lower
+    for distance in (full, 0.75 * full):
+        with zoo11.snapshot():
+            try:
+                pose = locate(zoo11, LocationSpec(accessing=find_handle(zoo11, HANDLE, "accessing"),
+                                                  distance=distance)).next()
+            except LocationFailure:
+                assert distance == full  # the whole way may be out of its reach: the three quarters are not
+                continue
+            _pull_from(zoo11, pose, distance)
+            assert kitchen.get_joint_position(JOINT) == pytest.approx(kitchen.joint(JOINT).lower + distance)
+
+
+@pytest.fixture(scope="module")
+def zoo19(tmp_path_factory):
+    world = load_world(write_world(generate(19), Path(tmp_path_factory.mktemp("zoo19"))))
+    yield world
+    world.exit()
+
+
+def test_a_five_joint_arm_closes_the_drawer_facing_into_it(zoo19):
+    """Closing pushes the handle the other way than opening: the poses in line with the push face into the drawer
+    still (towards the closed handle), not away from it, and the arm that opened the drawer closes it."""
+    kitchen = zoo19.get_object_by_name("kitchen")
+    robot = Robot.of(zoo19)
+    arm = next(iter(robot.description.arms))
+    with zoo19.snapshot():
+        kitchen.set_joint_position(JOINT, 0.36)
+        pose = locate(zoo19, LocationSpec(accessing=find_handle(zoo19, HANDLE, "accessing"), distance=0.0)).next()
+        assert pose.arm == arm and pose.yaw == pytest.approx(0.0, abs=1e-5)  # facing +x, into this drawer
+        _, lateral = _in_base_frame(kitchen.get_link_position(HANDLE), pose.position[0], pose.position[1], pose.yaw)
+        assert lateral == pytest.approx(aligned_reach_line(robot, arm), abs=1e-6)
+        _pull_from(zoo19, pose, 0.0)
+        assert kitchen.get_joint_position(JOINT) == pytest.approx(kitchen.joint(JOINT).lower)
