@@ -5,7 +5,7 @@ poses on a fixed 5 cm lattice of the floor around its target, each turned to fac
 20° either way). An arm with fewer than six rotating joints keeps its tool in the plane its pan
 turns, so it reaches with the tool pointing sideways only on its own reach line: for it, opening a
 drawer and placing a thing held from the side also get poses that put that line through the
-handle (facing along the pull) or the tool's place (for each heading place may stand the thing
+handle (facing into the drawer, whether opening or closing it) or the tool's place (for each heading place may stand the thing
 in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
 is from the target compared with a comfortable reach, how far its camera is from what it
 should see, how much it turns away, how far the robot would drive), and the candidates are
@@ -19,7 +19,9 @@ all is the answer; the resolution is lazy, so asking again continues where it st
 4. reachable-for: inverse kinematics for each arm and grasp (the object's grasp points,
    `cannot hold` when the gripper cannot) and the arm's final configuration touching nothing
    but the target and what it stands on — `out of reach`, `blocked`;
-   accessing: the handle reached closed and opened, the robot clear of the opened drawer;
+   accessing: accessing's own plan: the handle's grasp and pre-grasp pose reached, the pull followed step
+   by step holding it so (the drawer inside nothing of the robot but the hand), the way to the handle
+   free, the robot clear of the opened drawer;
 5. visible-for: the head turned to the object and the `visible` query — `not visible`.
 
 Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. When no
@@ -670,7 +672,7 @@ class BasePoseResolution(_Resolution):
         return np.array([sorted(range(len(arms)), key=lambda k: (distance[k], k))], dtype=np.int8)
 
     def _handle_positions(self) -> list[np.ndarray]:
-        """Where the handle is now, half opened and opened by the location's distance (the drawer put back)."""
+        """Where the handle is now and where accessing takes it (the location's distance; the drawer put back)."""
         handle = self.spec.accessing
         assert handle is not None
         obj = handle.obj
@@ -678,7 +680,7 @@ class BasePoseResolution(_Resolution):
         goal = self._goal(start)
         positions = []
         with obj.joints_kept([handle.joint]):
-            for value in (start, (start + goal) / 2.0, goal):
+            for value in (start, goal):
                 obj.reset_joints({handle.joint: value})
                 positions.append(np.asarray(obj.get_link_position(handle.link)))
         return positions
