@@ -1044,8 +1044,10 @@ class BasePoseResolution(_Resolution):
                 robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
                 _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
                 goal = self._goal(obj.get_joint_position(handle.joint))
+                robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
                 if not follows_handle(robot, arm, obj, handle.link, handle.joint, goal, at):
                     return False
+                robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
                 move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
             except (GripperFailure, ReachabilityFailure, ManipulationFailure):
                 return False

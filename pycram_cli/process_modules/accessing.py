@@ -87,8 +87,9 @@ def held_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, 
 def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str, goal: float,
                    at: IKSolution) -> bool:
     """Whether the arm, holding the handle at `at` (from `plan_handle_grasp`), follows it to `goal` as accessing pulls
-    it: every step's tool pose (the hand keeping its hold, `held_pose`) reached from the step before, and the drawer
-    then inside no part of the robot but the hand. Accessing's own plan of the pull, tried without moving: the
+    it: every step's tool pose (the hand keeping its hold, `held_pose`) reached from the step before, the arm's way
+    there free (the drawer's moving links not counted, as the pull counts them not), and the drawer then inside no
+    part of the robot but the hand. Accessing's own plan of the pull, tried without moving: the
     location test asks this, so that a pose it finds is one the pull succeeds from. Joints are put back."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
@@ -102,7 +103,7 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
             part.reset_joints({joint: value})
             tool = compose(part.get_link_position_and_orientation(handle), held)
             solution = reach(robot, arm, tool[0], tool[1])
-            if not solution.success:
+            if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
                 return False
             body.reset_joints(solution.joint_positions)
             try:
