@@ -5,8 +5,8 @@ poses on a fixed 5 cm lattice of the floor around its target, each turned to fac
 20° either way). An arm with fewer than six rotating joints keeps its tool in the plane its pan
 turns, so it reaches with the tool pointing sideways only on its own reach line: for it, opening a
 drawer and placing a thing held from the side also get poses that put that line through the
-handle (facing into the drawer, whether opening or closing it) or the tool's place (for each heading place may stand the thing
-in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
+handle (facing into the drawer, opening or closing it) or the tool's place (for each heading
+place may stand the thing in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
 is from the target compared with a comfortable reach, how far its camera is from what it
 should see, how much it turns away, how far the robot would drive), and the candidates are
 tried best first. Each one goes through the tests, cheapest first, and the first to pass them
@@ -1029,9 +1029,9 @@ class BasePoseResolution(_Resolution):
                 return  # a position in any orientation: one IK call answers for every grasp
 
     def _takes_handle(self, arm: str) -> bool:
-        """Accessing's own planning takes the handle from here and pulls it open: its grasp (aligned with the handle's
+        """Accessing's own planning takes the handle from here and pulls it to the goal: its grasp (aligned with the handle's
         box, not turned with the base as `_reach`'s first test) and its pre-grasp pose are reached, the arm holding
-        the handle so follows it all the way open, step by step (`follows_handle`: the drawer then inside no part of
+        the handle so follows it all the way, step by step (`follows_handle`: the drawer then inside no part of
         the robot but the hand, as a robot standing too close would open it into its own arm), and the arm, its
         gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`)."""
         handle = self.spec.accessing
