@@ -5,8 +5,8 @@ poses on a fixed 5 cm lattice of the floor around its target, each turned to fac
 20° either way). An arm with fewer than six rotating joints keeps its tool in the plane its pan
 turns, so it reaches with the tool pointing sideways only on its own reach line: for it, opening a
 drawer and placing a thing held from the side also get poses that put that line through the
-handle (facing along the pull) or the tool's place (for each heading place may stand the thing
-in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
+handle (facing into the drawer, opening or closing it) or the tool's place (for each heading
+place may stand the thing in), tried first; any other arm gets the drawer's poses only once the lattice has failed. Every candidate gets a score from cheap geometry (how far its arm's shoulder
 is from the target compared with a comfortable reach, how far its camera is from what it
 should see, how much it turns away, how far the robot would drive), and the candidates are
 tried best first. Each one goes through the tests, cheapest first, and the first to pass them
@@ -19,7 +19,9 @@ all is the answer; the resolution is lazy, so asking again continues where it st
 4. reachable-for: inverse kinematics for each arm and grasp (the object's grasp points,
    `cannot hold` when the gripper cannot) and the arm's final configuration touching nothing
    but the target and what it stands on — `out of reach`, `blocked`;
-   accessing: the handle reached closed and opened, the robot clear of the opened drawer;
+   accessing: accessing's own plan: the handle's grasp and pre-grasp pose reached, the pull followed step
+   by step holding it so (the drawer inside nothing of the robot but the hand), the way to the handle
+   free, the robot clear of the opened drawer;
 5. visible-for: the head turned to the object and the `visible` query — `not visible`.
 
 Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. When no
@@ -42,8 +44,7 @@ import numpy as np
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, arm_words
 from ..process_modules import Robot
-from ..process_modules import motion
-from ..process_modules.accessing import drawer_pushes_into, plan_handle_grasp
+from ..process_modules.accessing import follows_handle, plan_handle_grasp
 from ..process_modules.arms import move_over, reach, rest_configuration, rest_pose
 from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
 from ..process_modules.manipulation import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
@@ -575,9 +576,14 @@ class BasePoseResolution(_Resolution):
         kind = np.zeros(0, dtype=np.int8)  # of the aligned poses: 1 for a constrained arm, 2 deferred
         parts = []
         if spec.accessing is not None and robot.description.mobile:
+            # facing into the drawer, opening it or closing it: the handle's closed end is the path's end nearer the
+            # joint's lower limit (where `_goal` counts the distance from)
+            closed, opened = self._handle_path[0], self._handle_path[-1]
+            if self._closing():
+                closed, opened = opened, closed
             for name, geo in arms.items():
                 line = aligned_reach_line(robot, name)
-                ax, ay, ayaw = pull_aligned_poses(self._handle_path[0], self._handle_path[-1],
+                ax, ay, ayaw = pull_aligned_poses(closed, opened,
                                                   geo, line if line is not None else straight_reach_line(robot, name))
                 parts.append((ax, ay, ayaw, np.full(len(ax), 1 if line is not None else 2, dtype=np.int8)))
         elif spec.placing is not None and reach_target is not None and robot.description.mobile:
@@ -666,7 +672,7 @@ class BasePoseResolution(_Resolution):
         return np.array([sorted(range(len(arms)), key=lambda k: (distance[k], k))], dtype=np.int8)
 
     def _handle_positions(self) -> list[np.ndarray]:
-        """Where the handle is now, half opened and opened by the location's distance (the drawer put back)."""
+        """Where the handle is now and where accessing takes it (the location's distance; the drawer put back)."""
         handle = self.spec.accessing
         assert handle is not None
         obj = handle.obj
@@ -674,7 +680,7 @@ class BasePoseResolution(_Resolution):
         goal = self._goal(start)
         positions = []
         with obj.joints_kept([handle.joint]):
-            for value in (start, (start + goal) / 2.0, goal):
+            for value in (start, goal):
                 obj.reset_joints({handle.joint: value})
                 positions.append(np.asarray(obj.get_link_position(handle.link)))
         return positions
@@ -688,6 +694,13 @@ class BasePoseResolution(_Resolution):
         if distance is None:
             distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
         return min(joint.upper, joint.lower + distance) if joint.limited else start + distance
+
+    def _closing(self) -> bool:
+        """Whether accessing pushes the handle towards the joint's lower limit (closes the drawer or door)."""
+        handle = self.spec.accessing
+        assert handle is not None
+        start = handle.obj.get_joint_position(handle.joint)
+        return self._goal(start) < start
 
     def _opened_map(self) -> floor.FloorMap:
         handle = self.spec.accessing
@@ -828,8 +841,7 @@ class BasePoseResolution(_Resolution):
                 solution = reach(robot, arm, position, orientation)
                 if not solution.success:
                     continue
-                if spec.accessing is not None and not (self._follows_handle(arm, orientation)
-                                                       and self._takes_handle(arm)):
+                if spec.accessing is not None and not self._takes_handle(arm):
                     continue
                 if self._touches_at(solution.joint_positions, blocked):
                     continue
@@ -1016,44 +1028,26 @@ class BasePoseResolution(_Resolution):
             if spec.grasp is None:
                 return  # a position in any orientation: one IK call answers for every grasp
 
-    def _follows_handle(self, arm: str, orientation: Any) -> bool:
-        """The arm also reaches the handle half and fully opened, and the drawer then is inside no part of the robot
-        but the hand that pulls it (a robot standing too close would open the drawer into its own arm)."""
-        handle = self.spec.accessing
-        assert handle is not None
-        obj, body = handle.obj, self.robot.body
-        start = obj.get_joint_position(handle.joint)
-        goal = self._goal(start)
-        moving_index = obj.joint(handle.joint).index
-        moving = [(obj, link) for link in range(len(obj.joints)) if _below(obj, link, moving_index)]
-        hand = motion.Motion(self.robot, self.robot.description.arm(arm).joints[-1:]).links
-        names = list(self.robot.description.arm(arm).joints)
-        with obj.joints_kept([handle.joint]), body.joints_kept(names):
-            for point, value in zip(self._handle_path[1:], ((start + goal) / 2.0, goal)):
-                solution = reach(self.robot, arm, tuple(point), orientation)
-                if not solution.success:
-                    return False
-                obj.reset_joints({handle.joint: value})
-                body.reset_joints(solution.joint_positions)
-                try:
-                    drawer_pushes_into(self.robot, obj, moving, hand)
-                except ManipulationFailure:
-                    return False
-        return True
-
     def _takes_handle(self, arm: str) -> bool:
-        """Accessing's own planning takes the handle from here: its grasp (aligned with the handle's box, not turned
-        with the base as the test above) and its pre-grasp pose are reached, and the arm, its gripper open as
-        accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`, as accessing moves)."""
+        """Accessing's own planning takes the handle from here and pulls it to the goal: its grasp (aligned with the handle's
+        box, not turned with the base as `_reach`'s first test) and its pre-grasp pose are reached, the arm holding
+        the handle so follows it all the way, step by step (`follows_handle`: the drawer then inside no part of
+        the robot but the hand, as a robot standing too close would open it into its own arm), and the arm, its
+        gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`)."""
         handle = self.spec.accessing
         assert handle is not None
-        robot = self.robot
+        robot, obj = self.robot, handle.obj
         gripper = robot.description.arm(arm).gripper
         names = list(robot.description.arm(arm).joints) + list(gripper.joints)
         with robot.body.joints_kept(names):
             try:
                 robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
-                _, pre, _ = plan_handle_grasp(robot, arm, handle.obj, handle.link)
+                _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
+                goal = self._goal(obj.get_joint_position(handle.joint))
+                robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
+                if not follows_handle(robot, arm, obj, handle.link, handle.joint, goal, at):
+                    return False
+                robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
                 move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
             except (GripperFailure, ReachabilityFailure, ManipulationFailure):
                 return False

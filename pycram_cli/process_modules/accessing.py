@@ -19,7 +19,7 @@ from ..reasoning.ik import IKSolution
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
-from .arms import back_off, close_on, move_from_above, set_gripper, solve_tool
+from .arms import back_off, close_on, move_from_above, reach, set_gripper, solve_tool
 from .base import ProcessModule, Robot
 from .grasping import Grasp, grasps_of_box, holdable
 from .registry import process_module
@@ -72,6 +72,47 @@ def plan_handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> tupl
     return grasp, pre, at
 
 
+def pull_values(start: float, goal: float) -> list[float]:
+    """The joint values accessing pulls (or pushes) the drawer through, one per step, the last one `goal`."""
+    return [start + (goal - start) * k / STEPS for k in range(1, STEPS + 1)]
+
+
+def held_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, Quat]:
+    """The arm's tool frame in the handle's frame, as the arm stands now: the hand keeps it as the drawer moves."""
+    tool_frame = robot.description.arm(arm).tool_frame
+    return compose(invert(part.get_link_position_and_orientation(handle)),
+                   robot.body.get_link_position_and_orientation(tool_frame))
+
+
+def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str, goal: float,
+                   at: IKSolution) -> bool:
+    """Whether the arm, holding the handle at `at` (from `plan_handle_grasp`), follows it to `goal` as accessing pulls
+    it: every step's tool pose (the hand keeping its hold, `held_pose`) reached from the step before, the arm's way
+    there free (the drawer's moving links not counted, as the pull counts them not), and the drawer then inside no
+    part of the robot but the hand. Accessing's own plan of the pull, tried without moving: the
+    location test asks this, so that a pose it finds is one the pull succeeds from. Joints are put back."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    index = part.joint(joint).index
+    moving = [(part, link) for link in range(len(part.joints)) if _below(part, link, index)]
+    hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links
+    with part.joints_kept([joint]), body.joints_kept(names):
+        body.reset_joints(at.joint_positions)
+        held = held_pose(robot, arm, part, handle)
+        for value in pull_values(part.get_joint_position(joint), goal):
+            part.reset_joints({joint: value})
+            tool = compose(part.get_link_position_and_orientation(handle), held)
+            solution = reach(robot, arm, tool[0], tool[1])
+            if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
+                return False
+            body.reset_joints(solution.joint_positions)
+            try:
+                drawer_pushes_into(robot, part, moving, hand)
+            except ManipulationFailure:
+                return False
+    return True
+
+
 def _below(part: Object, link: int, joint_index: int) -> bool:
     """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
     while link != -1:
@@ -113,10 +154,8 @@ class Accessing(ProcessModule):
         move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to {what}")
         motion.advance(robot, at.joint_positions)
         close_on(robot, arm)
-        tool_frame = robot.description.arm(arm).tool_frame
         # where the tool holds the handle, in the handle's frame: it follows the handle as the drawer moves
-        held_at = compose(invert(part.get_link_position_and_orientation(handle)),
-                          robot.body.get_link_position_and_orientation(tool_frame))
+        held = held_pose(robot, arm, part, handle)
         riders = contents_of(part, joint.index)
         hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links  # what holds the handle
         # the hand holds the handle and moves with the drawer: the drawer's moving links are not in its way
@@ -124,11 +163,10 @@ class Accessing(ProcessModule):
         for obj in riders:
             part.attach(obj, parent_link=part.get_link_name(joint.index))
         try:
-            for k in range(1, STEPS + 1):
-                value = start + (goal - start) * k / STEPS
+            for value in pull_values(start, goal):
                 previous = part.get_joint_position(joint.name)
                 part.set_joint_position(joint.name, value)
-                tool = compose(part.get_link_position_and_orientation(handle), held_at)
+                tool = compose(part.get_link_position_and_orientation(handle), held)
                 try:
                     solution = solve_tool(robot, arm, tool[0], tool[1], what)
                     motion.move(robot, solution.joint_positions, f"the {arm_words(arm)} pulling {what}", ignore_links=moving)

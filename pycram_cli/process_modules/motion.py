@@ -485,6 +485,13 @@ def move(robot: Robot, goal: Mapping[str, float], what: str, ignore: Iterable[Ob
     robot.body.set_joint_positions({**goal, **reached})  # continuous joints as turned (the short way)
 
 
+def hits_on_way(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = (),
+                ignore_links: Iterable[tuple[Object, int]] = ()) -> list[Hit]:
+    """What `move` to `goal` would run into (nothing: the path is free), without moving: for planners that must
+    know a motion will succeed before it is made."""
+    return Motion(robot, _moving(robot, goal), ignore, ignore_links).walk(goal)[1]
+
+
 def advance(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = ()) -> tuple[float, list[Hit]]:
     """Move joints towards `goal` until just before the first contact (or all the way); returns the fraction of the
     path travelled and what stopped it."""

@@ -6,16 +6,20 @@ short for the counter: the run ends with a location failure saying the object is
 a plan failure (exit 1), never an internal error. Seed 12 has a 5-joint arm (a pan, three pitches, a
 wrist roll) mounted off the base's centre line: its tool stays in the plane the pan turns, so it puts
 the milk down only from poses whose reach line runs through the place (locations/resolve.py
-`line_poses`); the test runs only the milk's part of the demo.
+`line_poses`); the test runs only the milk's part of the demo. Seed 3's arm closes the drawer it
+opened all the way in two strokes.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from pycram_cli.cli.main import cli
+from pycram_cli.designators.actions import perform_action
 from pycram_cli.robots.zoo import generate, write_world
+from pycram_cli.worldfile.loader import load_world
 
 
 def run_demo(seed: int, folder: Path, *params: str):
@@ -41,3 +45,23 @@ def test_a_five_joint_arm_puts_the_milk_on_the_island(tmp_path: Path) -> None:
     result = run_demo(12, tmp_path, "objects=[milk]")
     assert result.exit_code == 0, result.output
     assert "placed milk" in result.output
+
+
+def test_an_arm_that_cannot_fold_closes_a_wide_open_drawer_in_strokes(tmp_path: Path) -> None:
+    """Seed 3's 5-joint arm opens the drawer all the way, but from nowhere takes the handle of the open drawer (its
+    pre-grasp pose, nearer the robot, is too close for the arm to fold to) and reaches it shut: `close` pushes it
+    shut in two strokes, each from a pose of its own (before, the drawer stayed open)."""
+    world = load_world(write_world(generate(3), tmp_path))
+    try:
+        kitchen = world.get_object_by_name("kitchen")
+        joint = kitchen.joint("sink_area_left_upper_drawer_main_joint")
+        kitchen.set_joint_position(joint.name, joint.upper)
+        record: dict = {}
+        perform_action(world, "close", {"handle": "sink_area_left_upper_drawer_handle"}, record)
+        assert kitchen.get_joint_position(joint.name) == pytest.approx(joint.lower, abs=1e-6)
+        close = record["children"][0]
+        pushes = [step["designator"]["slots"]["distance"] for attempt in close["children"] if attempt["type"] == "attempt"
+                  for step in attempt["children"] if step["type"] == "accessing"]
+        assert pushes == [pytest.approx((joint.upper - joint.lower) / 2), 0.0]  # half way, then shut
+    finally:
+        world.exit()

@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ...errors import InputError, Location, did_you_mean
-from ...failures import Failure, ManipulationFailure, ReasoningFailure
+from ...failures import Failure, LocationFailure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
 from ...reasoning import QUERIES
@@ -152,8 +152,24 @@ def _open(actor: Actor, slots: Mapping[str, Any]) -> None:
     _access(actor, slots, slots.get("distance"), "open")
 
 
+#: a drawer or door no pose pushes shut in one stroke is pushed shut in up to this many equal strokes, each from a
+#: pose of its own: an arm that cannot fold close enough to take the handle of the open drawer from where it also
+#: reaches it shut (the pre-grasp pose is nearer the robot than the handle) stands back for the first stroke
+CLOSE_STROKES = 3
+
+
 def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
-    _access(actor, slots, 0.0, "close")
+    handle = handle_from(actor, slots)
+    info = handle.obj.joint(handle.joint)
+    for strokes in range(1, CLOSE_STROKES + 1 if info.limited else 2):
+        start = handle.obj.get_joint_position(handle.joint) - info.lower
+        try:
+            for k in range(1, strokes + 1):
+                _access(actor, slots, start * (1.0 - k / strokes), "close")
+            return
+        except LocationFailure:  # no pose for this stroke: shorter strokes, while there are
+            if strokes == CLOSE_STROKES or not info.limited:
+                raise
 
 
 _HANDLE = (Slot("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)", of="part-of"),
@@ -170,7 +186,8 @@ declare_action(Action(
 
 declare_action(Action(
     "close", "Close a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
-             "closed, push it shut, park the arm.",
+             "closed, push it shut, park the arm; when no pose reaches it so, push it shut in up to three strokes, "
+             "each from a pose of its own.",
     (*_HANDLE, _ARM), run=_close, uses=EVERYTHING, one_of=("handle", "joint"), needs=("arms",)))
 
 
