@@ -19,7 +19,7 @@ from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, rest
 from .declaration import Action, declare_action
 from .perceiving import container_of, is_closed
 
-EVERYTHING = drives("base", "head", ANY_ARM)
+EVERYTHING = drives("base", "head", "torso", ANY_ARM)
 
 
 def _rest_first(actor: Actor) -> None:
