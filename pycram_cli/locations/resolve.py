@@ -22,7 +22,9 @@ all is the answer; the resolution is lazy, so asking again continues where it st
    accessing: the handle reached closed and opened, the robot clear of the opened drawer;
 5. visible-for: the head turned to the object and the `visible` query — `not visible`.
 
-Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. When no
+Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. A reachable-for
+location (taking or placing) whose candidates all fail with nothing in the way tries them again with
+the torso at other heights of its range (`_next_torso`); the pose found says the height. When no
 candidate passes, `LocationFailure` says what ruled them out: "412 candidates: 380 collide,
 32 out of reach". Everything is computed from the world and the robot's description: no
 randomness, no clock; the same world gives the same answer.
