@@ -24,7 +24,9 @@ all is the answer; the resolution is lazy, so asking again continues where it st
    free, the robot clear of the opened drawer;
 5. visible-for: the head turned to the object and the `visible` query — `not visible`.
 
-Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. When no
+Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. A reachable-for
+location (taking or placing) whose candidates all fail with nothing in the way tries them again with
+the torso at other heights of its range (`_next_torso`); the pose found says the height. When no
 candidate passes, `LocationFailure` says what ruled them out: "412 candidates: 380 collide,
 32 out of reach". Everything is computed from the world and the robot's description: no
 randomness, no clock; the same world gives the same answer.
@@ -84,6 +86,12 @@ REACH_PATIENCE = 3
 STRAIGHT = {"around": False, "search": False}
 AROUND = {"around": True, "search": False}
 SEARCH = {"around": True, "search": True}
+#: a reachable-for location that finds no pose with the torso where it is tries at most this many other heights, first
+#: those that put the shoulder nearest this fraction of the arm's length above the target (an arm reaches down onto a
+#: counter best), none nearer than TORSO_MIN_CHANGE (m) to where the torso is
+TORSO_PASSES = 2
+TORSO_SHOULDER = 0.25
+TORSO_MIN_CHANGE = 0.02
 #: the map test runs on this many candidates at a time
 CHUNK = 48
 #: the robot touches an object when their shapes are closer than this (m)
@@ -166,6 +174,7 @@ class BasePose:
     grasp: Any = None
     look_at: tuple[float, float, float] | None = None
     index: int = 0  # the how-manieth pose of its location (0: the first)
+    torso: float | None = None  # the torso height the arm reaches from (None: the torso stays where it is)
 
     def to_json(self) -> dict[str, Any]:
         data: dict[str, Any] = {"position": list(self.position), "orientation": list(self.orientation),
@@ -176,6 +185,8 @@ class BasePose:
             data["grasp"] = self.grasp if isinstance(self.grasp, str) else list(self.grasp)
         if self.look_at is not None:
             data["look-at"] = list(self.look_at)
+        if self.torso is not None:
+            data["torso"] = self.torso
         return data
 
 
@@ -491,6 +502,11 @@ class BasePoseResolution(_Resolution):
         self.attempts: list[tuple[str, Any, str]] = []
         self.taken: Any = None  # the grasp's IK solution of the last arm and grasp that take the object
         self.shortfall = math.inf  # how far the tool stayed from the nearest grasp out of reach (m)
+        #: the torso height the candidates are tried with (None: where it is), the heights still to try, and what the
+        #: passes with earlier heights found
+        self.torso: float | None = None
+        self._torso_todo: list[float] | None = None
+        self._passes: list[str] = []
 
     def take_here(self) -> TakeAnswer:
         """Only the pose the robot stands at, for an object to take: the arm and grasp pick-up itself would take it
@@ -731,30 +747,92 @@ class BasePoseResolution(_Resolution):
 
     # -- the tests ----------------------------------------------------------------------------------------------
     def next(self) -> BasePose:
-        """The next base pose (best first); LocationFailure when none is left."""
+        """The next base pose (best first); LocationFailure when none is left. A reachable-for location that finds
+        none with the torso where it is tries other torso heights (`_next_torso`)."""
         world = self.robot.world
         with world.lock, world.snapshot():
             self._prepared_inside()
-            order = self.candidates.order
-            while self.cursor < len(order) and self.expensive < self._patience():
-                chunk = order[self.cursor:self.cursor + CHUNK]
-                self._map_test(chunk)
-                for i in chunk:
-                    self.cursor += 1
-                    if self.candidates.outcome[i] != 0:
-                        continue
-                    pose = self._test(int(i))
-                    if pose is not None:
-                        self.candidates.outcome[i] = CODE["ok"]
-                        self.found.append(pose)
-                        return pose
-                    if self.expensive >= self._patience():
-                        break
-                if self.cursor >= len(order) or self.expensive >= self._patience():
-                    if not self._take_deferred():
-                        break
-                    order = self.candidates.order
+            self._set_torso()
+            while True:
+                pose = self._search()
+                if pose is not None:
+                    return pose
+                if not self._next_torso():
+                    break
         raise self._fail(self.failure_message())
+
+    def _search(self) -> BasePose | None:
+        """The next candidate that passes every test, or None when none is left (or patience has run out)."""
+        order = self.candidates.order
+        while self.cursor < len(order) and self.expensive < self._patience():
+            chunk = order[self.cursor:self.cursor + CHUNK]
+            self._map_test(chunk)
+            for i in chunk:
+                self.cursor += 1
+                if self.candidates.outcome[i] != 0:
+                    continue
+                pose = self._test(int(i))
+                if pose is not None:
+                    self.candidates.outcome[i] = CODE["ok"]
+                    self.found.append(pose)
+                    return pose
+                if self.expensive >= self._patience():
+                    break
+            if self.cursor >= len(order) or self.expensive >= self._patience():
+                if not self._take_deferred():
+                    break
+                order = self.candidates.order
+        return None
+
+    # -- the torso ----------------------------------------------------------------------------------------------
+    def _set_torso(self) -> None:
+        """The torso at the height this pass tries (nothing while it stays where it is); what the robot holds follows."""
+        joint = self.robot.description.torso_joint
+        if self.torso is not None and joint is not None:
+            self.robot.body.reset_joints({joint: self.torso})
+            self.robot.body.move_attached()
+
+    def _torso_heights(self) -> list[float]:
+        """The torso heights to try besides where it is: the bottom, middle and top of its range, those putting some
+        arm's shoulder nearest TORSO_SHOULDER (of the arm's length) above the target first, at most TORSO_PASSES."""
+        robot, body = self.robot, self.robot.body
+        joint = robot.description.torso_joint
+        if joint is None or self.target is None or not body.joint(joint).limited:
+            return []
+        torso = body.joint(joint)
+        current = body.get_joint_positions([joint])[joint]
+        heights = [h for h in (torso.lower, (torso.lower + torso.upper) / 2.0, torso.upper)
+                   if abs(h - current) > TORSO_MIN_CHANGE]
+        target_z = float(self.target[2])
+
+        def off(height: float) -> float:
+            with body.joints_kept([joint]):
+                body.reset_joints({joint: height})
+                arms = arm_geometry(robot)
+            return min(abs(self.floor_z + arms[name].shoulder[2] - target_z - TORSO_SHOULDER * arms[name].length)
+                       for name in self.arm_names)
+
+        return sorted(heights, key=lambda h: (off(h), h))[:TORSO_PASSES]
+
+    def _next_torso(self) -> bool:
+        """When no pose reached the target with the torso where it is (and nothing was in the way: that is the plan's
+        to move), the candidates anew with the torso at the next height (`_torso_heights`): whether there is one. Only
+        reachable-for locations (taking or placing an object) do this; the pose found says the height (`torso`)."""
+        robot, spec = self.robot, self.spec
+        if (robot.description.torso_joint is None or spec.reachable_for is None or spec.accessing is not None
+                or CODE["blocked"] in self.candidates.outcome):
+            return False
+        if self._torso_todo is None:
+            self._torso_todo = self._torso_heights()
+        if not self._torso_todo:
+            return False
+        self._passes.append(self._pass_text())
+        self.torso = self._torso_todo.pop(0)
+        self._set_torso()
+        self._deferred = None
+        self._prepare()
+        self.cursor, self.expensive = 0, 0
+        return True
 
     def _take_deferred(self) -> bool:
         """Add the deferred candidates when all the others failed (tried anew, with patience anew): whether there were."""
@@ -800,7 +878,7 @@ class BasePoseResolution(_Resolution):
             if look is None:
                 return None
         return BasePose((x, y, self.floor_z), yaw_quaternion(yaw), yaw, float(cand.scores[i]), arm, grasp, look,
-                        len(self.found))
+                        len(self.found), self.torso)
 
     def _patience(self) -> int:
         """How many candidates get the expensive tests: the limit, or REACH_PATIENCE times it while nothing was found
@@ -1069,12 +1147,18 @@ class BasePoseResolution(_Resolution):
         return target  # type: ignore[return-value]
 
     # -- reporting --------------------------------------------------------------------------------------------
-    def failure_message(self) -> str:
+    def _pass_text(self) -> str:
+        """What this pass's candidates ran into: `412 candidates: 380 collide, 32 out of reach (blocked by cereal)`."""
         text = self.summary()
         blockers = Counter(name for detail in self.candidates.details("blocked") for name in detail.split(", "))
         if blockers:
             text += " (blocked by " + ", ".join(name for name, _ in blockers.most_common()) + ")"
-        return f"no pose for {self.spec.describe()}: {text}"
+        if self.torso is not None:
+            text = f"with the torso at {self.torso:.3f} m, {text}"
+        return text
+
+    def failure_message(self) -> str:
+        return f"no pose for {self.spec.describe()}: " + "; ".join([*self._passes, self._pass_text()])
 
 
 # -- spots on a surface ------------------------------------------------------------------------------------

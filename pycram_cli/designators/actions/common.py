@@ -75,9 +75,14 @@ def _yaw(q: Any) -> float:
 
 
 def go(actor: Actor, pose: Any) -> None:
-    """Drive to a base pose (`moving`), unless the robot stands there already."""
+    """Drive to a base pose (`moving`), unless the robot stands there already; then raise or lower the torso to the
+    height the pose was found with, when it says one (an arm that reaches the object only with the torso moved)."""
     if not stands_at(actor.robot, pose):
         actor.motion("moving", {"target": list(pose.position), "orientation": list(pose.orientation)})
+    torso, joint = getattr(pose, "torso", None), actor.robot.description.torso_joint
+    if torso is not None and joint is not None and \
+            abs(actor.robot.body.get_joint_positions([joint])[joint] - torso) > 1e-6:
+        actor.motion("moving-torso", {"position": torso})
 
 
 def try_choices(actor: Actor, finder: Finder, attempt: Callable[[Actor, Any], Any], what: str,

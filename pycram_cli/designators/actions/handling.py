@@ -19,7 +19,7 @@ from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, rest
 from .declaration import Action, declare_action
 from .perceiving import container_of, is_closed
 
-EVERYTHING = drives("base", "head", ANY_ARM)
+EVERYTHING = drives("base", "head", "torso", ANY_ARM)
 
 
 def _rest_first(actor: Actor) -> None:
@@ -196,6 +196,7 @@ declare_action(Action(
 
 def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
     wanted = {"object": slots["object"]} if slots.get("object") is not None else {"object-type": slots["object-type"]}
+    torso = _torso(actor)
     found = actor.action("search", wanted)
     was = list(found.get_position())
     taken_out_of = container_of(found, closed=False)
@@ -208,6 +209,8 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
         _put_back(actor, found, was, taken_from)
         raise
     actor.action("park-arms", {})
+    if torso is not None and abs(_torso(actor) - torso) > 1e-6:  # raised or lowered to reach: back as it was
+        actor.motion("moving-torso", {"position": torso})
     answer = actor.query("stable", {"object": found})
     if not answer:  # with what it does: tips over and lies still, keeps moving, or rocks
         how = QUERIES["stable"].describe(answer).split(": ", 1)[-1]
@@ -216,6 +219,13 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
     if taken_out_of is not None:
         _seal(actor, *taken_out_of)
     return found
+
+
+def _torso(actor: Actor) -> float | None:
+    """Where the torso is (None without one): transport puts it back there once the object is delivered, when taking or
+    placing it moved the torso (`go`), so that what comes next starts from the height it started from."""
+    joint = actor.robot.description.torso_joint
+    return None if joint is None else actor.robot.body.get_joint_positions([joint])[joint]
 
 
 def _seal(actor: Actor, container: Any, joint: str, handle: str) -> None:

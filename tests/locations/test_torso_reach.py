@@ -1,0 +1,67 @@
+"""A reachable-for location tries other torso heights when the arm reaches the object from no pose with the torso where
+it is (resolve.py `_next_torso`), and the pose it finds says the height (`BasePose.torso`), which the actions move the
+torso to on arriving (`go`; the whole demo on this robot: bench/zoo.py).
+
+Zoo seed 12's 5-joint arm (a pan, three pitches, a wrist roll) holds the 27 cm cereal box only from above (its sides
+are wider than the gripper opens, but for the narrow ones, which it cannot turn its tool to), and reaches its top only
+with the torso raised above its default.
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+
+from pycram_cli.designators import perform
+from pycram_cli.failures import LocationFailure
+from pycram_cli.locations import LocationSpec
+from pycram_cli.locations.resolve import BasePoseResolution, take_from_here
+from pycram_cli.process_modules import Robot
+from pycram_cli.robots.zoo import generate, write_world
+from pycram_cli.worldfile.loader import load_world
+
+LIMIT = 8  # candidates given the expensive tests per pass: enough here, and fast
+
+
+@pytest.fixture(scope="module")
+def zoo_world(tmp_path_factory):
+    world = load_world(write_world(generate(12), Path(tmp_path_factory.mktemp("zoo12"))))
+    yield world
+    world.exit()
+
+
+def test_the_pose_found_with_the_torso_raised_says_so_and_pick_up_takes_the_cereal_from_it(zoo_world):
+    robot = Robot.of(zoo_world)
+    joint = robot.description.torso_joint
+    cereal = zoo_world.get_object_by_name("cereal")
+    default = robot.body.get_joint_positions([joint])[joint]
+    with zoo_world.snapshot():
+        start = time.perf_counter()
+        pose = BasePoseResolution(robot, LocationSpec(reachable_for=cereal), limit=LIMIT).next()
+        assert time.perf_counter() - start < 60
+    assert robot.body.get_joint_positions([joint])[joint] == default  # the world is left as it was
+    assert pose.torso is not None and pose.torso > default + 0.02
+    assert pose.to_json()["torso"] == pose.torso
+    with zoo_world.snapshot():
+        robot.body.set_position_and_orientation(pose.position, pose.orientation)
+        assert not take_from_here(robot.body, cereal)  # not with the torso where it is ...
+        robot.body.reset_joints({joint: pose.torso})
+        assert take_from_here(robot.body, cereal)  # ... but raised
+        robot.body.reset_joints({joint: default})
+        perform(zoo_world, "moving-torso", {"position": pose.torso})  # as the actions do on arriving (`go`)
+        perform(zoo_world, "pick-up", {"object": "cereal", "arm": pose.arm, "grasp": pose.grasp})
+        assert robot.arm_holding(cereal) == pose.arm
+
+
+def test_a_robot_without_a_torso_out_of_reach_fails_with_one_pass(tmp_path):
+    world = load_world(write_world(generate(1), tmp_path))
+    try:
+        robot = Robot.of(world)
+        assert robot.description.torso_joint is None
+        far = (3.0, 3.0, 2.5)  # above the room: out of every arm's reach
+        with world.snapshot(), pytest.raises(LocationFailure) as failure:
+            BasePoseResolution(robot, LocationSpec(reachable_for=far), limit=2).next()
+        assert "torso" not in str(failure.value)
+    finally:
+        world.exit()
