@@ -31,6 +31,7 @@ from __future__ import annotations
 import hashlib
 import math
 import random
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..errors import Location, did_you_mean
@@ -63,11 +64,14 @@ def run_seed(seed: int, path: str, run: int, attempt: int = 0) -> int:
     return int.from_bytes(hashlib.sha256(text.encode()).digest()[:4], "big")
 
 
+@dataclass(frozen=True)
 class Variation:
     """How one object varies in the projected runs: uniform noise per axis (m), a turn about z in ±yaw (rad)."""
 
-    def __init__(self, name: str, where: Location, noise: tuple[float, float, float], yaw: float) -> None:
-        self.name, self.where, self.noise, self.yaw = name, where, noise, yaw
+    name: str
+    where: Location
+    noise: tuple[float, float, float]
+    yaw: float
 
 
 @node_type("project")
@@ -286,10 +290,7 @@ def _variations(parser: Parser, body: LMap) -> list[Variation]:
 
 def _steps(record: Record) -> int:
     """How many steps ran under `record` (itself not counted)."""
-    walk = getattr(record, "walk", None)
-    if walk is None:
-        return 0
-    return sum(1 for node in walk() if node is not record and node.status not in ("pending", "skipped"))
+    return sum(1 for node in record.walk() if node is not record and node.status not in ("pending", "skipped"))
 
 
 def _row(rows: list[dict[str, Any]]) -> dict[str, Any]:

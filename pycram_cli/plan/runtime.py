@@ -15,7 +15,7 @@ runs the branches, the composite decides (see composites.py). `Cancelled` and
 from __future__ import annotations
 
 from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any, Iterable, Protocol, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Iterator, Protocol, Sequence
 
 from ..errors import Location
 from ..world import BulletWorld
@@ -55,6 +55,10 @@ class Record(Protocol):
 
     def child(self, label: str, type: str, source: Location | None = None) -> Record:
         """A new (pending) entry below this one (raises LimitExceeded beyond the run's limits)."""
+        ...
+
+    def walk(self) -> Iterator[Record]:
+        """This entry and every entry below it."""
         ...
 
     def summarise(self, child: Record, label: str) -> Record | None:
