@@ -15,7 +15,13 @@ For each seed, `pycram_cli.robots.zoo` writes the robot and its kitchen; then
 
     - every counter object (the bowl, the milk and the cereal, where the world puts them), and
     - the milk standing on the island top at one of four points ISLAND_INSET inside the middle of
-      each of its edges (placing it there is taking it in reverse),
+      each of its edges (placing it there is taking it in reverse), and
+    - the drawer the spoon lies in, pulled open by OPEN_FRACTION of its travel (the least `search`
+      opens a drawer by) by its handle: from one base pose and torso height, the tool holds the
+      middle of the handle's box, pointing into the drawer (the fingers closing vertically or
+      horizontally), at the closed end (after a pre-grasp APPROACH back) and at the opened end,
+      the arm inside no part of the kitchen but the handle and the drawer's front, and the rest of
+      the robot clear of the opened drawer (the pull in between is the planner's business),
 
     where **taking an object** means: some base pose, with the robot in its world file's
     configuration (arm parked) there touching no part of the kitchen, and a torso height (one of
@@ -92,6 +98,8 @@ COUNTER_OBJECTS = ("bowl", "milk", "cereal")
 ISLAND_OBJECT = "milk"
 COUNTER_LINK = "sink_area_surface"
 ISLAND_LINK = "kitchen_island_surface"
+DRAWER_HANDLE, DRAWER_JOINT = "sink_area_left_upper_drawer_handle", "sink_area_left_upper_drawer_main_joint"
+OPEN_FRACTION = 0.75  # of the drawer's travel: the least `search` pulls a drawer open by (its PARTLY)
 PLAN_FAILURES = ("Failure", "GripperFailure", "LocationFailure", "ManipulationFailure", "NavigationFailure",
                  "PerceptionFailure", "ReachabilityFailure", "ReasoningFailure")
 VIRTUAL = ("reach_check_x", "reach_check_y", "reach_check_yaw")  # the virtual joints carrying the robot
@@ -328,10 +336,11 @@ class _Scene:
         for j, value in values.items():
             self.p.resetJointState(self.robot, j, value, physicsClientId=self.cid)
 
-    def _touches(self, links: set[int] | None, depth: float) -> bool:
-        """Whether the robot (only `links`, when given) is inside the kitchen deeper than `depth` (or touches it, 0)."""
+    def _touches(self, links: set[int] | None, depth: float, ignore: frozenset[int] = frozenset()) -> bool:
+        """Whether the robot (only `links`, when given) is inside the kitchen (but its links `ignore`) deeper than
+        `depth` (or touches it, 0)."""
         points = self.p.getClosestPoints(self.robot, self.kitchen, 0.0, physicsClientId=self.cid)
-        return any((links is None or pt[3] in links) and pt[8] < -depth for pt in points)
+        return any((links is None or pt[3] in links) and pt[4] not in ignore and pt[8] < -depth for pt in points)
 
     def _solve(self, target: Sequence[float], orientation: Sequence[float], free: list[int],
                box: dict[int, tuple[float, float]]) -> bool:
@@ -434,6 +443,119 @@ class _Scene:
         return False
 
 
+    # -- the drawer ------------------------------------------------------------------------------------------
+    def _kitchen_links(self) -> dict[str, int]:
+        return {self.p.getJointInfo(self.kitchen, j, physicsClientId=self.cid)[12].decode(): j
+                for j in range(self.p.getNumJoints(self.kitchen, physicsClientId=self.cid))}
+
+    def _handle_at(self, handle: int, drawer: int, value: float) -> tuple[float, float, float]:
+        """The middle of the handle's box with the drawer's joint at `value`."""
+        self.p.resetJointState(self.kitchen, drawer, value, physicsClientId=self.cid)
+        lo, hi = self.p.getAABB(self.kitchen, handle, physicsClientId=self.cid)
+        return ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2)
+
+    def opens(self, handle_link: str, joint: str, fraction: float) -> bool:
+        """Whether the robot can pull the drawer `joint` open by `fraction` of its range by `handle_link`: see the
+        module's docstring."""
+        p, cid = self.p, self.cid
+        links = self._kitchen_links()
+        handle = links[handle_link]
+        drawer = next(j for j in range(p.getNumJoints(self.kitchen, physicsClientId=cid))
+                      if p.getJointInfo(self.kitchen, j, physicsClientId=cid)[1].decode() == joint)
+        info = p.getJointInfo(self.kitchen, drawer, physicsClientId=cid)
+        lower, upper = info[8], info[9]
+        values = (lower, lower + fraction * (upper - lower))
+        closed, opened = (self._handle_at(handle, drawer, v) for v in values)
+        pull = _unit((opened[0] - closed[0], opened[1] - closed[1], 0.0))
+        into = (-pull[0], -pull[1], 0.0)
+        across = (-pull[1], pull[0], 0.0)
+        ways = [self._tool_orientation(into, [sign * c for c in closing])
+                for closing in ((0.0, 0.0, 1.0), across) for sign in (1, -1)]
+        ignore = frozenset({handle, drawer})  # the gripper holds the handle, on the drawer's front
+        try:
+            radius = self.length + 0.3
+            steps = int(radius / STEP)
+            starts = sorted((math.hypot(i * STEP, k * STEP), i, k) for i in range(-steps, steps + 1)
+                            for k in range(-steps, steps + 1) if 0.2 <= math.hypot(i * STEP, k * STEP) <= radius)
+            for _, i, k in starts:
+                x, y = closed[0] + i * STEP, closed[1] + k * STEP
+                if (x - closed[0]) * pull[0] + (y - closed[1]) * pull[1] <= 0.0:  # behind the drawer's front
+                    continue
+                yaw = math.atan2(closed[1] - y, closed[0] - x)
+                p.resetJointState(self.kitchen, drawer, values[1], physicsClientId=cid)
+                self._rest((x, y, yaw))
+                if self._touches(None, BASE_SLACK):  # deeper in the kitchen (the drawer open) than the base may move
+                    continue
+                for orientation in ways:
+                    if self._pulls_from(x, y, yaw, (closed, opened), orientation, into, drawer, values, ignore):
+                        return True
+            return False
+        finally:
+            p.resetJointState(self.kitchen, drawer, lower, physicsClientId=cid)
+
+    def _reaches_too(self, target: Sequence[float], orientation: Sequence[float], drawer: int, value: float,
+                     ignore: frozenset[int], body: set[int]) -> bool:
+        """Whether the arm alone, from where it is or from one of the restarts, brings the tool to `target` with the
+        drawer's joint at `value`, the arm inside nothing (but `ignore`) and the rest of the robot (`body`) touching
+        nothing."""
+        p, cid = self.p, self.cid
+        p.resetJointState(self.kitchen, drawer, value, physicsClientId=cid)
+        here = {j: p.getJointState(self.robot, j, physicsClientId=cid)[0] for j in self.arm}
+        for attempt in range(RESTARTS):
+            self._set(here)
+            if attempt:
+                for k, j in enumerate(self.arm):
+                    lo, hi = self.limits[j]
+                    p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
+                                      physicsClientId=cid)
+            if self._solve(target, orientation, self.arm, {}) and \
+                    not self._touches(self.arm_links, PENETRATION, ignore) and not self._touches(body, 0.0):
+                return True
+        return False
+
+    def _pulls_from(self, x: float, y: float, yaw: float, ends: tuple[Sequence[float], Sequence[float]],
+                    orientation: Sequence[float], into: Sequence[float], drawer: int, values: tuple[float, float],
+                    ignore: frozenset[int]) -> bool:
+        """Whether the robot, its base starting at (x, y, yaw), holds the handle at both ends of the pull from one
+        base pose and torso height: the arm inside nothing (but the handle and the drawer's front) at either, the
+        rest of the robot touching nothing with the drawer open, and the pre-grasp before the closed end reached."""
+        p, cid = self.p, self.cid
+        box = {self.base[0]: (x - BASE_SLACK, x + BASE_SLACK), self.base[1]: (y - BASE_SLACK, y + BASE_SLACK),
+               self.base[2]: (yaw - TURN_SLACK, yaw + TURN_SLACK)}
+        free = [*self.base, *self.arm]
+        torso: list[float | None] = [None]
+        if self.torso is not None:
+            lo, hi = self.limits[self.torso]
+            torso = [lo + (hi - lo) * k / (TORSO_LEVELS - 1) for k in range(TORSO_LEVELS)]
+        body = {j for j in range(p.getNumJoints(self.robot, physicsClientId=cid))} - self.arm_links
+        for height, attempt, first in ((h, a, f) for h in torso for a in range(RESTARTS) for f in (0, 1)):
+            self._rest((x, y, yaw))
+            if height is not None:
+                p.resetJointState(self.robot, self.torso, height, physicsClientId=cid)
+            if attempt:
+                for k, j in enumerate(self.arm):
+                    lo, hi = self.limits[j]
+                    p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
+                                      physicsClientId=cid)
+            # one end with the base moving, then the other from the same base pose with the arm alone (from where
+            # the first left it, else from the restarts)
+            p.resetJointState(self.kitchen, drawer, values[first], physicsClientId=cid)
+            if not self._solve(ends[first], orientation, free, box) or \
+                    self._touches(self.arm_links, PENETRATION, ignore) or (first == 1 and self._touches(body, 0.0)):
+                continue
+            if not self._reaches_too(ends[1 - first], orientation, drawer, values[1 - first], ignore, body):
+                continue
+            solved = self._state()
+            pre = [c - APPROACH * a for c, a in zip(ends[0], into)]  # the pre-grasp, touching not even the handle
+            if not self._reaches_too(pre, orientation, drawer, values[0], frozenset(), set()):
+                continue
+            self._set({j: self.start.get(j, 0.0) for j in self.arm})
+            self._set({j: solved[j] for j in self.base})
+            if not self._touches(None, 0.0):
+                return True
+        return False
+
+
 def can_reach(world_file: Path) -> tuple[bool, str]:
     """(whether the robot can reach the counter and the island, what it could not reach)."""
     scene = _Scene(world_file)
@@ -445,6 +567,8 @@ def can_reach(world_file: Path) -> tuple[bool, str]:
                  (cx, lo[1] + ISLAND_INSET, z), (cx, hi[1] - ISLAND_INSET, z)]
         if not any(scene.takes(ISLAND_OBJECT, point) for point in sides):
             missed.append(f"the {ISLAND_OBJECT} on the island")
+        if not scene.opens(DRAWER_HANDLE, DRAWER_JOINT, OPEN_FRACTION):
+            missed.append(f"the drawer, pulled {OPEN_FRACTION:.0%} open")
         return not missed, ", ".join(missed)
     finally:
         scene.close()

@@ -24,8 +24,8 @@ all is the answer; the resolution is lazy, so asking again continues where it st
    free, the robot clear of the opened drawer;
 5. visible-for: the head turned to the object and the `visible` query — `not visible`.
 
-Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. A reachable-for
-location (taking or placing) whose candidates all fail with nothing in the way tries them again with
+Only `EXPENSIVE_LIMIT` candidates get tests 4 and 5; the rest count as `not tried`. A location where
+an arm reaches (taking, placing, opening or closing) whose candidates all fail with nothing in the way tries them again with
 the torso at other heights of its range (`_next_torso`); the pose found says the height. When no
 candidate passes, `LocationFailure` says what ruled them out: "412 candidates: 380 collide,
 32 out of reach". Everything is computed from the world and the robot's description: no
@@ -817,9 +817,10 @@ class BasePoseResolution(_Resolution):
     def _next_torso(self) -> bool:
         """When no pose reached the target with the torso where it is (and nothing was in the way: that is the plan's
         to move), the candidates anew with the torso at the next height (`_torso_heights`): whether there is one. Only
-        reachable-for locations (taking or placing an object) do this; the pose found says the height (`torso`)."""
+        locations where an arm reaches (taking, placing, opening or closing) do this; the pose found says the height
+        (`torso`)."""
         robot, spec = self.robot, self.spec
-        if (robot.description.torso_joint is None or spec.reachable_for is None or spec.accessing is not None
+        if (robot.description.torso_joint is None or (spec.reachable_for is None and spec.accessing is None)
                 or CODE["blocked"] in self.candidates.outcome):
             return False
         if self._torso_todo is None:

@@ -1,6 +1,6 @@
-"""A reachable-for location tries other torso heights when the arm reaches the object from no pose with the torso where
-it is (resolve.py `_next_torso`), and the pose it finds says the height (`BasePose.torso`), which the actions move the
-torso to on arriving (`go`; the whole demo on this robot: bench/zoo.py).
+"""A location where an arm reaches (reachable-for, accessing) tries other torso heights when the arm reaches from no
+pose with the torso where it is (resolve.py `_next_torso`), and the pose it finds says the height (`BasePose.torso`),
+which the actions move the torso to on arriving (`go`; the whole demo on this robot: bench/zoo.py).
 
 Zoo seed 12's 5-joint arm (a pan, three pitches, a wrist roll) holds the 27 cm cereal box only from above (its sides
 are wider than the gripper opens, but for the narrow ones, which it cannot turn its tool to), and reaches its top only
@@ -16,6 +16,7 @@ import pytest
 from pycram_cli.designators import perform
 from pycram_cli.failures import LocationFailure
 from pycram_cli.locations import LocationSpec
+from pycram_cli.locations.spec import find_handle
 from pycram_cli.locations.resolve import BasePoseResolution, take_from_here
 from pycram_cli.process_modules import Robot
 from pycram_cli.robots.zoo import generate, write_world
@@ -63,5 +64,36 @@ def test_a_robot_without_a_torso_out_of_reach_fails_with_one_pass(tmp_path):
         with world.snapshot(), pytest.raises(LocationFailure) as failure:
             BasePoseResolution(robot, LocationSpec(reachable_for=far), limit=2).next()
         assert "torso" not in str(failure.value)
+    finally:
+        world.exit()
+
+
+def test_a_robot_on_a_tall_lift_lowers_it_to_open_a_drawer(tmp_path):
+    # zoo seed 12 on a lift that rises 1.6 m, standing at the top: no pose reaches the drawer's handle from up there;
+    # the accessing location lowers the torso, and `open` (as search does) moves it there on arriving and pulls
+    from xml.etree import ElementTree
+
+    from pycram_cli.designators.actions import perform_action
+
+    zoo = generate(12)
+    world_file = write_world(zoo, tmp_path)
+    robot_file = next(tmp_path.glob("*.urdf"))
+    tree = ElementTree.parse(robot_file)
+    joint = next(j for j in tree.getroot().findall("joint") if j.get("name") == zoo.torso_joint)
+    joint.find("limit").set("upper", "1.6")
+    tree.write(robot_file)
+    world = load_world(world_file)
+    try:
+        robot = Robot.of(world)
+        robot.body.reset_joints({zoo.torso_joint: 1.6})
+        kitchen = world.get_object_by_name("kitchen")
+        handle = "sink_area_left_upper_drawer_handle"
+        with world.snapshot():
+            pose = BasePoseResolution(robot, LocationSpec(accessing=find_handle(world, handle, "handle"))).next()
+        assert pose.torso is not None and pose.torso < 1.6 - 0.1
+        perform_action(world, "open", {"handle": handle, "distance": 0.3})
+        assert robot.body.get_joint_positions([zoo.torso_joint])[zoo.torso_joint] < 1.5
+        assert kitchen.get_joint_positions(["sink_area_left_upper_drawer_main_joint"])[
+            "sink_area_left_upper_drawer_main_joint"] == pytest.approx(0.3, abs=0.02)
     finally:
         world.exit()

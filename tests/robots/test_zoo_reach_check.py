@@ -53,3 +53,23 @@ def test_the_bowl_is_held_by_its_rim_from_above(scene):
 
 def test_it_takes_the_cereal_as_the_planner_does(scene):
     assert scene.takes("cereal")
+
+
+def _opens(check, tmp_path, seed: int, fraction: float) -> bool:
+    made = check._Scene(write_world(generate(seed), tmp_path))
+    try:
+        return made.opens(check.DRAWER_HANDLE, check.DRAWER_JOINT, fraction)
+    finally:
+        made.close()
+
+
+def test_a_long_arm_pulls_the_spoons_drawer_as_far_as_search_needs(check, scene):
+    # seed 12 (whose robot sets the table) holds the handle closed and pulled 75 % open from one base pose
+    assert scene.opens(check.DRAWER_HANDLE, check.DRAWER_JOINT, check.OPEN_FRACTION)
+
+
+def test_a_short_arm_behind_its_base_pulls_the_drawer_only_part_of_the_way(check, tmp_path):
+    # seed 7: a 5-joint arm whose shoulder stands behind the base's front: the drawer open 75 % would reach into the
+    # base before the hand comes back that far; half way it can
+    assert not _opens(check, tmp_path, 7, check.OPEN_FRACTION)
+    assert _opens(check, tmp_path, 7, 0.5)
