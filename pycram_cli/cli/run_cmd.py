@@ -17,7 +17,7 @@ from ..scenario import prepare
 from ..limits import MAX_PROJECTED
 from ..scenario.starts import ImpossibleStart, possible_variant
 from ..sweep.projection import Projection, project
-from ..scenario.variations import beside, read_variations
+from ..scenario.variations import read_variations, variation_file
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
@@ -187,10 +187,7 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
                           f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")  # type: ignore[operator]
             ctx.exit(EXIT_FAILED)
     if scenario_seed is not None:
-        vary = Path(vary_file) if vary_file is not None else beside(scenario.plan.path)
-        if vary is None:
-            raise InputError(f"--scenario needs the variation file: give --vary (none named "
-                             f"{scenario.plan.path.stem}.vary.yaml is beside the plan)", Location("--scenario"))
+        vary = variation_file(scenario.plan.path, vary_file, "--scenario", "running one scenario")
         variations = read_variations(vary, scenario.world, scenario.plan)
         base = scenario
         try:  # the sweep's draw: redrawn while its objects cannot start (scenario/starts.py)

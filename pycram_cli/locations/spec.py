@@ -32,7 +32,12 @@ class Surface:
 
     @property
     def name(self) -> str:
-        return self.link or self.obj.name
+        """The link's name (`OBJECT/LINK` when another object has a link of that name too), or the object's."""
+        if self.link is None:
+            return self.obj.name
+        shared = any(o is not self.obj and o is not o.world.robot and self.link in o.link_names
+                     for o in self.obj.world.objects)
+        return f"{self.obj.name}/{self.link}" if shared else self.link
 
     def box(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         return self.obj.get_aabb(self.link) if self.link is not None else self.obj.get_aabb()

@@ -287,6 +287,21 @@ def beside(plan_path: Path) -> Path | None:
     return candidate if probe(candidate) is None else None  # no OSError for a name made too long
 
 
+def variation_file(plan_path: Path, vary: str | Path | None, flag: str, who: str | None = None) -> Path:
+    """The variation file `who` (default: the option `flag`: `--project`, `--scenario`) draws from: `vary` when given,
+    else the one beside the plan; none: an InputError at `flag` saying how to write one."""
+    if vary is not None:
+        return Path(vary).resolve()
+    found = beside(plan_path)
+    if found is not None:
+        return found
+    stem = plan_path.stem
+    local = (Path.cwd() / "plans").resolve() == plan_path.parent.resolve()
+    where = "it goes beside the plan" if local else f"then give --vary plans/{stem}{SUFFIX}"
+    raise InputError(f"{who or flag} needs a variation file, and none named {stem}{SUFFIX} is beside the plan: give --vary "
+                     "FILE", Location(flag), suggestion=f"`pycram new vary {stem}` writes plans/{stem}{SUFFIX}; {where}")
+
+
 def read_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:
     """`parse_variations`, then the surfaces its regions stand on read from the world loaded once."""
     variations = parse_variations(path, world, plan)

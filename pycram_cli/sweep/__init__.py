@@ -34,7 +34,7 @@ from ..paths import plans_dir, worlds_dir
 from ..plan import bind_params
 from ..plan.syntax import plain
 from ..scenario import Scenario, prepare
-from ..scenario.variations import Variations, beside, read_variations, scenario_seed
+from ..scenario.variations import Variations, beside, read_variations, scenario_seed, variation_file
 from . import ray_backend
 from .local import LocalPool, SweepError
 from .results import ResultsFile, file_digest
@@ -135,15 +135,7 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
         errors.append(InputError(f"expected between 1 and {MAX_WORKERS} workers (the limit), got {settings.workers}",
                                  Location("--workers")))
     scenario = prepare(settings.plan, settings.world)
-    vary = Path(settings.vary).resolve() if settings.vary is not None else beside(scenario.plan.path)
-    if vary is None:
-        stem = scenario.plan.path.stem
-        local = (Path.cwd() / "plans").resolve() == scenario.plan.path.parent.resolve()
-        raise InputError(f"no variation file: give --vary (none named {stem}.vary.yaml is beside the plan)",
-                         Location("--vary"),
-                         suggestion=f"write one with `pycram new vary {stem}` (plans/{stem}.vary.yaml"
-                                    + (", found beside the plan" if local else f", then --vary plans/{stem}.vary.yaml")
-                                    + ")")
+    vary = variation_file(scenario.plan.path, settings.vary, "--vary", "a sweep")
     variations: Variations | None = None
     try:
         variations = read_variations(vary, scenario.world, scenario.plan)

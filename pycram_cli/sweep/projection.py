@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..scenario import prepare
-from ..scenario.variations import beside, read_variations, scenario_seed
+from ..scenario.variations import read_variations, scenario_seed, variation_file
 from ..errors import InputError, Location
 from .local import LocalPool
 from .summary import summarise
@@ -43,22 +43,10 @@ class Projection:
     workers: int | None = None         # default: the number of cores
 
 
-def variation_file(plan_path: Path, vary: str | None) -> Path:
-    """The variation file a projection draws from: `vary`, else the one beside the plan."""
-    if vary is not None:
-        return Path(vary).resolve()
-    found = beside(plan_path)
-    if found is None:
-        raise InputError(f"--project needs a variation file: give --vary (none named {plan_path.stem}.vary.yaml "
-                         "is beside the plan)", Location("--project"),
-                         suggestion=f"write one with `pycram new vary {plan_path.stem}`")
-    return found
-
-
 def project(projection: Projection, on_outcome: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """Run the projection; the sweep's summary of its outcomes (plus `runs_total` and `workers`)."""
     scenario = prepare(projection.plan, projection.world)
-    vary = variation_file(scenario.plan.path, projection.vary)
+    vary = variation_file(scenario.plan.path, projection.vary, "--project", "projecting the plan")
     read_variations(vary, scenario.world, scenario.plan)  # its problems now, as input errors
     job = SweepJob(str(scenario.plan.path), str(vary), str(scenario.world_path))
     given = dict(projection.params) or None

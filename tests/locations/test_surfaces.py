@@ -49,6 +49,8 @@ def test_a_link_several_objects_have_must_say_whose(tmp_path):
         assert caught.value.suggestion == "e.g. on: table_b/baseLink"
         surface = find_surface(world, "table_b/baseLink")
         assert surface.obj.name == "table_b" and surface.link == "baseLink"
+        assert surface.name == "table_b/baseLink"  # as traces and messages say it: whose, since both have one
+        assert find_surface(world, "table_b").name == "table_b"
         with pytest.raises(InputError, match="'table_b' has no link 'top'"):
             find_surface(world, "table_b/top")
         with pytest.raises(InputError, match="no object 'table_c'"):

@@ -97,4 +97,4 @@ def test_without_a_variation_file_the_error_says_how_to_write_one(boxes):
     (boxes / "near.vary.yaml").unlink()
     result = run("run", boxes / "near.yaml", "--project", 2)
     assert result.exit_code == 2
-    assert "--project needs a variation file" in result.output and "pycram new vary near" in result.output
+    assert "projecting the plan needs a variation file" in result.output and "pycram new vary near" in result.output

@@ -146,7 +146,9 @@ def test_without_a_variation_file_the_error_says_how_to_write_one(small):
     (small / "drop.vary.yaml").unlink()
     result = sweep(small, "out", "-n", "2")
     assert result.exit_code == 2
-    assert "no variation file" in result.stderr and "write one with `pycram new vary drop`" in result.stderr
+    assert "a sweep needs a variation file, and none named drop.vary.yaml is beside the plan: give --vary FILE" \
+        in result.stderr and "`pycram new vary drop` writes plans/drop.vary.yaml" in result.stderr
+    assert "((" not in result.stderr and "))" not in result.stderr
 
 
 def test_a_scenario_past_the_timeout_is_recorded_and_the_sweep_goes_on(small):
