@@ -19,7 +19,7 @@ PLAN_DIR = Path(__file__).resolve().parents[1] / "pycram_cli" / "plan"
 PLAN_PACKAGE = "pycram_cli.plan"
 
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
-                       "actions", "projecting", "params", "validate", "language"}
+                       "actions", "projecting", "scoring", "params", "validate", "language"}
 PLAN_RUNNING_FLOOR = {"scheduler", "trace", "trace_schema", "executor", "replay"}
 PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
 PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions", "projecting"}

@@ -39,7 +39,7 @@ from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_WAIT
 from ..paths import resources_dir
 from ..plan.context import IDENTIFIER, NAME, REFERENCE
 from ..plan.language import NODE_TYPES
-from ..plan import projecting
+from ..plan import projecting, scoring
 from ..plan.leaves import CONDITION_FORMS
 from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SCOPES, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
 from ..reasoning import QUERIES
@@ -107,7 +107,14 @@ HEAD_VALUES: dict[str, Schema] = {
                                                               "minItems": 3, "maxItems": 3}],
                                        "description": "uniform in ± per axis (m): a number (x and y) or [x, y, z]"},
                              "yaw": _number(0, math.pi, "turned by a uniform angle in ±yaw (rad) about z")}}},
-            "choose": {"enum": list(projecting.CHOICES), "description": "how the alternative to run is chosen"},
+            "choose": {"anyOf": [
+                {"enum": list(projecting.CHOICES)},
+                {"type": "object", "minProperties": 1, "maxProperties": 1,
+                 "properties": {sense: {"type": ["string", "number"]} for sense in scoring.SENSES},
+                 "additionalProperties": False,
+                 "description": "the alternative with the highest (max) or lowest (min) value of an arithmetic "
+                                "expression over its outcomes: " + ", ".join(scoring.OUTCOMES)}],
+                "description": "how the alternative to run is chosen"},
             "at-least": _number(0, 1, "the success rate the chosen alternative needs (else a ProjectionFailure)"),
             "seed": {"type": "integer", "minimum": 0, "maximum": 2**32 - 1,
                      "description": "the projected runs' draws come from it"},

@@ -7,7 +7,7 @@
         runs: 20                       # projected runs per alternative
         vary:                          # how each run's world differs from the world as it is now
           milk: {noise: [0.02, 0.02, 0], yaw: 0.17}   # the variation file's noise (m) and yaw (rad)
-        choose: most-successful        # or first-success, fewest-steps
+        choose: most-successful        # or first-success, fewest-steps, {max: rate - 0.01 * steps}
         at-least: 0.8                  # else fail with a ProjectionFailure carrying the table
         seed: 0
       as: choice                       # {name: the chosen alternative, table: its outcomes by alternative}
@@ -44,6 +44,7 @@ from ..yamlsource import LList, LMap
 from .composites import Seq
 from .context import Frame, jsonable
 from .runtime import Cancelled, LimitExceeded, Record, Runtime
+from .scoring import OUTCOMES, SENSES, Score, ScoreError, parse_score
 from .syntax import Node, Parser, node_type
 
 if TYPE_CHECKING:
@@ -82,7 +83,7 @@ class Project(Node):
            "fails with a ProjectionFailure when none succeeds often enough")
 
     def __init__(self, head: str, where: Location, alternatives: list[tuple[str, Location, list[Node]]], runs: int,
-                 variations: list[Variation], choose: str, at_least: float, seed: int) -> None:
+                 variations: list[Variation], choose: str | Score, at_least: float, seed: int) -> None:
         super().__init__(head, where)
         self.alternatives, self.runs, self.variations = alternatives, runs, variations
         self.choose, self.at_least, self.seed = choose, at_least, seed
@@ -115,18 +116,14 @@ class Project(Node):
                                                                               str(name))))
         runs = _whole(parser, body, "runs", DEFAULT_RUNS, 1, MAX_PROJECTED)
         seed = _whole(parser, body, "seed", 0, 0, 2**32 - 1)
-        choose = body.get("choose", CHOICES[0])
-        if choose not in CHOICES:
-            parser.error(f"expected one of {', '.join(CHOICES)}, got {describe(choose)}", body.loc("choose", True),
-                         key="choose")
-            choose = CHOICES[0]
+        choose = _choice(parser, body)
         at_least = body.get("at-least", 0.0)
         if isinstance(at_least, bool) or not is_number(at_least) or not 0.0 <= float(at_least) <= 1.0:
             parser.error(f"expected a success rate from 0 to 1, got {describe(at_least)}", body.loc("at-least", True),
                          key="at-least")
             at_least = 0.0
         variations = _variations(parser, body)
-        node = cls(head, step.loc(head), alternatives, int(runs), variations, str(choose), float(at_least), int(seed))
+        node = cls(head, step.loc(head), alternatives, int(runs), variations, choose, float(at_least), int(seed))
         if "as" in body:  # also written inside the mapping (an `as` beside `project` wins)
             node.bind = parser.identifier(body["as"], body.loc("as", True), "as")
             node.bind_where = body.loc("as", True)
@@ -155,7 +152,8 @@ class Project(Node):
                 rows = [self._project(ex, tn, world, state, name, where, steps, run) for run in range(self.runs)]
                 table[name] = _row(rows)
             choice, why = self._choose(table)
-            tn.info["projection"] = {"runs": self.runs, "seed": self.seed, "choose": self.choose,
+            choose = self.choose.describe() if isinstance(self.choose, Score) else self.choose
+            tn.info["projection"] = {"runs": self.runs, "seed": self.seed, "choose": choose,
                                      "at-least": self.at_least, "alternatives": table, "choice": choice, "why": why}
         finally:  # also when cancelled (no cancellation check): the trace's final state is the real world's
             with world.lock:
@@ -229,6 +227,11 @@ class Project(Node):
                 and row["succeeded"] > 0]
         if not good:
             return None, f"none succeeded in at least {100 * self.at_least:.0f} % of its runs"
+        if isinstance(self.choose, Score):
+            score = self.choose
+            sign = 1.0 if score.sense == "max" else -1.0
+            best = max(good, key=lambda name: (sign * score.of(table[name]), -list(table).index(name)))
+            return best, f"the {'highest' if sign > 0 else 'lowest'} {score.text} ({score.of(table[best]):.4g})"
         if self.choose == "first-success":
             return good[0], "the first alternative that succeeded often enough"
         if self.choose == "fewest-steps":
@@ -239,6 +242,35 @@ class Project(Node):
 
 
 # -- helpers --------------------------------------------------------------------------------------------
+def _choice(parser: Parser, body: LMap) -> str | Score:
+    """`choose`: one of CHOICES, or `{max: EXPR}` / `{min: EXPR}` over the outcomes (see scoring.py)."""
+    choose = body.get("choose", CHOICES[0])
+    where = body.loc("choose", True)
+    if isinstance(choose, LMap):
+        if len(choose) != 1 or next(iter(choose)) not in SENSES:
+            parser.error(f"expected {{max: EXPRESSION}} or {{min: EXPRESSION}}, got {describe(choose)}", where,
+                         key="choose", suggestion="e.g. choose: {max: rate - 0.01 * steps}")
+            return CHOICES[0]
+        sense = str(next(iter(choose)))
+        text = choose[sense]
+        if isinstance(text, bool) or not isinstance(text, (str, int, float)):
+            parser.error(f"expected an arithmetic expression, got {describe(text)}", choose.loc(sense, True),
+                         key=sense, suggestion="e.g. rate - 0.01 * steps")
+            return CHOICES[0]
+        try:
+            return parse_score(sense, str(text))
+        except ScoreError as exc:
+            suggestion = did_you_mean(exc.name, list(OUTCOMES)) if exc.name else None
+            parser.error(f"choose {sense}: {exc}", choose.loc(sense, True), key=sense,
+                         suggestion=suggestion or f"the outcomes: {', '.join(OUTCOMES)}")
+            return CHOICES[0]
+    if choose not in CHOICES:
+        parser.error(f"expected one of {', '.join(CHOICES)}, or {{max: EXPRESSION}} / {{min: EXPRESSION}}, got "
+                     f"{describe(choose)}", where, key="choose", suggestion="e.g. choose: {max: rate - 0.01 * steps}")
+        return CHOICES[0]
+    return str(choose)
+
+
 def _whole(parser: Parser, body: LMap, key: str, default: int, low: int, high: int) -> int:
     value = body.get(key, default)
     if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:

@@ -173,12 +173,41 @@ def test_a_projection_that_hits_an_internal_error_is_recorded_and_the_step_goes_
     assert table["fine"]["succeeded"] == 2
 
 
+@pytest.mark.parametrize("score, chosen, why", [
+    ("{max: rate - 0.1 * steps}", "short", "the highest rate - 0.1 * steps (0.9)"),  # both always succeed
+    ("{max: steps}", "long", "the highest steps (3)"),
+    ("{min: failed + steps}", "short", "the lowest failed + steps (1)"),
+])
+def test_an_expression_over_the_outcomes_chooses(tmp_path, kitchen, score, chosen, why):
+    result = run(tmp_path, kitchen, f"""\
+        world: kitchen
+        body:
+          - project:
+              alternatives:
+                long: [{{log: one}}, {{log: two}}, {{log: three}}]
+                short: [{{log: one}}]
+              runs: 2
+              choose: {score}
+        """)
+    assert result.succeeded, result.failure
+    projection = find(result.trace["root"], "0:project")["projection"]
+    assert projection["choice"] == chosen and projection["why"] == why
+    assert projection["choose"] == score.strip("{}").replace(": ", ": ", 1)
+
+
 @pytest.mark.parametrize("body, message", [
     ("project: [a, b]", "project: expected a mapping with 'alternatives'"),
     ("project: {runs: 3}", "a 'project' step needs 'alternatives'"),
     ("project: {alternatives: {a: [{log: x}]}, runs: 0}", "runs: expected a whole number from 1 to"),
     ("project: {alternatives: {a: [{log: x}]}, choose: best}", "choose: expected one of most-successful, "
-                                                                "first-success, fewest-steps"),
+                                                                "first-success, fewest-steps, or {max: EXPRESSION}"),
+    ("project: {alternatives: {a: [{log: x}]}, choose: {max: rat - steps}}", "unknown name 'rat' (did you mean "
+                                                                             "'rate'?)"),
+    ("project: {alternatives: {a: [{log: x}]}, choose: {max: \"__import__('os').getcwd()\"}}",
+     "only numbers, rate, succeeded, failed, runs, steps, + - * / and min, max, abs() are allowed"),
+    ("project: {alternatives: {a: [{log: x}]}, choose: {max: rate +}}", "not an arithmetic expression"),
+    ("project: {alternatives: {a: [{log: x}]}, choose: {best: rate}}", "expected {max: EXPRESSION} or "
+                                                                       "{min: EXPRESSION}"),
     ("project: {alternatives: {a: [{log: x}]}, at-least: 2}", "at-least: expected a success rate from 0 to 1"),
     ("project: {alternatives: {a: [{log: x}]}, vary: {milk: {noise: -1}}}", "noise: expected a number"),
     ("project: {alternatives: {a: [{log: x}]}, vary: {milk: {turn: 1}}}", "unknown key 'turn' in a varied object"),
