@@ -1,0 +1,338 @@
+"""A run's replay as an MCAP file that Foxglove (and any MCAP tool) opens: `pycram run --mcap`, `trace show --mcap`.
+
+The file holds, with JSON-encoded messages and the schemas of foxglove_schemas.py:
+
+- `/scene` (`foxglove.SceneUpdate`, once at the start): an entity for every drawn link of every body, with
+  its visual shapes (boxes, spheres, cylinders, capsules as a cylinder and two spheres, meshes as STL
+  models embedded in the file), locked to the link's frame, and a text label on every object that is not
+  scenery; each entity's metadata names its body, link and type;
+- `/tf` (`foxglove.FrameTransforms`): the world pose of every link (frame `BODY/LINK`, parent `world`)
+  before the first step and after each recorded step, all of them each time, so that seeking anywhere
+  shows the whole world;
+- `/plan` (`foxglove.Log`): one message per recorded step (its path, what it did, its failure), at the
+  level of its outcome (info, warning for folded failed attempts, error for a failure), with the plan
+  file and line;
+- `/camera/image` (`foxglove.CompressedImage`, PNG): what the robot's camera (its description's `camera`)
+  saw after each step of a designator that uses the camera (`detecting`).
+
+Time is the step index: the state before the first step at 0 s, step k at k s, so the file is the same
+byte for byte for the same trace and plays one step per second.
+"""
+from __future__ import annotations
+
+import base64
+import io
+import json
+import math
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+from typing import Any, Iterator
+
+import numpy as np
+from mcap.writer import CompressionType, Writer
+
+from ..designators.declaration import DESIGNATORS
+from ..plan.trace import REPLAY_KEY
+from ..reasoning.visibility import resolve_camera
+from ..world import BulletWorld, Object, VisualShape
+from ..world.camera import Camera, encode_image, render
+from ..world.meshes import read_mesh
+from ..worldfile.loader import load_world
+from .foxglove_schemas import SCHEMAS
+
+MCAP_FORMATS = {".mcap": "MCAP"}
+STEP_NS = 1_000_000_000  # one second of replay time per step
+DIGITS = 6  # rounding of poses: the same trace gives the same bytes
+IMAGE_WIDTH = 320  # the camera images' width; their height follows the camera's fields of view
+SCENERY = ("environment",)  # bodies without a label (the robot gets one: it is what the run is about)
+LEVELS = {"succeeded": 2, "folded": 3, "failed": 4}  # foxglove.Log levels: info, warning, error
+WORLD_FRAME = "world"
+
+
+def _library() -> str:
+    try:
+        return f"pycram {version('pycram-cli')}"
+    except PackageNotFoundError:
+        return "pycram dev"
+
+
+def _time(ns: int) -> dict[str, int]:
+    return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
+
+
+def _vector(values: Any) -> dict[str, float]:
+    return {axis: round(float(v), DIGITS) + 0.0 for axis, v in zip("xyz", values)}
+
+
+def _quaternion(values: Any) -> dict[str, float]:
+    return {axis: round(float(v), DIGITS) + 0.0 for axis, v in zip("xyzw", values)}
+
+
+def _pose(origin: tuple[Any, Any], offset: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> dict[str, Any]:
+    """A shape's pose in its link frame, moved by `offset` along the shape's own axes."""
+    position, orientation = origin
+    moved = np.asarray(position, dtype=float) + _rotate(orientation, offset)
+    return {"position": _vector(moved), "orientation": _quaternion(orientation)}
+
+
+def _rotate(quaternion: Any, vector: tuple[float, float, float]) -> np.ndarray:
+    x, y, z, w = (float(v) for v in quaternion)
+    q = np.array([x, y, z])
+    v = np.asarray(vector, dtype=float)
+    return v + 2.0 * np.cross(q, np.cross(q, v) + w * v)
+
+
+def _color(rgba: Any) -> dict[str, float]:
+    return {channel: round(float(v), 4) + 0.0 for channel, v in zip("rgba", rgba)}
+
+
+def stl_bytes(vertices: np.ndarray, triangles: np.ndarray) -> bytes:
+    """A binary STL of a triangle mesh (Foxglove draws STL models as they are: no axis conventions)."""
+    corners = vertices[triangles].astype("<f4")  # (M, 3, 3)
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    lengths = np.linalg.norm(normals, axis=1, keepdims=True)
+    normals = np.divide(normals, lengths, out=np.zeros_like(normals), where=lengths > 0).astype("<f4")
+    rows = np.zeros(len(triangles), dtype=[("normal", "<f4", 3), ("corners", "<f4", 9), ("attribute", "<u2")])
+    rows["normal"], rows["corners"] = normals, corners.reshape(-1, 9)
+    header = b"pycram: a visual mesh for the MCAP replay".ljust(80, b" ")
+    return header + np.uint32(len(triangles)).astype("<u4").tobytes() + rows.tobytes()
+
+
+class SceneEntities:
+    """Every body's drawn links as Foxglove scene entities, each mesh file converted once."""
+
+    def __init__(self, world: BulletWorld) -> None:
+        self.world = world
+        self._meshes: dict[str, str | None] = {}  # resolved path -> base64 STL, None when it cannot be read
+        self.skipped: list[str] = []
+        self.links: list[tuple[Object, list[int]]] = []
+        self.entities: list[dict[str, Any]] = []
+        for obj in world.objects:
+            shapes: dict[int, list[VisualShape]] = {}
+            for shape in obj.visual_shapes():
+                shapes.setdefault(shape.link, []).append(shape)
+            drawn = []
+            for link in sorted(shapes):
+                entity = self._entity(obj, link, shapes[link])
+                if entity is not None:
+                    self.entities.append(entity)
+                    drawn.append(link)
+            self.links.append((obj, drawn))
+            if obj.type not in SCENERY and drawn:
+                self.entities.append(self._label(obj, drawn[0]))
+
+    def _entity(self, obj: Object, link: int, shapes: list[VisualShape]) -> dict[str, Any] | None:
+        parts: dict[str, list[dict[str, Any]]] = {"cubes": [], "spheres": [], "cylinders": [], "models": []}
+        for shape in shapes:
+            color = _color(shape.rgba)
+            if shape.rgba[3] <= 0.0:
+                continue
+            if shape.kind == "box":
+                parts["cubes"].append({"pose": _pose(shape.origin), "size": _vector(shape.size), "color": color})
+            elif shape.kind == "sphere":
+                parts["spheres"].append({"pose": _pose(shape.origin), "size": _vector([2 * shape.radius] * 3),
+                                         "color": color})
+            elif shape.kind in ("cylinder", "capsule"):
+                diameter = 2 * shape.radius
+                parts["cylinders"].append({"pose": _pose(shape.origin), "size": _vector((diameter, diameter, shape.length)),
+                                           "bottom_scale": 1.0, "top_scale": 1.0, "color": color})
+                if shape.kind == "capsule":  # the rounded ends
+                    for end in (-0.5, 0.5):
+                        parts["spheres"].append({"pose": _pose(shape.origin, (0.0, 0.0, end * shape.length)),
+                                                 "size": _vector([diameter] * 3), "color": color})
+            elif shape.kind == "mesh" and (data := self._mesh(shape.mesh_file)) is not None:
+                parts["models"].append({"pose": _pose(shape.origin), "scale": _vector(shape.scale), "color": color,
+                                        "override_color": True, "url": "", "media_type": "model/stl", "data": data})
+            else:
+                what = f"mesh {shape.mesh_file}" if shape.kind == "mesh" else shape.kind
+                self.skipped.append(f"{obj.name}/{obj.get_link_name(link)}: {what}")
+        if not any(parts.values()):
+            return None
+        name = obj.get_link_name(link)
+        return {"timestamp": _time(0), "frame_id": frame_of(obj, link), "id": f"{obj.name}/{name}",
+                "lifetime": _time(0), "frame_locked": True,
+                "metadata": [{"key": "body", "value": obj.name}, {"key": "link", "value": name},
+                             {"key": "type", "value": obj.type}],
+                **{kind: items for kind, items in parts.items() if items}}
+
+    def _label(self, obj: Object, link: int) -> dict[str, Any]:
+        """The object's name above it, facing the viewer."""
+        lo, hi = obj.get_aabb()
+        (x, y, z), _ = obj.link_poses([link])[link]
+        above = ((lo[0] + hi[0]) / 2 - x, (lo[1] + hi[1]) / 2 - y, hi[2] - z + 0.08)
+        return {"timestamp": _time(0), "frame_id": frame_of(obj, link), "id": f"label/{obj.name}",
+                "lifetime": _time(0), "frame_locked": True,
+                "metadata": [{"key": "body", "value": obj.name}, {"key": "type", "value": obj.type}],
+                "texts": [{"pose": {"position": _vector(above), "orientation": _quaternion((0, 0, 0, 1))},
+                           "billboard": True, "font_size": 14.0, "scale_invariant": True,
+                           "color": _color((0.1, 0.1, 0.1, 1.0)), "text": obj.name}]}
+
+    def _mesh(self, path: Path | None) -> str | None:
+        if path is None:
+            return None
+        key = str(path)
+        if key not in self._meshes:
+            try:
+                mesh = read_mesh(path)
+                self._meshes[key] = base64.b64encode(stl_bytes(mesh.vertices, mesh.triangles)).decode("ascii")
+            except (OSError, ValueError):
+                self._meshes[key] = None
+        return self._meshes[key]
+
+    def transforms(self, ns: int) -> list[dict[str, Any]]:
+        """Every drawn link's frame in the world now."""
+        found = []
+        for obj, links in self.links:
+            if not links:
+                continue
+            for link, (position, orientation) in sorted(obj.link_poses(links).items()):
+                found.append({"timestamp": _time(ns), "parent_frame_id": WORLD_FRAME,
+                              "child_frame_id": frame_of(obj, link),
+                              "translation": _vector(position), "rotation": _quaternion(orientation)})
+        return found
+
+
+def frame_of(obj: Object, link: int) -> str:
+    return f"{obj.name}/{obj.get_link_name(link)}"
+
+
+def put_state(world: BulletWorld, state: dict[str, dict[str, Any]]) -> None:
+    """Put the objects named in a replay state (initial state or a step's changes) where it says."""
+    for name, entry in state.items():
+        obj = world.get_object_by_name(name)
+        if obj is None:
+            continue
+        if "position" in entry and "orientation" in entry:
+            obj.set_position_and_orientation(entry["position"], entry["orientation"])
+        joints = {k: v for k, v in (entry.get("joints") or {}).items() if k in obj.joint_names}
+        if joints:
+            obj.reset_joints(joints)
+
+
+def _nodes(node: dict[str, Any], into: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    into[node.get("path", "")] = node
+    for child in node.get("children") or []:
+        _nodes(child, into)
+    return into
+
+
+def _short(value: Any, limit: int = 60) -> str:
+    text = value if isinstance(value, str) else json.dumps(value, ensure_ascii=False, separators=(", ", ": "),
+                                                           sort_keys=True)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def step_text(step: dict[str, Any], node: dict[str, Any]) -> str:
+    """`PATH: slot=value, ...` (slots in name order: a trace run now and the same trace read from its file give
+    the same text) and, for a failed step, its failure; a folded entry says how many it stands for."""
+    values = {}
+    if isinstance(node.get("designator"), dict):
+        values = node["designator"].get("resolved") or node["designator"].get("slots") or {}
+    elif isinstance(node.get("query"), dict):
+        values = node["query"].get("args") or {}
+    text = str(step.get("path"))
+    if values:
+        text += ": " + ", ".join(f"{k}={_short(v)}" for k, v in sorted(values.items()))  # as a saved trace has them
+    if "message" in node:
+        text += f" “{node['message']}”"
+    if step.get("folded"):
+        text += f" ({step['folded']} entries of failed attempts folded)"
+    failure = node.get("failure")
+    if isinstance(failure, dict) and node.get("status") == "failed" and failure.get("path") == node.get("path"):
+        text += f" — {failure.get('type')}: {failure.get('message')}"
+    return text
+
+
+def _level(step: dict[str, Any]) -> int:
+    if step.get("folded"):
+        return LEVELS["folded"]
+    return LEVELS.get(str(step.get("status")), 2)
+
+
+def _line(node: dict[str, Any]) -> int:
+    source = str(node.get("source") or "")
+    head = source.split(":", 1)[0]
+    return int(head) if head.isdigit() else 0
+
+
+def _takes_picture(node: dict[str, Any]) -> bool:
+    """A step of a designator that uses the robot's camera (its declaration's resource)."""
+    spec = DESIGNATORS.get(str(node.get("type"))) if "designator" in node else None
+    return spec is not None and spec.resource == "camera"
+
+
+def robot_view(world: BulletWorld) -> tuple[Camera, float] | None:
+    """The robot's camera (from its description) as a rendering camera, and its image's width over height;
+    None when it has none."""
+    robot = world.robot
+    if robot is None:
+        return None
+    try:
+        pose = resolve_camera(robot)
+    except (ValueError, KeyError):
+        return None
+    eye = pose.position
+    forward, down = pose.rotation[:, 2], pose.rotation[:, 1]
+    horizontal, vertical = pose.fov if pose.fov else (math.radians(60.0), math.radians(45.0))
+    aspect = math.tan(horizontal / 2) / math.tan(vertical / 2)
+    camera = Camera(tuple(float(v) for v in eye), tuple(float(v) for v in eye + forward),  # type: ignore[arg-type]
+                    tuple(float(v) for v in -down), vertical_fov_deg=math.degrees(vertical),
+                    near=max(0.01, float(pose.near)))
+    return camera, aspect
+
+
+def messages(trace: dict[str, Any], world: BulletWorld) -> Iterator[tuple[str, int, dict[str, Any]]]:
+    """(topic, time in ns, message) of the whole replay, in time order."""
+    replay = trace.get(REPLAY_KEY) or {}
+    for obj in world.objects:  # recorded poses say where everything is: nothing may drag anything along
+        for other in list(obj.attachments):
+            if other in obj.attachments:
+                obj.detach(other)
+    put_state(world, replay.get("initial") or {})
+    scene = SceneEntities(world)
+    yield "/scene", 0, {"deletions": [], "entities": scene.entities}
+    yield "/tf", 0, {"transforms": scene.transforms(0)}
+    nodes = _nodes(trace.get("root") or {}, {})
+    plan = str(trace.get("plan") or "")
+    for k, step in enumerate(replay.get("steps") or [], start=1):
+        ns = k * STEP_NS
+        put_state(world, step.get("changed") or {})
+        node = nodes.get(str(step.get("path")), {})
+        yield "/tf", ns, {"transforms": scene.transforms(ns)}
+        yield "/plan", ns, {"timestamp": _time(ns), "level": _level(step), "message": step_text(step, node),
+                            "name": f"step {k}", "file": plan, "line": _line(node)}
+        if _takes_picture(node) and (view := robot_view(world)) is not None:
+            camera, aspect = view
+            width, height = IMAGE_WIDTH, max(1, round(IMAGE_WIDTH / aspect))
+            image = encode_image(render(world, camera, width, height), ".png")
+            yield "/camera/image", ns, {"timestamp": _time(ns), "frame_id": WORLD_FRAME,
+                                        "data": base64.b64encode(image).decode("ascii"), "format": "png"}
+
+
+TOPICS = {"/scene": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "/plan": "foxglove.Log",
+          "/camera/image": "foxglove.CompressedImage"}
+
+
+def build_mcap(trace: dict[str, Any], world_path: Path) -> bytes:
+    """The MCAP file of a run (a trace with its replay record) in the world file `world_path`."""
+    world = load_world(world_path)
+    stream = io.BytesIO()
+    writer = Writer(stream, compression=CompressionType.ZSTD)
+    writer.start(profile="", library=_library())
+    channels: dict[str, int] = {}
+    sequence: dict[str, int] = {}
+    try:
+        for topic, ns, message in messages(trace, world):
+            if topic not in channels:
+                schema = TOPICS[topic]
+                schema_id = writer.register_schema(name=schema, encoding="jsonschema",
+                                                   data=json.dumps(SCHEMAS[schema], sort_keys=True).encode())
+                channels[topic] = writer.register_channel(topic=topic, message_encoding="json", schema_id=schema_id)
+            sequence[topic] = sequence.get(topic, 0) + 1
+            writer.add_message(channels[topic], log_time=ns, publish_time=ns, sequence=sequence[topic],
+                               data=json.dumps(message, separators=(",", ":"), ensure_ascii=False,
+                                               allow_nan=False).encode())
+    finally:
+        world.exit()
+    writer.finish()
+    return stream.getvalue()

@@ -1,0 +1,142 @@
+"""`pycram run --mcap` and `pycram trace show --mcap`: the replay as an MCAP file for Foxglove, read back here with
+the MCAP project's own reader, message by message."""
+from __future__ import annotations
+
+import base64
+import io
+import json
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from mcap.reader import make_reader
+from PIL import Image
+
+from pycram_cli.cli.main import cli
+from pycram_cli.report.foxglove import STEP_NS, stl_bytes
+
+FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
+
+
+def run(*args: str):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def read(path: Path) -> dict[str, list[tuple[int, dict]]]:
+    """topic -> [(log time, message)], with every channel's schema a Foxglove JSON schema."""
+    found: dict[str, list[tuple[int, dict]]] = defaultdict(list)
+    with path.open("rb") as stream:
+        for schema, channel, message in make_reader(stream).iter_messages(log_time_order=True):
+            assert channel.message_encoding == "json" and schema.encoding == "jsonschema"
+            assert schema.name.startswith("foxglove.")
+            assert json.loads(schema.data)["title"] == schema.name
+            found[channel.topic].append((message.log_time, json.loads(message.data)))
+    return found
+
+
+@pytest.fixture(scope="module")
+def set_table(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("mcap")
+    result = run("run", "set_table", "--mcap", folder / "run.mcap", "--trace", folder / "run.json")
+    assert result.exit_code == 0, result.output
+    assert f"wrote {folder / 'run.mcap'} (MCAP replay" in result.stderr
+    return folder / "run.mcap", json.loads((folder / "run.json").read_text())
+
+
+def test_every_body_is_a_scene_entity_at_the_start(set_table):
+    topics = read(set_table[0])
+    [(time, update)] = topics["/scene"]
+    assert time == 0
+    bodies = defaultdict(set)
+    for entity in update["entities"]:
+        meta = {pair["key"]: pair["value"] for pair in entity["metadata"]}
+        if "link" in meta:
+            assert entity["frame_locked"] and entity["frame_id"] == f"{meta['body']}/{meta['link']}"
+            bodies[meta["body"]].add(meta["link"])
+    trace = set_table[1]
+    assert set(bodies) == set(trace["replay"]["initial"]) == {"floor", "pr2", "kitchen", "milk", "cereal", "bowl",
+                                                             "spoon", "bottle"}
+    assert len(bodies["pr2"]) > 20 and "l_gripper_l_finger_link" in bodies["pr2"]  # every drawn link, not only the base
+    milk = next(e for e in update["entities"] if e["id"] == "milk/" + next(iter(bodies["milk"])))
+    [model] = milk["models"]  # the milk's mesh, as the model has it, embedded as an STL model
+    assert model["media_type"] == "model/stl"
+    stl = base64.b64decode(model["data"])
+    triangles = int.from_bytes(stl[80:84], "little")
+    assert triangles > 10 and len(stl) == 84 + 50 * triangles
+    labels = {e["texts"][0]["text"] for e in update["entities"] if e.get("texts")}
+    assert labels == {"pr2", "milk", "cereal", "bowl", "spoon", "bottle"}  # the scenery is not labelled
+
+
+def test_one_log_message_per_step_and_every_frame_after_each(set_table):
+    topics = read(set_table[0])
+    steps = set_table[1]["replay"]["steps"]
+    logs = topics["/plan"]
+    assert len(logs) == len(steps) == 67
+    assert [time for time, _ in logs] == [k * STEP_NS for k in range(1, len(steps) + 1)]
+    for (_, log), step in zip(logs, steps):
+        assert log["message"].startswith(step["path"]) and log["level"] == 2 and log["file"] == "set_table.yaml"
+    assert "object-type=bowl" in logs[0][1]["message"] and logs[0][1]["line"] > 0
+    transforms = topics["/tf"]
+    assert [time for time, _ in transforms] == [k * STEP_NS for k in range(len(steps) + 1)]
+    frames = {t["child_frame_id"] for t in transforms[0][1]["transforms"]}
+    assert all({t["child_frame_id"] for t in message["transforms"]} == frames for _, message in transforms)
+    # after the last step, the milk's frame is where the run left it
+    milk = next(t for t in transforms[-1][1]["transforms"] if t["child_frame_id"].startswith("milk/"))
+    final = set_table[1]["final_state"]["objects"]["milk"]["position"]
+    assert np.allclose([milk["translation"][axis] for axis in "xyz"], final, atol=1e-3)
+    start = next(t for t in transforms[0][1]["transforms"] if t["child_frame_id"] == milk["child_frame_id"])
+    assert not np.allclose([start["translation"][a] for a in "xyz"], final, atol=0.1)  # it was moved
+
+
+def test_the_camera_images_are_what_the_robot_saw_when_it_detected(set_table):
+    topics = read(set_table[0])
+    steps = set_table[1]["replay"]["steps"]
+    detecting = [k for k, step in enumerate(steps, start=1) if step["path"].endswith(":detecting")]
+    assert detecting and [time // STEP_NS for time, _ in topics["/camera/image"]] == detecting
+    for _, message in topics["/camera/image"]:
+        assert message["format"] == "png"
+        image = np.asarray(Image.open(io.BytesIO(base64.b64decode(message["data"]))).convert("RGB")).astype(int)
+        assert image.shape[1] == 320 and len(np.unique(image.reshape(-1, 3) // 16, axis=0)) > 20  # a scene, not blank
+
+
+def test_a_failure_is_an_error_in_the_log(tmp_path):
+    path = tmp_path / "fail.mcap"
+    result = run("run", "set_table", "-p", FAILING, "--mcap", path)
+    assert result.exit_code == 1
+    logs = read(path)["/plan"]
+    *before, (_, last) = logs
+    assert last["level"] == 4 and "ReasoningFailure: milk is not stable where it was placed" in last["message"]
+    assert all(log["level"] == 2 for _, log in before)
+
+
+def test_trace_show_writes_the_same_file_byte_for_byte(set_table, tmp_path):
+    trace = tmp_path / "run.json"
+    trace.write_text(json.dumps(set_table[1]))
+    again = tmp_path / "again.mcap"
+    result = run("trace", "show", trace, "--mcap", again)
+    assert result.exit_code == 0, result.output
+    assert again.read_bytes() == set_table[0].read_bytes()
+
+
+@pytest.mark.parametrize("args, message", [
+    (["run", "set_table", "--mcap", "{tmp}/run.mcp"], "cannot tell the MCAP file's format from '.mcp' (expected .mcap)"),
+    (["run", "set_table", "--mcap", "{tmp}/missing/run.mcap"], "folder '{tmp}/missing' does not exist"),
+    (["run", "set_table", "--mcap", "{tmp}"], "is a directory"),
+    (["run", "set_table", "--mcap", "{tmp}/a.mcap", "--trace", "{tmp}/a.mcap"], "name the same file"),
+])
+def test_bad_mcap_paths_are_refused_before_the_run(tmp_path, args, message):
+    result = run(*[a.format(tmp=tmp_path) for a in args])
+    assert result.exit_code == 2
+    assert message.format(tmp=tmp_path) in result.stderr
+    assert "Traceback" not in result.output and "plan" not in result.stderr.split("error:")[0]
+
+
+def test_stl_bytes_is_a_binary_stl_with_unit_normals():
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+    data = stl_bytes(vertices, np.array([[0, 1, 2]]))
+    assert len(data) == 84 + 50
+    normal = np.frombuffer(data[84:96], dtype="<f4")
+    assert np.allclose(normal, [0, 0, 1])
+    assert np.allclose(np.frombuffer(data[96:132], dtype="<f4").reshape(3, 3), vertices)
