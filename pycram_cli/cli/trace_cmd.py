@@ -13,10 +13,10 @@ from rich.tree import Tree
 from ..errors import InputError, Location
 from ..plan import trace as traces
 from ..files import check_writable
-from ..report import MCAP_FORMATS, REPORT_FORMATS, report_world
+from ..report import MCAP_FORMATS, REPORT_FORMATS, build_comparison, report_world
 from . import console
 from .complete import world_names
-from .files import check_output, distinct_outputs, same_file, write_mcap, write_report
+from .files import check_output, distinct_outputs, same_file, write_mcap, write_output, write_report
 from .options import Number
 
 STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "recovered": ("↺", "yellow"),
@@ -242,10 +242,21 @@ def show(file: Path, no_timing: bool, report_file: Path | None, mcap_file: Path 
 @click.option("--atol", type=Number(0.0, 1e6), default=1e-3, show_default=True,
               help="Numbers closer than this are equal (a finite number, 0 or more).")
 @click.option("--json", "as_json", is_flag=True, help="The differences as JSON on stdout.")
+@click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Also write a page (HTML) with both runs' replays side by side, moved together step by step, "
+                   "the first step at which they differ marked.")
 @click.pass_context
-def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -> None:
+def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool, report_file: Path | None) -> None:
     """Compare traces A and B, ignoring timings; exit 0 when they match, 1 when they differ."""
-    first, second = traces.load(a), traces.load(b)
+    if report_file is not None:
+        check_output(report_file, REPORT_FORMATS, "report")
+        for trace_file in (a, b):
+            if same_file(Path(trace_file), report_file):
+                raise InputError("the report would replace a trace it is made from: give it another name",
+                                 Location(str(report_file)))
+        check_writable(report_file, "report")
+    replayed = report_file is not None
+    first, second = traces.load(a, replay=replayed), traces.load(b, replay=replayed)
     found = traces.diff(first, second, atol)
     if as_json:
         console.emit_json({"same": not found, "atol": atol,
@@ -256,5 +267,13 @@ def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -
         for difference in found:
             console.plain(str(difference))
         console.plain(f"{len(found)} difference{'s' if len(found) != 1 else ''} (A = {a}, B = {b})")
+    if report_file is not None:
+        for path, data in ((a, first), (b, second)):
+            if not data.get(traces.REPLAY_KEY):
+                console.warning(f"{path} has no replay record (written by `pycram run --trace`): its replay "
+                                "shows the world as loaded")
+        names = (a.name, b.name) if a.name != b.name else (str(a), str(b))
+        page = build_comparison(first, second, (report_world(first), report_world(second)), names, atol)
+        write_output(report_file, page, f"comparison report, {len(page.encode()) / 1e6:.1f} MB")
     if found:
         ctx.exit(1)
