@@ -126,3 +126,79 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
         assert _robot_pixels(best) > 100, f"the robot is not in view at the {moment} (see {tmp_path / moment}.png)"
         assert _caption_pixels(best) > 20, f"no caption naming the step at the {moment}"
     assert run.returncode in (0, 130, -signal.SIGINT)
+
+
+FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
+
+
+def _drawn(image) -> bool:
+    """Whether the window shows a world (many colours), not its blank background or PyBullet's start-up panel."""
+    rgb = np.asarray(image.convert("RGB")).astype(int)
+    return len(np.unique(rgb.reshape(-1, 3) // 8, axis=0)) > 100
+
+
+def _red_text_pixels(image) -> int:
+    """Pixels of the failure line's red text in the window's top left corner."""
+    rgb = np.asarray(image.convert("RGB")).astype(int)[:90, :900]
+    return int((np.abs(rgb - (204, 13, 13)).sum(axis=2) < 90).sum())
+
+
+@pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed")
+def test_the_gui_starts_on_the_robot_and_shows_the_failure_in_red(tmp_path):
+    """The README's failing example in a real window: from the first picture the robot is in view (never the
+    default view, which looks at a kitchen wall), and at the end the failure is written in the window."""
+    import threading
+
+    from PIL import ImageGrab
+
+    server, display = _start_xvfb()
+    env = dict(os.environ, DISPLAY=display)
+    run = subprocess.Popen([sys.executable, "-m", "pycram_cli.cli.main", "run", "set_table", "-p", FAILING, "--gui",
+                            "--pace", "0.3"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                           cwd=tmp_path)
+    early: list = []
+    first_step = threading.Event()
+
+    def grab_until_the_first_step() -> None:
+        while not first_step.is_set() and run.poll() is None:
+            early.append(ImageGrab.grab(xdisplay=display))
+            time.sleep(0.1)
+
+    grabber = threading.Thread(target=grab_until_the_first_step)
+    grabber.start()
+    end = None
+    try:
+        assert run.stderr is not None
+        for line in run.stderr:
+            if line.lstrip().startswith("ok ") and not first_step.is_set():
+                time.sleep(0.3)
+                first_step.set()
+            if "close the window" in line:
+                time.sleep(0.8)
+                end = ImageGrab.grab(xdisplay=display)
+                break
+        else:
+            pytest.fail("the run ended without keeping its window open")
+    finally:
+        first_step.set()
+        grabber.join(timeout=30)
+        run.send_signal(signal.SIGINT)
+        try:
+            run.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            run.kill()
+            run.wait()
+        server.terminate()
+        server.wait(timeout=30)
+    pictures = [image for image in early if _drawn(image)]
+    assert pictures, f"the window drew nothing before the first step was done ({len(early)} screenshots)"
+    for index, image in enumerate(pictures):
+        if _robot_pixels(image) <= 100:
+            image.save(tmp_path / "start.png")
+            pytest.fail(f"picture {index} of the start does not show the robot (see {tmp_path / 'start.png'})")
+    assert end is not None
+    end.save(tmp_path / "end.png")
+    assert _robot_pixels(end) > 100, f"the robot is not in view at the end (see {tmp_path / 'end.png'})"
+    assert _caption_pixels(end) > 20, "no caption naming the step at the end"
+    assert _red_text_pixels(end) > 40, f"the failure is not written in red at the end (see {tmp_path / 'end.png'})"
+    assert run.returncode in (1, 130, -signal.SIGINT)
