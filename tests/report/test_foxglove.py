@@ -45,6 +45,10 @@ def set_table(tmp_path_factory):
     return folder / "run.mcap", json.loads((folder / "run.json").read_text())
 
 
+def test_the_file_is_as_small_as_the_readme_says(set_table):
+    assert set_table[0].stat().st_size < 300_000  # README: "set_table's: under 0.3 MB"
+
+
 def test_every_body_is_a_scene_entity_at_the_start(set_table):
     topics = read(set_table[0])
     [(time, update)] = topics["/scene"]
