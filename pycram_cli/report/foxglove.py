@@ -3,8 +3,8 @@
 The file holds, with JSON-encoded messages and the schemas of foxglove_schemas.py:
 
 - `/scene` (`foxglove.SceneUpdate`, once at the start): an entity for every drawn link of every body, with
-  its visual shapes (boxes, spheres, cylinders, capsules as a cylinder and two spheres, meshes as STL
-  models embedded in the file), locked to the link's frame, and a text label on every object that is not
+  its visual shapes (boxes, spheres, cylinders, capsules as a cylinder and two spheres, meshes embedded in
+  the file: OBJ and STL as STL models, COLLADA and binary glTF as they are, with their own materials), locked to the link's frame, and a text label on every object that is not
   scenery; each entity's metadata names its body, link and type;
 - `/tf` (`foxglove.FrameTransforms`): the world pose of every link (frame `BODY/LINK`, parent `world`)
   before the first step and after each recorded step, all of them each time, so that seeking anywhere
@@ -15,7 +15,8 @@ The file holds, with JSON-encoded messages and the schemas of foxglove_schemas.p
 - `/camera/image` (`foxglove.CompressedImage`, PNG): what the robot's camera (its description's `camera`)
   saw after each step of a designator that uses the camera (`detecting`).
 
-Time is the step index: the state before the first step at 0 s, step k at k s, so the file is the same
+The file's metadata record `pycram` names the plan, the world, the outcome, the number of steps and the
+visual shapes that could not be drawn (a mesh file that cannot be read, or of another format). Time is the step index: the state before the first step at 0 s, step k at k s, so the file is the same
 byte for byte for the same trace and plays one step per second.
 """
 from __future__ import annotations
@@ -47,6 +48,10 @@ IMAGE_WIDTH = 320  # the camera images' width; their height follows the camera's
 SCENERY = ("environment",)  # bodies without a label (the robot gets one: it is what the run is about)
 LEVELS = {"succeeded": 2, "folded": 3, "failed": 4}  # foxglove.Log levels: info, warning, error
 WORLD_FRAME = "world"
+#: mesh formats embedded as they are (Foxglove reads them), by extension; OBJ and STL are read and written as STL
+AS_IS = {".dae": "model/vnd.collada+xml", ".glb": "model/gltf-binary"}
+#: formats that carry their own materials: drawn with them, not in the colour PyBullet reports
+OWN_LOOK = ("model/vnd.collada+xml", "model/gltf-binary")
 
 
 def _library() -> str:
@@ -103,7 +108,7 @@ class SceneEntities:
 
     def __init__(self, world: BulletWorld) -> None:
         self.world = world
-        self._meshes: dict[str, str | None] = {}  # resolved path -> base64 STL, None when it cannot be read
+        self._meshes: dict[str, tuple[str, str] | None] = {}  # path -> (media type, base64), None: unreadable
         self.skipped: list[str] = []
         self.links: list[tuple[Object, list[int]]] = []
         self.entities: list[dict[str, Any]] = []
@@ -140,9 +145,12 @@ class SceneEntities:
                     for end in (-0.5, 0.5):
                         parts["spheres"].append({"pose": _pose(shape.origin, (0.0, 0.0, end * shape.length)),
                                                  "size": _vector([diameter] * 3), "color": color})
-            elif shape.kind == "mesh" and (data := self._mesh(shape.mesh_file)) is not None:
+            elif shape.kind == "mesh" and (mesh := self._mesh(shape.mesh_file)) is not None:
+                media_type, data = mesh
+                own_look = media_type in OWN_LOOK  # its own materials, as the model has them
                 parts["models"].append({"pose": _pose(shape.origin), "scale": _vector(shape.scale), "color": color,
-                                        "override_color": True, "url": "", "media_type": "model/stl", "data": data})
+                                        "override_color": not own_look, "url": "", "media_type": media_type,
+                                        "data": data})
             else:
                 what = f"mesh {shape.mesh_file}" if shape.kind == "mesh" else shape.kind
                 self.skipped.append(f"{obj.name}/{obj.get_link_name(link)}: {what}")
@@ -167,14 +175,21 @@ class SceneEntities:
                            "billboard": True, "font_size": 14.0, "scale_invariant": True,
                            "color": _color((0.1, 0.1, 0.1, 1.0)), "text": obj.name}]}
 
-    def _mesh(self, path: Path | None) -> str | None:
+    def _mesh(self, path: Path | None) -> tuple[str, str] | None:
+        """(media type, base64 data) of a mesh file: OBJ and STL as STL (read and checked here), formats Foxglove
+        reads itself (COLLADA, glTF) as they are; None when it cannot be read."""
         if path is None:
             return None
         key = str(path)
         if key not in self._meshes:
+            media_type = AS_IS.get(path.suffix.lower())
             try:
-                mesh = read_mesh(path)
-                self._meshes[key] = base64.b64encode(stl_bytes(mesh.vertices, mesh.triangles)).decode("ascii")
+                if media_type is not None:
+                    data = path.read_bytes()
+                else:
+                    mesh = read_mesh(path)
+                    media_type, data = "model/stl", stl_bytes(mesh.vertices, mesh.triangles)
+                self._meshes[key] = (media_type, base64.b64encode(data).decode("ascii"))
             except (OSError, ValueError):
                 self._meshes[key] = None
         return self._meshes[key]
@@ -281,8 +296,10 @@ def robot_view(world: BulletWorld) -> tuple[Camera, float] | None:
     return camera, aspect
 
 
-def messages(trace: dict[str, Any], world: BulletWorld) -> Iterator[tuple[str, int, dict[str, Any]]]:
-    """(topic, time in ns, message) of the whole replay, in time order."""
+def messages(trace: dict[str, Any], world: BulletWorld,
+             skipped: list[str] | None = None) -> Iterator[tuple[str, int, dict[str, Any]]]:
+    """(topic, time in ns, message) of the whole replay, in time order; what could not be drawn is added to
+    `skipped` (`BODY/LINK: what`)."""
     replay = trace.get(REPLAY_KEY) or {}
     for obj in world.objects:  # recorded poses say where everything is: nothing may drag anything along
         for other in list(obj.attachments):
@@ -290,6 +307,8 @@ def messages(trace: dict[str, Any], world: BulletWorld) -> Iterator[tuple[str, i
                 obj.detach(other)
     put_state(world, replay.get("initial") or {})
     scene = SceneEntities(world)
+    if skipped is not None:
+        skipped.extend(scene.skipped)
     yield "/scene", 0, {"deletions": [], "entities": scene.entities}
     yield "/tf", 0, {"transforms": scene.transforms(0)}
     nodes = _nodes(trace.get("root") or {}, {})
@@ -321,8 +340,9 @@ def build_mcap(trace: dict[str, Any], world_path: Path) -> bytes:
     writer.start(profile="", library=_library())
     channels: dict[str, int] = {}
     sequence: dict[str, int] = {}
+    skipped: list[str] = []
     try:
-        for topic, ns, message in messages(trace, world):
+        for topic, ns, message in messages(trace, world, skipped):
             if topic not in channels:
                 schema = TOPICS[topic]
                 schema_id = writer.register_schema(name=schema, encoding="jsonschema",
@@ -334,5 +354,10 @@ def build_mcap(trace: dict[str, Any], world_path: Path) -> bytes:
                                                allow_nan=False).encode())
     finally:
         world.exit()
+    # the run at a glance, for tools that list a file's metadata (values are strings in MCAP)
+    writer.add_metadata("pycram", {"plan": str(trace.get("plan") or ""), "world": str(trace.get("world") or ""),
+                                   "status": str(trace.get("status") or ""),
+                                   "steps": str(len((trace.get(REPLAY_KEY) or {}).get("steps") or [])),
+                                   "not drawn": "; ".join(skipped)})
     writer.finish()
     return stream.getvalue()

@@ -105,6 +105,33 @@ def test_the_camera_images_are_what_the_robot_saw_when_it_detected(set_table):
         assert image.shape[1] == 320 and len(np.unique(image.reshape(-1, 3) // 16, axis=0)) > 20  # a scene, not blank
 
 
+def test_the_metadata_names_the_run(set_table):
+    with set_table[0].open("rb") as stream:
+        [record] = list(make_reader(stream).iter_metadata())
+    assert record.name == "pycram"
+    assert record.metadata == {"plan": "set_table.yaml", "world": "kitchen.yaml", "status": "succeeded", "steps": "67",
+                               "not drawn": ""}
+
+
+def test_the_real_pr2_in_the_real_kitchen_is_drawn_with_its_own_meshes(real_kitchen, tmp_path):
+    """../shared/models (skipped when absent): every body, the robot's detailed meshes as models, nothing left out."""
+    path = tmp_path / "real.mcap"
+    job = "jobs=[{type: milk, target: [-0.8, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
+    result = run("run", "set_table", "--world", tmp_path / "real_kitchen.yaml", "-p", job, "--mcap", path)
+    assert result.exit_code == 0, result.output
+    [(_, update)] = read(path)["/scene"]
+    bodies = {pair["value"] for e in update["entities"] for pair in e["metadata"] if pair["key"] == "body"}
+    assert bodies == {w.name for w in real_kitchen.objects}
+    robot_models = [m for e in update["entities"] if e["id"].startswith("pr2/") for m in e.get("models", [])]
+    assert len(robot_models) > 30
+    collada = [m for m in robot_models if m["media_type"] == "model/vnd.collada+xml"]
+    assert collada and all(b"<COLLADA" in base64.b64decode(m["data"])[:2000] and not m["override_color"]
+                           for m in collada)  # embedded as the model has it, with its own materials
+    with path.open("rb") as stream:
+        [record] = list(make_reader(stream).iter_metadata())
+    assert record.metadata["not drawn"] == "" and record.metadata["status"] == "succeeded"
+
+
 def test_a_failure_is_an_error_in_the_log(tmp_path):
     path = tmp_path / "fail.mcap"
     result = run("run", "set_table", "-p", FAILING, "--mcap", path)
@@ -135,6 +162,16 @@ def test_bad_mcap_paths_are_refused_before_the_run(tmp_path, args, message):
     assert result.exit_code == 2
     assert message.format(tmp=tmp_path) in result.stderr
     assert "Traceback" not in result.output and "plan" not in result.stderr.split("error:")[0]
+
+
+def test_a_corrupt_replay_record_is_refused_and_nothing_written(set_table, tmp_path):
+    broken = json.loads(json.dumps(set_table[1]))
+    broken["replay"]["steps"][0]["changed"] = [1]
+    trace = tmp_path / "broken.json"
+    trace.write_text(json.dumps(broken, indent=1))
+    result = run("trace", "show", trace, "--mcap", tmp_path / "run.mcap")
+    assert result.exit_code == 2 and "replay.steps[0].changed: expected an object, got a list" in result.stderr
+    assert not (tmp_path / "run.mcap").exists()
 
 
 def test_stl_bytes_is_a_binary_stl_with_unit_normals():
