@@ -16,7 +16,7 @@ from . import console
 from .complete import plan_names, world_names
 from .files import check_plot
 from .options import json_option
-from .sweep_report import MAX_REPLAYS, check_sweep_report, write_sweep_report
+from .sweep_report import DEFAULT_REPLAYS, MAX_REPLAYS, check_sweep_report, write_sweep_report
 
 EXIT_INTERRUPTED = 130
 
@@ -71,9 +71,9 @@ class _Progress:
 @click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a page (HTML) of the sweep: the map of the outcomes and the scenarios by outcome, each "
                    "linking to its replay (recorded for --replays of them, written to REPORT-replays/ beside it).")
-@click.option("--replays", type=click.IntRange(0, MAX_REPLAYS), default=10, show_default=True, metavar="N",
+@click.option("--replays", type=click.IntRange(0, MAX_REPLAYS), default=None, metavar="N",
               help=f"With --report: run at most N scenarios again to record their replays, the failed ones first "
-                   f"(0-{MAX_REPLAYS}).")
+                   f"(0-{MAX_REPLAYS}; default: {DEFAULT_REPLAYS}).")
 @click.option("--compare", metavar="PARAM=A,B,...", help="Run every scenario once per value of a plan parameter.")
 @click.option("--timeout", type=click.FloatRange(min=0.0, min_open=True), default=None, metavar="SECONDS",
               help="Record a scenario that runs longer as a timeout and go on.")
@@ -83,7 +83,7 @@ class _Progress:
 @click.pass_context
 def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file: str | None, count: int, seed: int,
           workers: int | None, backend: str, address: str | None, out_dir: Path | None, plot_file: Path | None,
-          report_file: Path | None, replays: int, compare: str | None, timeout: float | None, resume: bool, force: bool,
+          report_file: Path | None, replays: int | None, compare: str | None, timeout: float | None, resume: bool, force: bool,
           as_json: bool) -> None:
     """Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails.
 
@@ -94,7 +94,7 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     """
     check_plot(plot_file)
     check_sweep_report(report_file)
-    if report_file is None and replays != 10:
+    if report_file is None and replays is not None:
         raise InputError("sets how many replays the sweep's report links to, but no --report FILE is given",
                          Location("--replays"), suggestion="add --report sweep.html, or leave --replays out")
     out = out_dir if out_dir is not None else Path(f"sweep-{Path(plan_file).stem}")
@@ -126,7 +126,8 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     if plot_file is not None:
         plot_outcomes(prepared, summary_records(prepared), plot_file)
     if report_file is not None and not interrupted:
-        write_sweep_report(prepared, summary, summary_records(prepared), report_file, replays)
+        write_sweep_report(prepared, summary, summary_records(prepared), report_file,
+                           DEFAULT_REPLAYS if replays is None else replays)
     if as_json:
         console.emit_json(summary)
     else:

@@ -19,7 +19,8 @@ from ..sweep.replays import chosen, rerun
 from . import console
 from .files import check_output, write_output
 
-#: `--replays N`: at most this many scenarios are run again for the page
+#: `--replays N`: at most this many scenarios are run again for the page (N at most MAX_REPLAYS)
+DEFAULT_REPLAYS = 10
 MAX_REPLAYS = 100
 
 
