@@ -15,7 +15,8 @@ from mcap.reader import make_reader
 from PIL import Image
 
 from pycram_cli.cli.main import cli
-from pycram_cli.report.foxglove import STEP_NS, stl_bytes
+from pycram_cli.report.foxglove import STEP_NS
+from pycram_cli.report.foxglove_scene import stl_bytes
 
 FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
 
