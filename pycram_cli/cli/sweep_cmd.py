@@ -134,7 +134,7 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
         _print(summary, prepared, plot_file)
     if interrupted:
         console.error(f"interrupted: {summary['runs']} of {prepared.total} runs are in {summary['results']} "
-                      "(--resume goes on)")
+                      "(--resume goes on)" + (f"; {report_file} was not written" if report_file is not None else ""))
         ctx.exit(EXIT_INTERRUPTED)
 
 

@@ -12,7 +12,10 @@ The file holds, with JSON-encoded messages and the schemas of foxglove_schemas.p
   level of its outcome (info, warning for folded failed attempts, error for a failure), with the plan
   file and line;
 - `/camera/image` (`foxglove.CompressedImage`, PNG): what the robot's camera (its description's `camera`)
-  saw after each step of a designator that uses the camera (`detecting`).
+  saw after each step of a designator that uses the camera (`detecting`), in the camera's optical frame
+  (`ROBOT/LINK/optical`: x right, y down, z forward), which `/camera/tf` places and `/camera/calibration`
+  (`foxglove.CameraCalibration`, a pinhole from the description's fields of view) describes, so that
+  Foxglove's 3D panel can draw the camera's view cone and the image in the scene.
 
 The file's metadata record `pycram` names the plan, the world, the outcome, the number of steps and the
 visual shapes that could not be drawn (a mesh file that cannot be read, or of another format). Time is the
@@ -25,6 +28,7 @@ import base64
 import io
 import json
 import math
+from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any, Iterator
@@ -36,8 +40,9 @@ from ..plan.trace import REPLAY_KEY
 from ..reasoning.visibility import resolve_camera
 from ..world import BulletWorld
 from ..world.camera import Camera, encode_image, render
+from ..world.pose import matrix_to_quat
 from ..worldfile.loader import load_world
-from .foxglove_scene import WORLD_FRAME, SceneEntities, time_of
+from .foxglove_scene import WORLD_FRAME, SceneEntities, quaternion, time_of, vector
 from .foxglove_schemas import SCHEMAS
 
 __all__ = ["MCAP_FORMATS", "STEP_NS", "build_mcap", "messages", "step_text"]
@@ -120,9 +125,36 @@ def _takes_picture(node: dict[str, Any]) -> bool:
     return spec is not None and spec.resource == "camera"
 
 
-def robot_view(world: BulletWorld) -> tuple[Camera, float] | None:
-    """The robot's camera (from its description) as a rendering camera, and its image's width over height;
-    None when it has none."""
+@dataclass(frozen=True)
+class RobotCamera:
+    """The robot's camera now: a rendering camera, its optical frame (x right, y down, z forward) and its image size."""
+
+    camera: Camera
+    frame: str  # BODY/LINK/optical
+    position: tuple[float, float, float]
+    orientation: tuple[float, float, float, float]
+    width: int
+    height: int
+    fov: tuple[float, float]  # horizontal, vertical (rad)
+
+    def calibration(self, ns: int) -> dict[str, Any]:
+        """A pinhole model without distortion, from the fields of view (foxglove.CameraCalibration)."""
+        fx = self.width / 2 / math.tan(self.fov[0] / 2)
+        fy = self.height / 2 / math.tan(self.fov[1] / 2)
+        cx, cy = self.width / 2, self.height / 2
+        k = [fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0]
+        return {"timestamp": time_of(ns), "frame_id": self.frame, "width": self.width, "height": self.height,
+                "distortion_model": "plumb_bob", "D": [0.0] * 5, "K": [round(v, 6) + 0.0 for v in k],
+                "R": [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+                "P": [round(v, 6) + 0.0 for v in (fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0)]}
+
+    def transform(self, ns: int) -> dict[str, Any]:
+        return {"transforms": [{"timestamp": time_of(ns), "parent_frame_id": WORLD_FRAME, "child_frame_id": self.frame,
+                                "translation": vector(self.position), "rotation": quaternion(self.orientation)}]}
+
+
+def robot_camera(world: BulletWorld) -> RobotCamera | None:
+    """The robot's camera (from its description) where it is now; None when the robot has none."""
     robot = world.robot
     if robot is None:
         return None
@@ -137,7 +169,9 @@ def robot_view(world: BulletWorld) -> tuple[Camera, float] | None:
     camera = Camera(tuple(float(v) for v in eye), tuple(float(v) for v in eye + forward),  # type: ignore[arg-type]
                     tuple(float(v) for v in -down), vertical_fov_deg=math.degrees(vertical),
                     near=max(0.01, float(pose.near)))
-    return camera, aspect
+    return RobotCamera(camera, f"{robot.name}/{pose.label}/optical", tuple(float(v) for v in eye),  # type: ignore[arg-type]
+                       tuple(float(v) for v in matrix_to_quat(pose.rotation)),  # type: ignore[arg-type]
+                       IMAGE_WIDTH, max(1, round(IMAGE_WIDTH / aspect)), (horizontal, vertical))
 
 
 def messages(trace: dict[str, Any], world: BulletWorld,
@@ -164,15 +198,16 @@ def messages(trace: dict[str, Any], world: BulletWorld,
         yield "/tf", ns, {"transforms": scene.transforms(ns)}
         yield "/plan", ns, {"timestamp": time_of(ns), "level": _level(step), "message": step_text(step, node),
                             "name": f"step {k}", "file": plan, "line": _line(node)}
-        if _takes_picture(node) and (view := robot_view(world)) is not None:
-            camera, aspect = view
-            width, height = IMAGE_WIDTH, max(1, round(IMAGE_WIDTH / aspect))
-            image = encode_image(render(world, camera, width, height), ".png")
-            yield "/camera/image", ns, {"timestamp": time_of(ns), "frame_id": WORLD_FRAME,
+        if _takes_picture(node) and (eye := robot_camera(world)) is not None:
+            image = encode_image(render(world, eye.camera, eye.width, eye.height), ".png")
+            yield "/camera/tf", ns, eye.transform(ns)
+            yield "/camera/calibration", ns, eye.calibration(ns)
+            yield "/camera/image", ns, {"timestamp": time_of(ns), "frame_id": eye.frame,
                                         "data": base64.b64encode(image).decode("ascii"), "format": "png"}
 
 
 TOPICS = {"/scene": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "/plan": "foxglove.Log",
+          "/camera/tf": "foxglove.FrameTransforms", "/camera/calibration": "foxglove.CameraCalibration",
           "/camera/image": "foxglove.CompressedImage"}
 
 

@@ -31,11 +31,13 @@ def time_of(ns: int) -> dict[str, int]:
     return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
 
 
-def _vector(values: Any) -> dict[str, float]:
+def vector(values: Any) -> dict[str, float]:
+    """A foxglove.Vector3, rounded: the same trace gives the same bytes."""
     return {axis: round(float(v), DIGITS) + 0.0 for axis, v in zip("xyz", values)}
 
 
-def _quaternion(values: Any) -> dict[str, float]:
+def quaternion(values: Any) -> dict[str, float]:
+    """A foxglove.Quaternion (x, y, z, w), rounded."""
     return {axis: round(float(v), DIGITS) + 0.0 for axis, v in zip("xyzw", values)}
 
 
@@ -43,7 +45,7 @@ def _pose(origin: tuple[Any, Any], offset: tuple[float, float, float] = (0.0, 0.
     """A shape's pose in its link frame, moved by `offset` along the shape's own axes."""
     position, orientation = origin
     moved = np.asarray(position, dtype=float) + _rotate(orientation, offset)
-    return {"position": _vector(moved), "orientation": _quaternion(orientation)}
+    return {"position": vector(moved), "orientation": quaternion(orientation)}
 
 
 def _rotate(quaternion: Any, vector: tuple[float, float, float]) -> np.ndarray:
@@ -99,22 +101,22 @@ class SceneEntities:
             if shape.rgba[3] <= 0.0:
                 continue
             if shape.kind == "box":
-                parts["cubes"].append({"pose": _pose(shape.origin), "size": _vector(shape.size), "color": color})
+                parts["cubes"].append({"pose": _pose(shape.origin), "size": vector(shape.size), "color": color})
             elif shape.kind == "sphere":
-                parts["spheres"].append({"pose": _pose(shape.origin), "size": _vector([2 * shape.radius] * 3),
+                parts["spheres"].append({"pose": _pose(shape.origin), "size": vector([2 * shape.radius] * 3),
                                          "color": color})
             elif shape.kind in ("cylinder", "capsule"):
                 diameter = 2 * shape.radius
-                parts["cylinders"].append({"pose": _pose(shape.origin), "size": _vector((diameter, diameter, shape.length)),
+                parts["cylinders"].append({"pose": _pose(shape.origin), "size": vector((diameter, diameter, shape.length)),
                                            "bottom_scale": 1.0, "top_scale": 1.0, "color": color})
                 if shape.kind == "capsule":  # the rounded ends
                     for end in (-0.5, 0.5):
                         parts["spheres"].append({"pose": _pose(shape.origin, (0.0, 0.0, end * shape.length)),
-                                                 "size": _vector([diameter] * 3), "color": color})
+                                                 "size": vector([diameter] * 3), "color": color})
             elif shape.kind == "mesh" and (mesh := self._mesh(shape.mesh_file)) is not None:
                 media_type, data = mesh
                 own_look = media_type in OWN_LOOK  # its own materials, as the model has them
-                parts["models"].append({"pose": _pose(shape.origin), "scale": _vector(shape.scale), "color": color,
+                parts["models"].append({"pose": _pose(shape.origin), "scale": vector(shape.scale), "color": color,
                                         "override_color": not own_look, "url": "", "media_type": media_type,
                                         "data": data})
             else:
@@ -137,7 +139,7 @@ class SceneEntities:
         return {"timestamp": time_of(0), "frame_id": frame_of(obj, link), "id": f"label/{obj.name}",
                 "lifetime": time_of(0), "frame_locked": True,
                 "metadata": [{"key": "body", "value": obj.name}, {"key": "type", "value": obj.type}],
-                "texts": [{"pose": {"position": _vector(above), "orientation": _quaternion((0, 0, 0, 1))},
+                "texts": [{"pose": {"position": vector(above), "orientation": quaternion((0, 0, 0, 1))},
                            "billboard": True, "font_size": 14.0, "scale_invariant": True,
                            "color": _color((0.1, 0.1, 0.1, 1.0)), "text": obj.name}]}
 
@@ -169,7 +171,7 @@ class SceneEntities:
             for link, (position, orientation) in sorted(obj.link_poses(links).items()):
                 found.append({"timestamp": time_of(ns), "parent_frame_id": WORLD_FRAME,
                               "child_frame_id": frame_of(obj, link),
-                              "translation": _vector(position), "rotation": _quaternion(orientation)})
+                              "translation": vector(position), "rotation": quaternion(orientation)})
         return found
 
 

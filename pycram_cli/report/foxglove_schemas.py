@@ -69,4 +69,11 @@ SCHEMAS: dict[str, Schema] = {
         "line": {"type": "integer", "minimum": 0}}),
     "foxglove.CompressedImage": _object("foxglove.CompressedImage", {
         "timestamp": TIME, "frame_id": {"type": "string"}, "data": BYTES, "format": {"type": "string"}}),
+    "foxglove.CameraCalibration": _object("foxglove.CameraCalibration", {
+        "timestamp": TIME, "frame_id": {"type": "string"},
+        "width": {"type": "integer", "minimum": 0}, "height": {"type": "integer", "minimum": 0},
+        "distortion_model": {"type": "string"}, "D": _array({"type": "number"}),
+        "K": {**_array({"type": "number"}), "minItems": 9, "maxItems": 9},
+        "R": {**_array({"type": "number"}), "minItems": 9, "maxItems": 9},
+        "P": {**_array({"type": "number"}), "minItems": 12, "maxItems": 12}}),
 }

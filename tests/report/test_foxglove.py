@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import io
 import json
+import re
 from collections import defaultdict
 from pathlib import Path
 
@@ -95,15 +96,47 @@ def test_one_log_message_per_step_and_every_frame_after_each(set_table):
     assert not np.allclose([start["translation"][a] for a in "xyz"], final, atol=0.1)  # it was moved
 
 
+def _rotation(q: dict) -> np.ndarray:
+    x, y, z, w = q["x"], q["y"], q["z"], q["w"]
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def _nodes(node: dict, into: dict) -> dict:
+    into[node["path"]] = node
+    for child in node.get("children") or []:
+        _nodes(child, into)
+    return into
+
+
 def test_the_camera_images_are_what_the_robot_saw_when_it_detected(set_table):
     topics = read(set_table[0])
     steps = set_table[1]["replay"]["steps"]
     detecting = [k for k, step in enumerate(steps, start=1) if step["path"].endswith(":detecting")]
     assert detecting and [time // STEP_NS for time, _ in topics["/camera/image"]] == detecting
-    for _, message in topics["/camera/image"]:
+    assert [t for t, _ in topics["/camera/calibration"]] == [t for t, _ in topics["/camera/tf"]] == \
+        [t for t, _ in topics["/camera/image"]]
+    nodes = _nodes(set_table[1]["root"], {})
+    for (time, message), (_, calibration), (_, frames) in zip(topics["/camera/image"], topics["/camera/calibration"],
+                                                             topics["/camera/tf"]):
         assert message["format"] == "png"
         image = np.asarray(Image.open(io.BytesIO(base64.b64decode(message["data"]))).convert("RGB")).astype(int)
         assert image.shape[1] == 320 and len(np.unique(image.reshape(-1, 3) // 16, axis=0)) > 20  # a scene, not blank
+        assert (calibration["width"], calibration["height"]) == (image.shape[1], image.shape[0])
+        [frame] = frames["transforms"]
+        assert frame["child_frame_id"] == message["frame_id"] == calibration["frame_id"]
+        assert frame["parent_frame_id"] == "world" and re.fullmatch(r"pr2/\w+/optical", frame["child_frame_id"])
+        # the point the head looked at (the step before) projects near the middle of the picture
+        looked = nodes[steps[time // STEP_NS - 2]["path"]]
+        assert looked["type"] == "looking"
+        target = np.array(looked["designator"]["resolved"]["target"])
+        origin = np.array([frame["translation"][a] for a in "xyz"])
+        local = _rotation(frame["rotation"]).T @ (target - origin)
+        assert local[2] > 0.3  # in front of the camera
+        fx, _, cx, _, fy, cy = calibration["K"][:6]
+        u, v = fx * local[0] / local[2] + cx, fy * local[1] / local[2] + cy
+        assert abs(u - cx) < 0.15 * calibration["width"] and abs(v - cy) < 0.15 * calibration["height"], (u, v)
 
 
 def test_the_metadata_names_the_run(set_table):
