@@ -33,8 +33,6 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any, Iterator
 
-from mcap.writer import CompressionType, Writer
-
 from ..designators.declaration import DESIGNATORS
 from ..plan.trace import REPLAY_KEY
 from ..reasoning.visibility import resolve_camera
@@ -213,6 +211,8 @@ TOPICS = {"/scene": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "
 
 def build_mcap(trace: dict[str, Any], world_path: Path) -> bytes:
     """The MCAP file of a run (a trace with its replay record) in the world file `world_path`."""
+    from mcap.writer import CompressionType, Writer  # why: importing it takes 40 ms, paid only when a file is written
+
     world = load_world(world_path)
     stream = io.BytesIO()
     writer = Writer(stream, compression=CompressionType.ZSTD)
