@@ -79,6 +79,26 @@ def test_the_failed_scenarios_link_to_their_replays_written_beside_the_page(page
     assert re.search(r"<code>pycram run \S*drop.yaml --world \S*small.yaml --scenario \d+ -p drop=true</code>", text)
 
 
+def test_every_marker_of_the_map_is_under_its_link(page):
+    """The links over the map sit on the markers the plot drew: at each circle's centre the picture shows a marker
+    in its outcome's colour (red for the failures, the map's first failure colour)."""
+    import base64
+    import io
+
+    import numpy as np
+    from PIL import Image
+
+    text = page.read_text(encoding="utf-8")
+    png = re.search(r'src="data:image/png;base64,([^"]+)"', text).group(1)
+    image = np.asarray(Image.open(io.BytesIO(base64.b64decode(png))).convert("RGB")).astype(int)
+    width, height = (int(v) for v in re.search(r'<svg viewBox="0 0 (\d+) (\d+)"', text).groups())
+    assert (height, width) == image.shape[:2]
+    linked = re.findall(r'<a href="sweep-replays/[^"]+"><circle cx="(\d+)" cy="(\d+)"', text)
+    assert len(linked) == 3
+    for x, y in linked:
+        assert np.abs(image[int(y), int(x)] - (215, 40, 40)).sum() < 40, (x, y, image[int(y), int(x)])
+
+
 def test_ten_replays_by_default_and_at_most_a_hundred():
     """As the README says."""
     from pycram_cli.cli.sweep_report import DEFAULT_REPLAYS, MAX_REPLAYS
