@@ -141,9 +141,8 @@ class QuietView:
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
         render_file: Path | None, camera: str | None, size: str, report_file: Path | None, mcap_file: Path | None,
-        pace: float | None,
-        scenario_seed: int | None, vary_file: str | None, project_runs: int | None, require: float | None,
-        follow: bool, as_json: bool, gui: bool) -> None:
+        pace: float | None, scenario_seed: int | None, vary_file: str | None, project_runs: int | None,
+        require: float | None, follow: bool, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
