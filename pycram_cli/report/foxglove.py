@@ -11,6 +11,8 @@ The file holds, with JSON-encoded messages and the schemas of foxglove_schemas.p
 - `/plan` (`foxglove.Log`): one message per recorded step (its path, what it did, its failure), at the
   level of its outcome (info, warning for folded failed attempts, error for a failure), with the plan
   file and line;
+- `/failures` (`foxglove.SceneUpdate`): at a step that failed, red spheres on what it worked on and its
+  failure written above them, for that step's second;
 - `/camera/image` (`foxglove.CompressedImage`, PNG): what the robot's camera (its description's `camera`)
   saw after each step of a designator that uses the camera (`detecting`), in the camera's optical frame
   (`ROBOT/LINK/optical`: x right, y down, z forward), which `/camera/tf` places and `/camera/calibration`
@@ -34,13 +36,14 @@ from pathlib import Path
 from typing import Any, Iterator
 
 from ..designators.declaration import DESIGNATORS
+from ..plan.replay import focus_points
 from ..plan.trace import REPLAY_KEY
 from ..reasoning.visibility import resolve_camera
 from ..world import BulletWorld
 from ..world.camera import Camera, encode_image, render
 from ..world.pose import matrix_to_quat
 from ..worldfile.loader import load_world
-from .foxglove_scene import WORLD_FRAME, SceneEntities, quaternion, time_of, vector
+from .foxglove_scene import WORLD_FRAME, SceneEntities, color, quaternion, time_of, vector
 from .foxglove_schemas import SCHEMAS
 
 __all__ = ["MCAP_FORMATS", "STEP_NS", "build_mcap", "messages", "step_text"]
@@ -196,6 +199,8 @@ def messages(trace: dict[str, Any], world: BulletWorld,
         yield "/tf", ns, {"transforms": scene.transforms(ns)}
         yield "/plan", ns, {"timestamp": time_of(ns), "level": _level(step), "message": step_text(step, node),
                             "name": f"step {k}", "file": plan, "line": _line(node)}
+        if (marker := failure_marker(world, node, ns)) is not None:
+            yield "/failures", ns, {"deletions": [], "entities": [marker]}
         if _takes_picture(node) and (eye := robot_camera(world)) is not None:
             image = encode_image(render(world, eye.camera, eye.width, eye.height), ".png")
             yield "/camera/tf", ns, eye.transform(ns)
@@ -204,7 +209,34 @@ def messages(trace: dict[str, Any], world: BulletWorld,
                                         "data": base64.b64encode(image).decode("ascii"), "format": "png"}
 
 
-TOPICS = {"/scene": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "/plan": "foxglove.Log",
+def failure_marker(world: BulletWorld, node: dict[str, Any], ns: int) -> dict[str, Any] | None:
+    """For a step that failed itself: red spheres on what it worked on (the objects and places it names, where
+    they are after it) and its failure written above them, shown for the step's second; else None."""
+    failure = node.get("failure")
+    if node.get("status") != "failed" or not isinstance(failure, dict) or failure.get("path") != node.get("path"):
+        return None
+    named = {key: node[key] for key in ("designator", "query") if isinstance(node.get(key), dict)}
+    condition = node.get("condition")
+    if isinstance(condition, dict) and isinstance(condition.get("query"), dict):  # an assert's query
+        named.setdefault("query", condition["query"])
+    points = focus_points(world, named)
+    if not points and world.robot is not None:
+        lo, hi = world.robot.get_aabb()
+        points = [((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2])]
+    top = max((p[2] for p in points), default=1.0)
+    x, y = (points[0][0], points[0][1]) if points else (0.0, 0.0)
+    red = color((0.85, 0.1, 0.1, 0.45))
+    identity = quaternion((0.0, 0.0, 0.0, 1.0))
+    return {"timestamp": time_of(ns), "frame_id": WORLD_FRAME, "id": "failure", "lifetime": time_of(STEP_NS),
+            "frame_locked": False, "metadata": [{"key": "path", "value": str(node.get("path"))}],
+            "spheres": [{"pose": {"position": vector(p), "orientation": identity}, "size": vector((0.15, 0.15, 0.15)),
+                         "color": red} for p in points],
+            "texts": [{"pose": {"position": vector((x, y, top + 0.3)), "orientation": identity}, "billboard": True,
+                       "font_size": 16.0, "scale_invariant": True, "color": color((0.8, 0.05, 0.05, 1.0)),
+                       "text": f"{failure.get('type')}: {failure.get('message')}"}]}
+
+
+TOPICS = {"/scene": "foxglove.SceneUpdate", "/failures": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "/plan": "foxglove.Log",
           "/camera/tf": "foxglove.FrameTransforms", "/camera/calibration": "foxglove.CameraCalibration",
           "/camera/image": "foxglove.CompressedImage"}
 

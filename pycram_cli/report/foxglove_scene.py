@@ -55,7 +55,8 @@ def _rotate(quaternion: Any, vector: tuple[float, float, float]) -> np.ndarray:
     return v + 2.0 * np.cross(q, np.cross(q, v) + w * v)
 
 
-def _color(rgba: Any) -> dict[str, float]:
+def color(rgba: Any) -> dict[str, float]:
+    """A foxglove.Color (r, g, b, a in 0-1)."""
     return {channel: round(float(v), 4) + 0.0 for channel, v in zip("rgba", rgba)}
 
 
@@ -97,26 +98,26 @@ class SceneEntities:
     def _entity(self, obj: Object, link: int, shapes: list[VisualShape]) -> dict[str, Any] | None:
         parts: dict[str, list[dict[str, Any]]] = {"cubes": [], "spheres": [], "cylinders": [], "models": []}
         for shape in shapes:
-            color = _color(shape.rgba)
+            rgba = color(shape.rgba)
             if shape.rgba[3] <= 0.0:
                 continue
             if shape.kind == "box":
-                parts["cubes"].append({"pose": _pose(shape.origin), "size": vector(shape.size), "color": color})
+                parts["cubes"].append({"pose": _pose(shape.origin), "size": vector(shape.size), "color": rgba})
             elif shape.kind == "sphere":
                 parts["spheres"].append({"pose": _pose(shape.origin), "size": vector([2 * shape.radius] * 3),
-                                         "color": color})
+                                         "color": rgba})
             elif shape.kind in ("cylinder", "capsule"):
                 diameter = 2 * shape.radius
                 parts["cylinders"].append({"pose": _pose(shape.origin), "size": vector((diameter, diameter, shape.length)),
-                                           "bottom_scale": 1.0, "top_scale": 1.0, "color": color})
+                                           "bottom_scale": 1.0, "top_scale": 1.0, "color": rgba})
                 if shape.kind == "capsule":  # the rounded ends
                     for end in (-0.5, 0.5):
                         parts["spheres"].append({"pose": _pose(shape.origin, (0.0, 0.0, end * shape.length)),
-                                                 "size": vector([diameter] * 3), "color": color})
+                                                 "size": vector([diameter] * 3), "color": rgba})
             elif shape.kind == "mesh" and (mesh := self._mesh(shape.mesh_file)) is not None:
                 media_type, data = mesh
                 own_look = media_type in OWN_LOOK  # its own materials, as the model has them
-                parts["models"].append({"pose": _pose(shape.origin), "scale": vector(shape.scale), "color": color,
+                parts["models"].append({"pose": _pose(shape.origin), "scale": vector(shape.scale), "color": rgba,
                                         "override_color": not own_look, "url": "", "media_type": media_type,
                                         "data": data})
             else:
@@ -141,7 +142,7 @@ class SceneEntities:
                 "metadata": [{"key": "body", "value": obj.name}, {"key": "type", "value": obj.type}],
                 "texts": [{"pose": {"position": vector(above), "orientation": quaternion((0, 0, 0, 1))},
                            "billboard": True, "font_size": 14.0, "scale_invariant": True,
-                           "color": _color((0.1, 0.1, 0.1, 1.0)), "text": obj.name}]}
+                           "color": color((0.1, 0.1, 0.1, 1.0)), "text": obj.name}]}
 
     def _mesh(self, path: Path | None) -> tuple[str, str] | None:
         """(media type, base64 data) of a mesh file: OBJ and STL as STL (read and checked here), formats Foxglove

@@ -77,6 +77,7 @@ def test_every_body_is_a_scene_entity_at_the_start(set_table):
 
 def test_one_log_message_per_step_and_every_frame_after_each(set_table):
     topics = read(set_table[0])
+    assert "/failures" not in topics  # nothing failed
     steps = set_table[1]["replay"]["steps"]
     logs = topics["/plan"]
     assert len(logs) == len(steps) == 67
@@ -174,6 +175,16 @@ def test_a_failure_is_an_error_in_the_log(tmp_path):
     *before, (_, last) = logs
     assert last["level"] == 4 and "ReasoningFailure: milk is not stable where it was placed" in last["message"]
     assert all(log["level"] == 2 for _, log in before)
+    # in the 3D view: the failure written above the milk, where it ended up, marked by a red sphere
+    [(time, update)] = read(path)["/failures"]
+    assert time == len(logs) * STEP_NS
+    [marker] = update["entities"]
+    assert marker["texts"][0]["text"] == "ReasoningFailure: milk is not stable where it was placed"
+    [sphere] = marker["spheres"]
+    milk = next(t for t in read(path)["/tf"][-1][1]["transforms"] if t["child_frame_id"].startswith("milk/"))
+    assert np.allclose([sphere["pose"]["position"][a] for a in "xyz"], [milk["translation"][a] for a in "xyz"],
+                       atol=0.15)  # the middle of its box, lying on its side, and its frame
+    assert marker["texts"][0]["pose"]["position"]["z"] > sphere["pose"]["position"]["z"]
 
 
 def test_trace_show_writes_the_same_file_byte_for_byte(set_table, tmp_path):
