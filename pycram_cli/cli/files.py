@@ -12,12 +12,12 @@ from typing import Any, Iterable
 
 from .. import interrupts
 from ..errors import InputError, Location
-from ..report import REPORT_FORMATS, build_report
+from ..report import MCAP_FORMATS, REPORT_FORMATS, build_mcap, build_report
 from ..files import check_writable, reason, write_atomic
 from . import console
 
-__all__ = ["PLOT_FORMATS", "REPORT_FORMATS", "check_output", "check_outputs", "check_plot", "distinct_outputs", "same_file",
-           "write_output", "write_report"]
+__all__ = ["MCAP_FORMATS", "PLOT_FORMATS", "REPORT_FORMATS", "check_output", "check_outputs", "check_plot", "distinct_outputs", "same_file",
+           "write_mcap", "write_output", "write_report"]
 
 #: the maps `locate --plot` and `sweep --plot` draw
 PLOT_FORMATS = {".png": "PNG"}
@@ -98,3 +98,10 @@ def write_report(path: Path, trace: dict[str, Any], world_path: Path) -> None:
     page = build_report(trace, world_path)
     size = len(page.encode())
     write_output(path, page, f"replay report, {size / 1e6:.1f} MB" if size >= 1e5 else f"replay report, {size // 1000} kB")
+
+
+def write_mcap(path: Path, trace: dict[str, Any], world_path: Path) -> None:
+    """Write the run's replay as an MCAP file for Foxglove (see pycram_cli/report/foxglove.py)."""
+    data = build_mcap(trace, world_path)
+    size = len(data)
+    write_output(path, data, f"MCAP replay, {size / 1e6:.1f} MB" if size >= 1e5 else f"MCAP replay, {size // 1000} kB")

@@ -21,7 +21,7 @@ from ..scenario.variations import read_variations, variation_file
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
-from .files import REPORT_FORMATS, check_outputs, distinct_outputs, write_output, write_report
+from .files import MCAP_FORMATS, REPORT_FORMATS, check_outputs, distinct_outputs, write_mcap, write_output, write_report
 from .gui_view import GuiView
 from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
                       wait_for_window)
@@ -120,6 +120,9 @@ class QuietView:
 @size_option
 @click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a replay report: one HTML file with a 3D replay, the plan tree and a timeline.")
+@click.option("--mcap", "mcap_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write the replay as an MCAP file (.mcap) that Foxglove opens: the bodies, their frames, "
+                   "the steps as a log, the robot camera's images.")
 @click.option("--pace", type=Number(0.0, 60.0), default=None, metavar="SECONDS",
               help="Pause after each motion so it can be watched (default: 0.5 with --gui, else 0).")
 @click.option("--scenario", "scenario_seed", type=int, default=None, metavar="SEED",
@@ -137,9 +140,9 @@ class QuietView:
 @gui_option
 @click.pass_context
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
-        render_file: Path | None, camera: str | None, size: str, report_file: Path | None, pace: float | None,
-        scenario_seed: int | None, vary_file: str | None, project_runs: int | None, require: float | None,
-        follow: bool, as_json: bool, gui: bool) -> None:
+        render_file: Path | None, camera: str | None, size: str, report_file: Path | None, mcap_file: Path | None,
+        pace: float | None, scenario_seed: int | None, vary_file: str | None, project_runs: int | None,
+        require: float | None, follow: bool, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
@@ -153,9 +156,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         raise InputError("keeps the first view of the --gui window, but no --gui is given", Location("--no-follow"),
                          suggestion="add --gui, or leave --no-follow out")
     check_outputs([(trace_file, None, "trace"), (render_file, IMAGE_FORMATS, "image"),
-                   (report_file, REPORT_FORMATS, "report")])
-    distinct_outputs([(trace_file, "trace"), (render_file, "image"), (report_file, "report")])
-    for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report")):
+                   (report_file, REPORT_FORMATS, "report"), (mcap_file, MCAP_FORMATS, "MCAP file")])
+    distinct_outputs([(trace_file, "trace"), (render_file, "image"), (report_file, "report"), (mcap_file, "MCAP file")])
+    for output, key in ((trace_file, "trace"), (render_file, "render"), (report_file, "report"), (mcap_file, "mcap")):
         if output is not None:
             check_writable(output, key)  # a pipe, a device, no permission: before anything runs
     if require is not None and project_runs is None:
@@ -221,8 +224,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if pace > 0:
             view = Paced(view, pace)
         observer = GuiView(world, view, follow) if gui else view
-        replay = trace_file is not None or report_file is not None
-        for output in (trace_file, render_file, report_file):
+        replay = trace_file is not None or report_file is not None or mcap_file is not None
+        for output in (trace_file, render_file, report_file, mcap_file):
             if output is not None:
                 interrupts.owe(str(output))  # said on stderr if a signal's deadline ends the run before it is written
         try:
@@ -246,6 +249,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
                          f"{image_size[0]}x{image_size[1]} {image_format(render_file.suffix)}")
         if report_file is not None and not interrupted:
             write_report(report_file, result.trace, scenario.world_path)
+        if mcap_file is not None and not interrupted:
+            write_mcap(mcap_file, result.trace, scenario.world_path)
         if as_json:
             console.emit_json(normalised({"status": result.status, "failure": result.failure,
                                           "duration": round(duration, 3), "trace": result.trace,

@@ -9,12 +9,14 @@ from typing import Any
 import click
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
+from ..errors import InputError, Location
 from ..sweep import BACKENDS, PreparedSweep, SweepSettings, prepare_sweep, run_sweep, summary_of
 from ..sweep.plot import plot_outcomes
 from . import console
 from .complete import plan_names, world_names
 from .files import check_plot
 from .options import json_option
+from .sweep_report import DEFAULT_REPLAYS, MAX_REPLAYS, check_sweep_report, write_sweep_report
 
 EXIT_INTERRUPTED = 130
 
@@ -66,6 +68,12 @@ class _Progress:
               help="Folder for results.jsonl and sweep.json (default: sweep-PLAN).")
 @click.option("--plot", "plot_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Write a PNG map of the outcomes over the varied start positions.")
+@click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write a page (HTML) of the sweep: the map of the outcomes and the scenarios by outcome, each "
+                   "linking to its replay (recorded for --replays of them, written to REPORT-replays/ beside it).")
+@click.option("--replays", type=click.IntRange(0, MAX_REPLAYS), default=None, metavar="N",
+              help=f"With --report: run at most N scenarios again to record their replays, the failed ones first "
+                   f"(0-{MAX_REPLAYS}; default: {DEFAULT_REPLAYS}).")
 @click.option("--compare", metavar="PARAM=A,B,...", help="Run every scenario once per value of a plan parameter.")
 @click.option("--timeout", type=click.FloatRange(min=0.0, min_open=True), default=None, metavar="SECONDS",
               help="Record a scenario that runs longer as a timeout and go on.")
@@ -75,7 +83,8 @@ class _Progress:
 @click.pass_context
 def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file: str | None, count: int, seed: int,
           workers: int | None, backend: str, address: str | None, out_dir: Path | None, plot_file: Path | None,
-          compare: str | None, timeout: float | None, resume: bool, force: bool, as_json: bool) -> None:
+          report_file: Path | None, replays: int | None, compare: str | None, timeout: float | None, resume: bool, force: bool,
+          as_json: bool) -> None:
     """Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails.
 
     Each scenario's outcome is a line of OUT/results.jsonl, written as it finishes (Ctrl-C keeps
@@ -84,6 +93,10 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     Exit code 0 when the sweep ran (whatever its success rate), 2 for invalid input.
     """
     check_plot(plot_file)
+    check_sweep_report(report_file)
+    if report_file is None and replays is not None:
+        raise InputError("sets how many replays the sweep's report links to, but no --report FILE is given",
+                         Location("--replays"), suggestion="add --report sweep.html, or leave --replays out")
     out = out_dir if out_dir is not None else Path(f"sweep-{Path(plan_file).stem}")
     settings = SweepSettings(plan_file, vary_file, world_file, count, seed, workers, backend, address, out, compare,
                              timeout, resume, force)
@@ -112,13 +125,16 @@ def sweep(ctx: click.Context, plan_file: str, world_file: str | None, vary_file:
     summary["complete"] = not interrupted
     if plot_file is not None:
         plot_outcomes(prepared, summary_records(prepared), plot_file)
+    if report_file is not None and not interrupted:
+        write_sweep_report(prepared, summary, summary_records(prepared), report_file,
+                           DEFAULT_REPLAYS if replays is None else replays)
     if as_json:
         console.emit_json(summary)
     else:
         _print(summary, prepared, plot_file)
     if interrupted:
         console.error(f"interrupted: {summary['runs']} of {prepared.total} runs are in {summary['results']} "
-                      "(--resume goes on)")
+                      "(--resume goes on)" + (f"; {report_file} was not written" if report_file is not None else ""))
         ctx.exit(EXIT_INTERRUPTED)
 
 

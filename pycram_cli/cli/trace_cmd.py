@@ -12,10 +12,11 @@ from rich.tree import Tree
 
 from ..errors import InputError, Location
 from ..plan import trace as traces
-from ..report import REPORT_FORMATS, report_world
+from ..files import check_writable
+from ..report import MCAP_FORMATS, REPORT_FORMATS, build_comparison, report_world
 from . import console
 from .complete import world_names
-from .files import check_output, same_file, write_report
+from .files import check_output, distinct_outputs, same_file, write_mcap, write_output, write_report
 from .options import Number
 
 STYLE = {"succeeded": ("✓", "green"), "failed": ("✗", "bold red"), "recovered": ("↺", "yellow"),
@@ -193,16 +194,23 @@ def trace() -> None:
 @click.option("--no-timing", is_flag=True, help="Leave durations out.")
 @click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
               help="Also write the run's replay report (HTML), as `pycram run --report` does.")
+@click.option("--mcap", "mcap_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Also write the run's replay as an MCAP file for Foxglove, as `pycram run --mcap` does.")
 @click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
-              help="With --report: the world file the run used (default: the one the trace names).")
-def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str | None) -> None:
+              help="With --report or --mcap: the world file the run used (default: the one the trace names).")
+def show(file: Path, no_timing: bool, report_file: Path | None, mcap_file: Path | None, world_file: str | None) -> None:
     """Print the trace in FILE as a tree (as the live view of `pycram run` shows it), then the world's final state."""
-    if report_file is not None:
-        check_output(report_file, REPORT_FORMATS, "report")
-        if same_file(Path(file), report_file):
-            raise InputError("the report would replace the trace it is made from: give it another name",
-                             Location(str(report_file)))
-    data = traces.load(file, replay=report_file is not None)
+    outputs = [(report_file, REPORT_FORMATS, "report", "report"), (mcap_file, MCAP_FORMATS, "MCAP file", "mcap")]
+    for output, kinds, what, key in outputs:
+        if output is not None:
+            check_output(output, kinds, what)
+            if same_file(Path(file), output):
+                raise InputError(f"the {what} would replace the trace it is made from: give it another name",
+                                 Location(str(output)))
+            check_writable(output, key)
+    distinct_outputs([(report_file, "report"), (mcap_file, "MCAP file")])
+    replayed = report_file is not None or mcap_file is not None
+    data = traces.load(file, replay=replayed)
     timing = not no_timing
     status = data.get("status", "?")
     header = f"{data.get('plan')} on {data.get('world')}: {status}"
@@ -219,11 +227,13 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
         console.table("final state", ["object", "type", "position", "joints"], rows)
     for att in attachments:
         console.plain(f"attached: {att['child']} to {att['parent']} ({att['parent_link']})")
+    if replayed and not data.get(traces.REPLAY_KEY):
+        console.warning(f"{file} has no replay record (written by `pycram run --trace`): the replay "
+                        "shows the world as loaded")
     if report_file is not None:
-        if not data.get(traces.REPLAY_KEY):
-            console.warning(f"{file} has no replay record (written by `pycram run --trace`): the report's 3D view "
-                            "shows the world as loaded")
         write_report(report_file, data, report_world(data, world_file))
+    if mcap_file is not None:
+        write_mcap(mcap_file, data, report_world(data, world_file))
 
 
 @trace.command("diff")
@@ -232,10 +242,21 @@ def show(file: Path, no_timing: bool, report_file: Path | None, world_file: str 
 @click.option("--atol", type=Number(0.0, 1e6), default=1e-3, show_default=True,
               help="Numbers closer than this are equal (a finite number, 0 or more).")
 @click.option("--json", "as_json", is_flag=True, help="The differences as JSON on stdout.")
+@click.option("--report", "report_file", type=click.Path(dir_okay=False, path_type=Path),
+              help="Also write a page (HTML) with both runs' replays side by side, moved together step by step, "
+                   "the first step at which they differ marked.")
 @click.pass_context
-def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -> None:
+def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool, report_file: Path | None) -> None:
     """Compare traces A and B, ignoring timings; exit 0 when they match, 1 when they differ."""
-    first, second = traces.load(a), traces.load(b)
+    if report_file is not None:
+        check_output(report_file, REPORT_FORMATS, "report")
+        for trace_file in (a, b):
+            if same_file(Path(trace_file), report_file):
+                raise InputError("the report would replace a trace it is made from: give it another name",
+                                 Location(str(report_file)))
+        check_writable(report_file, "report")
+    replayed = report_file is not None
+    first, second = traces.load(a, replay=replayed), traces.load(b, replay=replayed)
     found = traces.diff(first, second, atol)
     if as_json:
         console.emit_json({"same": not found, "atol": atol,
@@ -246,5 +267,13 @@ def diff_cmd(ctx: click.Context, a: Path, b: Path, atol: float, as_json: bool) -
         for difference in found:
             console.plain(str(difference))
         console.plain(f"{len(found)} difference{'s' if len(found) != 1 else ''} (A = {a}, B = {b})")
+    if report_file is not None:
+        for path, data in ((a, first), (b, second)):
+            if not data.get(traces.REPLAY_KEY):
+                console.warning(f"{path} has no replay record (written by `pycram run --trace`): its replay "
+                                "shows the world as loaded")
+        names = (a.name, b.name) if a.name != b.name else (str(a), str(b))
+        page = build_comparison(first, second, (report_world(first), report_world(second)), names, atol)
+        write_output(report_file, page, f"comparison report, {len(page.encode()) / 1e6:.1f} MB")
     if found:
         ctx.exit(1)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -55,8 +55,18 @@ def colours(outcomes: list[str]) -> dict[str, tuple[int, int, int]]:
     return table
 
 
-def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: Path,
-                  width: int = 960, height: int = 720) -> None:
+@dataclass
+class OutcomeMap:
+    """The map's picture, and where each scenario's varied objects are drawn on it."""
+
+    image: np.ndarray
+    #: (record, object, (x, y) pixel) of every varied start position
+    markers: list[tuple[dict[str, Any], str, tuple[int, int]]] = field(default_factory=list)
+
+
+def outcome_map(sweep: "PreparedSweep", records: list[dict[str, Any]], width: int = 960,
+                height: int = 720) -> OutcomeMap:
+    """The map of the outcomes over the varied start positions (see the module docstring)."""
     points = collect(records)
     if not points:
         raise InputError("nothing to plot: the variation file moves no object (give one a noise or a region)",
@@ -95,7 +105,16 @@ def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: P
     rows: list[tuple[str, Any, str]] = [("circle", table[o], f"{o} {counts[o]}") for o in table if counts[o]]
     rows += [(shape[n], (60, 60, 60), n) for n in names]
     draw_legend(image, rows, f"{Path(sweep.meta['plan']).stem}: {len({r['index'] for r in records})} scenarios")
-    write_png(path, image)
+    markers = [(record, name, pixel(tuple(varied["position"])))
+               for record in records for name, varied in sorted((record.get("varied") or {}).items())
+               if isinstance(varied, dict) and "position" in varied]
+    return OutcomeMap(image, markers)
+
+
+def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: Path,
+                  width: int = 960, height: int = 720) -> None:
+    """Write the map of the outcomes as a PNG file."""
+    write_png(path, outcome_map(sweep, records, width, height).image)
 
 
 # -- drawing ------------------------------------------------------------------------------------------

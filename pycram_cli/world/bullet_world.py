@@ -129,7 +129,7 @@ class BulletWorld:
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
         self._view: ViewRenderer | None = None  # made on the first picture_of
-        self._caption: int = -1  # the GUI's caption text item, once shown
+        self._captions: dict[int, int] = {}  # the GUI's caption text items by line, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
         # change tracking (see `version`): every change takes a fresh number from the clock
         self._clock = itertools.count(1)
@@ -482,8 +482,10 @@ class BulletWorld:
         yaw = math.degrees(math.atan2(-float(forward[0]), float(forward[1])))
         p.resetDebugVisualizerCamera(distance, yaw, pitch, list(camera.target), physicsClientId=self.client_id)
 
-    def show_caption(self, text: str, camera: Camera | None = None) -> None:
-        """Show `text` at the top left of the GUI window (replacing the previous caption; nothing without a window).
+    def show_caption(self, text: str, camera: Camera | None = None, line: int = 0,
+                     color: tuple[float, float, float] = (0.05, 0.05, 0.3)) -> None:
+        """Show `text` at the top left of the GUI window, on line `line` (0: the top), in `color` (replacing what that
+        line showed; nothing without a window).
 
         PyBullet draws text at a point in the world, so it is placed just in front of the viewer's camera:
         `camera` when the caller has just set it (the window reports a new camera only once it has drawn it).
@@ -502,14 +504,23 @@ class BulletWorld:
         depth = 1.0
         half_v = math.tan(math.radians(camera.vertical_fov_deg) / 2.0) * depth
         half_h = half_v * self.viewer_aspect()
-        where = eye + forward * depth + up * half_v * 0.9 - right * half_h * 0.96
+        where = eye + forward * depth + up * half_v * (0.9 - 0.09 * line) - right * half_h * 0.96
         # turned to face this camera: PyBullet would turn it to the camera the window still shows
         facing = matrix_to_quat(np.column_stack([right, up, -forward]))
-        options = {"replaceItemUniqueId": self._caption} if self._caption >= 0 else {}
+        previous = self._captions.get(line, -1)
+        options = {"replaceItemUniqueId": previous} if previous >= 0 else {}
         with silenced():
-            self._caption = p.addUserDebugText(text, where.tolist(), textColorRGB=[0.05, 0.05, 0.3],
-                                               textSize=0.06 * half_v, textOrientation=list(facing),
-                                               physicsClientId=self.client_id, **options)
+            self._captions[line] = p.addUserDebugText(text, where.tolist(), textColorRGB=list(color),
+                                                      textSize=0.06 * half_v, textOrientation=list(facing),
+                                                      physicsClientId=self.client_id, **options)
+
+    def clear_caption(self, line: int) -> None:
+        """Take line `line` of the caption away (nothing when it shows nothing, or without a window)."""
+        item = self._captions.pop(line, -1)
+        if item >= 0 and self.mode == "gui" and self.is_connected():
+            with silenced():
+                p.removeUserDebugItem(item, physicsClientId=self.client_id)
+
     def prospection(self, objects: "Sequence[Object] | None" = None, velocities: bool = True) -> "Prospection":
         """This world's private copy, brought in sync (all objects, or only `objects`): where queries simulate and
         try joint values, so that this world is only read and keeps every hidden state (see prospection.py)."""

@@ -162,6 +162,18 @@ def robot_camera(world: "BulletWorld", focus: Iterable[Sequence[float]] = (), fo
                         focus=focus)
 
 
+def frame_viewer_on_robot(world: "BulletWorld") -> Camera | None:
+    """Point the GUI window's camera at the robot and every object it may work on (`robot_camera`, with the
+    window's field of view and shape); the camera set, None without a window."""
+    current = world.viewer_camera()
+    if current is None:
+        return None
+    focus = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
+    camera = robot_camera(world, focus, current.vertical_fov_deg, world.viewer_aspect())
+    world.set_viewer_camera(camera)
+    return camera
+
+
 def movable_objects(world: "BulletWorld") -> list["Object"]:
     """The things a plan works on: every object that is neither a robot nor an environment."""
     return [o for o in world.objects if o.type not in SCENERY_TYPES]

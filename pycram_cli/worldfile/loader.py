@@ -9,6 +9,7 @@ from ..errors import InputError, Location, raise_if_any
 from ..paths import default_world, find_world
 from ..robots import assign_description
 from ..world import BulletWorld, Object
+from ..world.camera import frame_viewer_on_robot
 from .spec import WorldSpec, parse_world
 
 
@@ -37,6 +38,7 @@ def load_spec(spec: WorldSpec, mode: str = "direct", check_start: bool = True) -
             _load_objects(world, spec)
             if check_start:
                 raise_if_any(starting_inside(world, spec))
+            frame_viewer_on_robot(world)  # a window's first picture shows the robot, not the default view
         world.source = spec.path
     except BaseException:
         world.exit()

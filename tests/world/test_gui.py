@@ -126,3 +126,72 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
         assert _robot_pixels(best) > 100, f"the robot is not in view at the {moment} (see {tmp_path / moment}.png)"
         assert _caption_pixels(best) > 20, f"no caption naming the step at the {moment}"
     assert run.returncode in (0, 130, -signal.SIGINT)
+
+
+FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
+
+FIRST_PICTURE = textwrap.dedent("""
+    import time
+    from pycram_cli.world.camera import render
+    from pycram_cli.worldfile.loader import load_world
+    world = load_world(mode="gui")
+    time.sleep(1.5)  # the window draws its first picture (it reports a camera only once it has drawn it)
+    image = render(world, world.viewer_camera(), 640, 480).astype(int)
+    print("robot pixels", int(((image[:, :, 2] - image[:, :, 0] > 60) & (image[:, :, 2] > 100)).sum()))
+    world.exit()
+""")
+
+
+@pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed")
+def test_a_gui_world_is_framed_on_the_robot_before_its_first_picture():
+    """Loading a world into the window points its camera at the robot (PyBullet's default view looks at a kitchen
+    wall): the camera the window reports after its first picture sees the PR2's blue grippers (rendered headless
+    from that camera, so the check does not depend on when the window draws)."""
+    done = subprocess.run(["xvfb-run", "-a", sys.executable, "-c", FIRST_PICTURE], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    pixels = int(done.stdout.split("robot pixels")[1])
+    assert pixels > 100, f"the window's first view does not show the robot ({pixels} gripper pixels)"
+
+
+def _red_text_pixels(image) -> int:
+    """Pixels of the failure line's red text in the window's top left corner."""
+    rgb = np.asarray(image.convert("RGB")).astype(int)[:90, :900]
+    return int((np.abs(rgb - (204, 13, 13)).sum(axis=2) < 90).sum())
+
+
+@pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed")
+def test_the_gui_writes_the_failure_in_red_when_the_plan_fails(tmp_path):
+    """The README's failing example in a real window: at the end the failure is written under the step's caption."""
+    from PIL import ImageGrab
+
+    server, display = _start_xvfb()
+    env = dict(os.environ, DISPLAY=display)
+    run = subprocess.Popen([sys.executable, "-m", "pycram_cli.cli.main", "run", "set_table", "-p", FAILING, "--gui",
+                            "--pace", "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                           cwd=tmp_path)
+    end = None
+    try:
+        assert run.stderr is not None
+        for line in run.stderr:
+            if "close the window" in line:  # the plan has ended; the window stays open
+                time.sleep(0.8)
+                end = ImageGrab.grab(xdisplay=display)
+                break
+        else:
+            pytest.fail("the run ended without keeping its window open")
+    finally:
+        run.send_signal(signal.SIGINT)
+        try:
+            run.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            run.kill()
+            run.wait()
+        server.terminate()
+        server.wait(timeout=30)
+    assert end is not None
+    end.save(tmp_path / "end.png")
+    assert _robot_pixels(end) > 100, f"the robot is not in view at the end (see {tmp_path / 'end.png'})"
+    assert _caption_pixels(end) > 20, "no caption naming the step at the end"
+    assert _red_text_pixels(end) > 40, f"the failure is not written in red at the end (see {tmp_path / 'end.png'})"
+    assert run.returncode in (1, 130, -signal.SIGINT)

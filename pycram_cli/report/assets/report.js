@@ -490,3 +490,16 @@
   setInterval(tick, 30);
   requestAnimationFrame(draw);
 })();
+// Held in another page (`trace diff --report`): it moves this report with {pycram: "goto", step} and is told the step shown.
+(function () {
+  if (window.parent === window) return;
+  const tell = () => window.parent.postMessage({ pycram: "step", step: Number(document.body.dataset.step) }, "*");
+  window.addEventListener("message", (event) => {
+    if (event.source !== window.parent || !event.data || event.data.pycram !== "goto") return;
+    const box = document.getElementById("stepno");
+    box.value = String(event.data.step);
+    box.dispatchEvent(new Event("change"));
+  });
+  new MutationObserver(tell).observe(document.body, { attributes: true, attributeFilter: ["data-step"] });
+  tell();
+})();
