@@ -17,7 +17,7 @@ import re
 from typing import Any, Callable
 
 from ..errors import InputError, InputErrors, Location
-from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_STEP_DEPTH, MAX_TRACE_NODES
+from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_PHYSICS_FRAMES, MAX_STEP_DEPTH, MAX_TRACE_NODES
 
 Path = tuple[Any, ...]  # keys and indices from the top of the trace
 RUN_STATUSES = ("succeeded", "failed", "cancelled", "interrupted")
@@ -290,16 +290,31 @@ class _Checker:
 
     def replay_step(self, step: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
         if not self.fields(step, path, "a replayed step", {"path": self.string, "status": self.status(NODE_STATUSES),
-                                                            "changed": self.obj}, {"folded": self.count}):
+                                                            "changed": self.obj},
+                           {"folded": self.count, "physics": self.physics_frames}):
             return
         if refs and isinstance(step.get("path"), str) and step["path"] not in self.paths:
             self.add(path + ("path",), f"no step of the trace has the path {json.dumps(step['path'])}")
-        changed = step.get("changed")
-        if isinstance(changed, dict):
-            for name, entry in changed.items():
-                where = path + ("changed", name)
-                if not refs or self.known_object(name, where, objects):
-                    self.body_state(entry, where, f"the change of '{name}'", full=False)
+        changes = [(path, step.get("changed"))]
+        physics = step.get("physics")
+        if isinstance(physics, list):
+            for index, frame in enumerate(physics):
+                if self.fields(frame, path + ("physics", index), "a physics frame", {"t": self.seconds, "changed": self.obj}):
+                    changes.append((path + ("physics", index), frame.get("changed")))
+        for where_from, changed in changes:
+            if isinstance(changed, dict):
+                for name, entry in changed.items():
+                    where = where_from + ("changed", name)
+                    if not refs or self.known_object(name, where, objects):
+                        self.body_state(entry, where, f"the change of '{name}'", full=False)
+
+    def physics_frames(self, value: Any, path: Path) -> None:
+        if self.typed(value, path, list, "a list of physics frames") and len(value) > MAX_PHYSICS_FRAMES:
+            self.add(path, f"more than {MAX_PHYSICS_FRAMES} physics frames (a step records at most that many)")
+
+    def seconds(self, value: Any, path: Path) -> None:
+        if not _is_number(value) or not 0 <= value <= MAX_MAGNITUDE:
+            self.add(path, f"expected a number of seconds from 0 to {MAX_MAGNITUDE:g}")
 
     def known_object(self, name: str, path: Path, objects: set[str] | None) -> bool:
         if objects is not None and name not in objects:

@@ -128,6 +128,7 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
+        self._step_watchers: list[Callable[[], None]] = []  # called after every physics step (see watch_steps)
         self._view: ViewRenderer | None = None  # made on the first picture_of
         self._caption: int = -1  # the GUI's caption text item, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
@@ -155,6 +156,17 @@ class BulletWorld:
     def add_exit_hook(self, hook: Callable[[], None]) -> None:
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
         self._exit_hooks.append(hook)
+
+    def watch_steps(self, watcher: Callable[[], None]) -> Callable[[], None]:
+        """Call `watcher` after every physics step of this world (a replay recording the motion physics makes);
+        returns the function that stops it."""
+        self._step_watchers.append(watcher)
+
+        def unwatch() -> None:
+            if watcher in self._step_watchers:
+                self._step_watchers.remove(watcher)
+
+        return unwatch
 
     def exit(self) -> None:
         """Disconnect the client; the current world becomes the newest live one (or None)."""
@@ -286,6 +298,8 @@ class BulletWorld:
         p.stepSimulation(physicsClientId=self.client_id)
         self.mark_changed()
         self._follow_parents()
+        for watcher in self._step_watchers:
+            watcher()
 
     def _follow_parents(self) -> None:
         """Every parent, in world order, moves what is attached to it (children only: nothing to do)."""
