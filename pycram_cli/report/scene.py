@@ -16,12 +16,14 @@ import numpy as np
 
 from ..plan.replay import focus_points
 from ..world import BulletWorld, Object
-from ..world.camera import movable_objects, robot_camera
+from ..world.camera import boxes_camera, movable_objects, objects_camera, robot_camera
+from .failures import failed_leaves, focus
 from ..world.meshes import read_mesh
 
 POSE_DIGITS = 4  # 0.1 mm and 1e-4 of a quaternion: plenty to look at
 VIEW_FOV, VIEW_ASPECT = 50.0, 1.6  # the page's camera (vertical field of view) and a typical shape of its view
 MESH_FILES = (".obj", ".stl")
+FAILURE_DISTANCE = 1.4  # m: a failure is framed at least this far, with what is around it
 
 
 def _b64(array: np.ndarray) -> str:
@@ -132,29 +134,133 @@ def _flat(poses: dict[tuple[int, int], list[float]]) -> list[float]:
 
 def _camera(world: BulletWorld, focus: list[Any]) -> list[float]:
     camera = robot_camera(world, focus, VIEW_FOV, VIEW_ASPECT)
+    return _eye_target(camera)
+
+
+def _eye_target(camera: Any) -> list[float]:
     return [round(v, 3) + 0.0 for v in (*camera.eye, *camera.target)]
 
 
-def frames(scene: Scene, replay: dict[str, Any] | None, nodes: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
-    """Frame 0 (the world before the first step) and one frame after every recorded step: the poses of
-    the links that moved (frame 0: all) and a camera [eye, target] on the robot and what the step works on
-    (a step that names nothing keeps the previous step's focus)."""
-    world = scene.world
+def _detach_all(scene: Scene) -> None:
     for obj, _ in scene.links:  # recorded poses say where everything is: nothing may drag anything along
         for other in list(obj.attachments):
             if other in obj.attachments:
                 obj.detach(other)
-    if replay:
-        scene.apply(replay.get("initial") or {})
-    last = scene.poses()
-    focus = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
-    result = [{"path": None, "status": None, "poses": _flat(last), "camera": _camera(world, focus)}]
-    for step in (replay or {}).get("steps") or []:
-        touched = scene.apply(step.get("changed") or {})
-        now = scene.poses(touched) if touched else {}
-        moved = {key: pose for key, pose in now.items() if last.get(key) != pose}
-        last.update(moved)
-        focus = focus_points(world, nodes.get(step.get("path") or "", {})) or focus
-        result.append({"path": step.get("path"), "status": step.get("status"), "poses": _flat(moved),
-                       "camera": _camera(world, focus)})
-    return result
+
+
+def frames(scene: Scene, replay: dict[str, Any] | None, nodes: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
+    """The frames of `replay` (see `Replayer.frames`)."""
+    return Replayer(scene, replay, nodes).frames()
+
+
+class Replayer:
+    """Puts the world into every recorded state of a run and reads what the page draws.
+
+    `frames()`: frame 0 (the world before the first step) and one frame after every recorded step: the poses of
+    the links that moved (frame 0: all), the step's physics frames (`physics`: the simulated time `t` and the
+    links moved since the frame before) and a camera [eye, target] on the robot and what the step works on (a
+    step that names nothing keeps the previous step's focus; a failed step frames its object and its target;
+    the last frame frames what the run moved). `failures`: every failed step, then filled in (see `failure`).
+    """
+
+    def __init__(self, scene: Scene, replay: dict[str, Any] | None, nodes: dict[str, dict[str, Any]],
+                 root: dict[str, Any] | None = None) -> None:
+        self.scene, self.replay, self.nodes, self.root = scene, replay or {}, nodes, root or {}
+        self.failures: list[dict[str, Any]] = []
+        self._placed: dict[str, dict[int, list[float]]] = {}  # step path -> body -> its poses as physics began
+
+    def frames(self) -> list[dict[str, Any]]:
+        scene, world = self.scene, self.scene.world
+        _detach_all(scene)
+        scene.apply(self.replay.get("initial") or {})
+        state = {name: dict(entry) for name, entry in (self.replay.get("initial") or {}).items()}
+        start = {o.name: o.get_position() for o in movable_objects(world)}
+        last = scene.poses()
+        focus = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
+        result = [{"path": None, "status": None, "poses": _flat(last), "camera": _camera(world, focus)}]
+        steps = self.replay.get("steps") or []
+        failed = {node.get("path") for node in failed_leaves(self.root)}
+        order = [step.get("path") for step in steps]
+        for k, step in enumerate(steps, start=1):
+            frame: dict[str, Any] = {"path": step.get("path"), "status": step.get("status")}
+            physics = []
+            touched: set[int] = set()
+            for sub in step.get("physics") or []:
+                moved_bodies = scene.apply(sub.get("changed") or {})
+                touched |= moved_bodies
+                now = scene.poses(moved_bodies) if moved_bodies else {}
+                moved = {key: pose for key, pose in now.items() if last.get(key) != pose}
+                last.update(moved)
+                if not physics:  # where each body was as physics began: the pose it was put in
+                    self._placed[step.get("path")] = {b: _flat({key: pose for key, pose in now.items() if key[0] == b})
+                                                      for b in moved_bodies}
+                physics.append({"t": sub.get("t"), "poses": _flat(moved)})
+            changed = step.get("changed") or {}
+            for name, entry in changed.items():
+                merged = state.setdefault(name, {})
+                joints = {**merged.get("joints", {}), **entry.get("joints", {})}
+                merged.update(entry)
+                if joints:
+                    merged["joints"] = joints
+            # what physics moved and the step's end does not name is back where the step's end has it
+            back = {self.scene.links[b][0].name for b in touched} - set(changed)
+            touched = scene.apply(changed) | scene.apply({name: state[name] for name in back if name in state})
+            now = scene.poses(touched) if touched else {}
+            moved = {key: pose for key, pose in now.items() if last.get(key) != pose}
+            last.update(moved)
+            frame["poses"] = _flat(moved)
+            if physics:
+                frame["physics"] = physics
+            node = self.nodes.get(step.get("path") or "", {})
+            focus = focus_points(world, node) or focus
+            frame["camera"] = _camera(world, focus)
+            if step.get("path") in failed and not step.get("folded"):
+                failure = self.failure(k, node, order)
+                self.failures.append(failure)
+                frame["camera"] = failure["camera"]
+            result.append(frame)
+        moved_objects = [o for o in movable_objects(world)
+                         if max(abs(a - b) for a, b in zip(o.get_position(), start.get(o.name, (0, 0, 0)))) > 0.01]
+        if len(result) > 1 and moved_objects and not (self.failures and self.failures[-1]["step"] == len(result) - 1):
+            result[-1]["camera"] = _eye_target(objects_camera(world, moved_objects, VIEW_FOV, VIEW_ASPECT))
+        return result
+
+    def failure(self, k: int, node: dict[str, Any], order: list[str]) -> dict[str, Any]:
+        """A failed step k (the world in its state after it): its failure, the bodies it names, the target meant
+        for them and a ghost of the first of them there (its links' poses: as physics began in the step that
+        named the target, else moved so that its bottom's centre is at the target), and a camera on all that."""
+        world, scene = self.scene.world, self.scene
+        by_name = {obj.name: b for b, (obj, _) in enumerate(scene.links)}
+        names = {o.name for o in movable_objects(world)}
+        found = focus(self.root, node, names, order)
+        info = node.get("failure") or {}
+        entry: dict[str, Any] = {"step": k, "path": node.get("path"), "type": info.get("type"),
+                                 "message": info.get("message"),
+                                 "objects": [by_name[name] for name in found.objects if name in by_name],
+                                 "target": [round(v, 4) + 0.0 for v in found.target] if found.target else None,
+                                 "ghost": None}
+        boxes = [world.get_object_by_name(name).get_aabb() for name in found.objects if name in by_name]
+        if found.objects and found.target is not None and found.objects[0] in by_name:
+            b = by_name[found.objects[0]]
+            obj = scene.links[b][0]
+            placed = self._placed.get(found.target_step or "", {}).get(b)
+            pose = obj.get_pose()
+            try:
+                if placed:
+                    obj.set_position_and_orientation(placed[2:5], placed[5:9])
+                else:
+                    lo, hi = obj.get_aabb()
+                    bottom = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2])
+                    obj.set_position_and_orientation([p + t - q for p, t, q in zip(pose[0], found.target, bottom)],
+                                                     pose[1])
+                entry["ghost"] = {"body": b, "poses": _flat(scene.poses({b}))}
+                boxes.append(obj.get_aabb())
+            finally:
+                obj.set_position_and_orientation(*pose)
+        elif found.target is not None:
+            boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
+        if boxes:
+            entry["camera"] = _eye_target(boxes_camera(world, boxes, VIEW_FOV, VIEW_ASPECT, min_distance=FAILURE_DISTANCE))
+        else:
+            entry["camera"] = _camera(world, focus_points(world, node))
+        return entry

@@ -40,12 +40,29 @@ def report(tmp_path_factory) -> Path:
     return path
 
 
+def body_of(dom: str) -> dict[str, str]:
+    """The data attributes the page keeps on <body> (data-selected-pose as selectedpose)."""
+    body = re.search(r"<body([^>]*)>", dom)
+    assert body, dom[:2000]
+    return {k.replace("-", ""): v for k, v in re.findall(r'data-([a-z-]+)="([^"]*)"', body.group(1))}
+
+
+def dump(tmp_path: Path, name: str, url: str) -> tuple[str, dict[str, str]]:
+    dom = chromium(tmp_path / name, "--dump-dom", url).stdout.decode(errors="replace")
+    return dom, body_of(dom)
+
+
+def screenshot(tmp_path: Path, name: str, url: str, size: tuple[int, int] = WINDOW) -> np.ndarray:
+    shot = tmp_path / f"{name}.png"
+    done = chromium(tmp_path / name, f"--screenshot={shot}", f"--window-size={size[0]},{size[1]}", url)
+    assert shot.is_file(), done.stderr.decode(errors="replace")[-2000:]
+    return np.asarray(Image.open(io.BytesIO(shot.read_bytes())).convert("RGB")).astype(int)
+
+
 def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     url = report.as_uri() + "#step=last"
     dom = chromium(tmp_path / "dom", "--dump-dom", url).stdout.decode(errors="replace")
-    body = re.search(r"<body([^>]*)>", dom)
-    assert body, dom[:2000]
-    attributes = dict(re.findall(r'data-([a-z]+)="([^"]*)"', body.group(1)))
+    attributes = body_of(dom)
     assert attributes.get("ready") == "1", "the page's script did not finish"
     assert attributes.get("webgl") == "ok", "no WebGL: the 3D view cannot draw"
     assert attributes["step"] == attributes["steps"] == "67"  # seeked to the last step
@@ -56,6 +73,11 @@ def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     current = re.search(r'<li class="([^"]*\bcurrent\b[^"]*)" data-path="([^"]+)"', dom)
     assert current and current.group(2).endswith("item 3/1:if/else/0:call move_object/12:assert")
     assert not re.search(r"<li class=\"st-pending", dom)  # at the last step everything has run
+    # the final frame shows the result: the four placed objects are in view, each with its label
+    for name in ("bowl", "milk", "cereal", "spoon"):
+        tag = re.search(rf'<span class="label3d[^"]*" data-body="{name}"[^>]*>', dom)
+        assert tag and "hidden" not in tag.group(0), f"{name} is not in view at the end"
+    assert attributes["failures"] == "0" and not attributes.get("failure")  # a run without failures
 
     shot = tmp_path / "report.png"
     done = chromium(tmp_path / "shot", f"--screenshot={shot}", url)
@@ -79,3 +101,81 @@ def test_the_report_plays_by_itself(report, tmp_path):
     assert body
     attributes = dict(re.findall(r'data-([a-z]+)="([^"]*)"', body.group(1)))
     assert int(attributes["step"]) > 6, "playing did not move on from step 3"
+
+
+def test_the_view_can_be_saved_as_a_png(report, tmp_path):
+    dom, attributes = dump(tmp_path, "png", report.as_uri() + "#step=last&png")
+    link = re.search(r'<a id="png-link"[^>]*href="data:image/png;base64,([^"]+)"', dom)
+    assert link, "no image was made"
+    image = Image.open(io.BytesIO(__import__("base64").b64decode(link.group(1))))
+    assert image.format == "PNG" and image.width > 300 and image.height > 200
+    assert len(np.unique(np.asarray(image.convert("RGB")).reshape(-1, 3) // 8, axis=0)) > 40  # the kitchen, not blank
+
+
+def test_the_layout_holds_at_800_pixels(report, tmp_path):
+    dom, attributes = dump(tmp_path, "narrow", report.as_uri() + "#step=last")
+    image = screenshot(tmp_path, "narrow", report.as_uri() + "#step=last", (800, 700))
+    # the view and the controls fit the narrow window; nothing is cut at its right edge
+    assert image.shape[1] == 800
+    controls = image[:, :, :]
+    assert (np.abs(controls - np.array([0xDD, 0xE3, 0xEA])).sum(axis=2) > 30).mean() > 0.3
+
+
+FAILING = {"jobs": [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]}
+
+
+@pytest.fixture(scope="module")
+def failed_report(tmp_path_factory) -> Path:
+    """The README's failing example: the milk placed over the island's edge falls while place settles it."""
+    import json as _json
+    path = tmp_path_factory.mktemp("failed") / "run.html"
+    result = CliRunner().invoke(cli, ["run", "set_table", "-p", f"jobs={_json.dumps(FAILING['jobs'])}",
+                                      "--report", str(path)])
+    assert result.exit_code == 1, result.output
+    return path
+
+
+def _page_data(path: Path) -> dict:
+    import json as _json
+    text = path.read_text(encoding="utf-8")
+    return _json.loads(re.search(r'id="pycram-data">(.*?)</script>', text, re.S).group(1))
+
+
+def test_a_failed_run_opens_at_its_failure_with_the_object_and_its_target_highlighted(failed_report, tmp_path):
+    data = _page_data(failed_report)
+    steps = len(data["frames"]) - 1
+    dom, attributes = dump(tmp_path, "failed", failed_report.as_uri())
+    assert attributes["ready"] == "1" and attributes["webgl"] == "ok" and attributes["failures"] == "1"
+    assert attributes["step"] == attributes["failure"] == str(steps)  # opened at the failing step: the last
+    assert attributes["highlighted"] == "milk" and attributes["ghost"] == "milk"
+    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="notice"', dom, re.S)
+    assert failbox and "ReasoningFailure" in failbox.group(1) and "milk is not stable where it was placed" in failbox.group(1)
+    assert "where it was meant to go [-0.65, 1.00, 0.86]" in failbox.group(1)
+    assert 'id="next-failure"' in dom and 'id="next-failure" hidden' not in dom
+    # drawn: the milk glows (pink-red), its ghost stands green at the island's edge
+    image = screenshot(tmp_path, "failed", failed_report.as_uri())
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 80:top + height - 10, left + 10:left + width - 10]  # below the caption and the failure text
+    pink = (view[:, :, 0] > 150) & (view[:, :, 0] - view[:, :, 1] > 50) & (view[:, :, 2] - view[:, :, 1] > 10)
+    green = (view[:, :, 1] - view[:, :, 0] > 25) & (view[:, :, 1] - view[:, :, 2] > 15)
+    assert pink.sum() > 30, "the failed object is not highlighted"
+    assert green.sum() > 100, "the ghost of the target is not drawn"
+
+
+def test_a_frame_in_the_middle_of_place_shows_the_milk_falling(failed_report, tmp_path):
+    data = _page_data(failed_report)
+    place = next(k for k, f in enumerate(data["frames"]) if f.get("physics"))
+    assert data["frames"][place]["path"].endswith("0:place")
+    standing = lying = None
+    for at, name in ((place - 1, "before"), (place - 0.5, "middle"), (place, "after")):
+        _, attributes = dump(tmp_path, f"at{name}", failed_report.as_uri() + f"#step={at}&select=milk")
+        assert attributes["selected"] == "milk"
+        x, y, z, tilt = (float(v) for v in attributes["selectedpose"].split(","))
+        if name == "before":
+            standing = (z, tilt)
+        elif name == "after":
+            lying = (z, tilt)
+        else:
+            middle = (z, tilt)
+    assert lying[1] > 60 and lying[0] < standing[0] - 0.3  # it fell off the island
+    assert 10 < middle[1] < lying[1] - 10 or lying[0] + 0.05 < middle[0] < 0.85, (standing, middle, lying)

@@ -1,0 +1,99 @@
+"""Where a run failed, read from its trace: the failed steps, the objects each names, and the place it meant.
+
+A failed step names what it worked on in its slots or query arguments (`assert: stable(object: milk)`), but
+often not where the object was meant to go: that is in an earlier step that moved the same object
+(`place: {object: milk, target: [...]}`). `focus(...)` looks back for it, so that a report can show the
+object and its target together, and `pycram run --render` of a failed run can frame both.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Iterable, Iterator
+
+from ..plan.replay import PLACES
+
+Point = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Focus:
+    """What a failed step is about: the objects it names, the place meant for them (if any is known) and the
+    step that named that place (the failed one, or an earlier step that moved one of the objects)."""
+
+    objects: tuple[str, ...]
+    target: Point | None
+    target_step: str | None
+
+
+def leaves(node: dict[str, Any]) -> Iterator[dict[str, Any]]:
+    """The trace's leaf steps, in the order of its tree."""
+    children = node.get("children") or []
+    if not children:
+        yield node
+    for child in children:
+        yield from leaves(child)
+
+
+def failed_leaves(root: dict[str, Any]) -> list[dict[str, Any]]:
+    """Every leaf step that failed (those recovered from too), in the order of the tree."""
+    return [node for node in leaves(root) if node.get("status") == "failed"]
+
+
+def named_values(info: dict[str, Any]) -> dict[str, Any]:
+    """The values a step names: its designator's resolved (else given) slots, its query's arguments, and those
+    of the query in its condition (`assert`, `if`)."""
+    values: dict[str, Any] = {}
+    if isinstance(info.get("designator"), dict):
+        values.update(info["designator"].get("resolved") or info["designator"].get("slots") or {})
+    if isinstance(info.get("query"), dict):
+        values.update(info["query"].get("args") or {})
+    condition = info.get("condition")
+    while isinstance(condition, dict):
+        if isinstance(condition.get("query"), dict):
+            values.update(condition["query"].get("args") or {})
+        condition = condition.get("not")
+    return values
+
+
+def _names(value: Any, objects: set[str]) -> Iterable[str]:
+    if isinstance(value, str) and value in objects:
+        yield value
+    elif isinstance(value, (list, tuple)):
+        for item in value:
+            if isinstance(item, str) and item in objects:
+                yield item
+
+
+def _place(values: dict[str, Any]) -> Point | None:
+    for key in PLACES:
+        value = values.get(key)
+        if (isinstance(value, (list, tuple)) and len(value) == 3
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
+            return (float(value[0]), float(value[1]), float(value[2]))
+    return None
+
+
+def focus(root: dict[str, Any], failed: dict[str, Any], objects: set[str],
+          order: list[str] | None = None) -> Focus:
+    """The focus of the failed step `failed` of the tree `root`. `objects`: the names of the things a plan works
+    on (not robots, not environments); `order`: the steps' paths in the order they ran (a replay record's),
+    default the tree's."""
+    values = named_values(failed)
+    named = tuple(dict.fromkeys(name for value in values.values() for name in _names(value, objects)))
+    target = _place(values)
+    if target is not None or not named:
+        return Focus(named, target, failed.get("path") if target is not None else None)
+    by_path = {node.get("path"): node for node in leaves(root)}
+    paths = order if order is not None else list(by_path)
+    path = failed.get("path")
+    before = paths[:paths.index(path)] if path in paths else paths
+    for earlier in reversed(before):  # the latest step that named one of the objects and a place
+        node = by_path.get(earlier)
+        if node is None:
+            continue
+        values = named_values(node)
+        if set(named) & {name for value in values.values() for name in _names(value, objects)}:
+            place = _place(values)
+            if place is not None:
+                return Focus(named, place, earlier)
+    return Focus(named, None, None)
