@@ -8,9 +8,19 @@ object and its target together, and `pycram run --render` of a failed run can fr
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, Iterable, Iterator
 
 from ..plan.replay import PLACES
+from ..world.camera import boxes_camera, movable_objects
+
+if TYPE_CHECKING:
+    from ..world import BulletWorld
+    from ..world.camera import Camera
+
+#: m: a failure is framed at least this far, with what is around it
+FAILURE_DISTANCE = 1.4
+#: degrees: and from high above, over a robot that may stand between the camera and what failed
+FAILURE_PITCH = -65.0
 
 Point = tuple[float, float, float]
 
@@ -97,3 +107,29 @@ def focus(root: dict[str, Any], failed: dict[str, Any], objects: set[str],
             if place is not None:
                 return Focus(named, place, earlier)
     return Focus(named, None, None)
+
+
+def failure_camera(world: "BulletWorld", trace: dict[str, Any], aspect: float = 4 / 3) -> "Camera | None":
+    """A camera on a failed run's failure in `world` as the run left it: the objects the failed step names and the
+    place meant for them (the box the first of them would have there, its bottom's centre at the target); None
+    when the run did not fail or its failure names neither."""
+    failure = trace.get("failure") or {}
+    root = trace.get("root") or {}
+    node = next((n for n in leaves(root) if n.get("path") == failure.get("path")), None)
+    if trace.get("status") != "failed" or node is None:
+        return None
+    names = {o.name for o in movable_objects(world)}
+    found = focus(root, node, names, [step.get("path") for step in (trace.get("replay") or {}).get("steps") or []] or None)
+    objects = [world.get_object_by_name(name) for name in found.objects]
+    boxes = [obj.get_aabb() for obj in objects if obj is not None]
+    if found.target is not None:
+        if boxes:  # the first object's box, moved so that its bottom's centre is at the target
+            lo, hi = boxes[0]
+            shift = [t - c for t, c in zip(found.target, ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2]))]
+            boxes.append((tuple(a + d for a, d in zip(lo, shift)), tuple(b + d for b, d in zip(hi, shift))))
+        else:
+            boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
+    if not boxes:
+        return None
+    return boxes_camera(world, boxes, aspect=aspect, min_distance=FAILURE_DISTANCE,
+                        pitch_deg=FAILURE_PITCH)

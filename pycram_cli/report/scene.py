@@ -17,13 +17,12 @@ import numpy as np
 from ..plan.replay import focus_points
 from ..world import BulletWorld, Object
 from ..world.camera import boxes_camera, movable_objects, objects_camera, robot_camera
-from .failures import failed_leaves, focus
+from .failures import FAILURE_DISTANCE, FAILURE_PITCH, failed_leaves, focus
 from ..world.meshes import read_mesh
 
 POSE_DIGITS = 4  # 0.1 mm and 1e-4 of a quaternion: plenty to look at
 VIEW_FOV, VIEW_ASPECT = 50.0, 1.6  # the page's camera (vertical field of view) and a typical shape of its view
 MESH_FILES = (".obj", ".stl")
-FAILURE_DISTANCE = 1.4  # m: a failure is framed at least this far, with what is around it
 
 
 def _b64(array: np.ndarray) -> str:
@@ -260,7 +259,8 @@ class Replayer:
         elif found.target is not None:
             boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
         if boxes:
-            entry["camera"] = _eye_target(boxes_camera(world, boxes, VIEW_FOV, VIEW_ASPECT, min_distance=FAILURE_DISTANCE))
+            entry["camera"] = _eye_target(boxes_camera(world, boxes, VIEW_FOV, VIEW_ASPECT, min_distance=FAILURE_DISTANCE,
+                        pitch_deg=FAILURE_PITCH))
         else:
             entry["camera"] = _camera(world, focus_points(world, node))
         return entry

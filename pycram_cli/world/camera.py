@@ -176,7 +176,8 @@ def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = No
 
 
 def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
-                 fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8) -> Camera:
+                 fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8,
+                 pitch_deg: float = -45.0) -> Camera:
     """Bounding boxes (lo, hi) framed close, seen from the robot's side of them: `objects_camera`, for boxes that
     are not (only) objects' — a failed object and the box of the pose it was meant to have."""
     points = [c for box in boxes for c in _corners(box)]
@@ -187,7 +188,7 @@ def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Se
         towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
         heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
     centres = [tuple((a + b) / 2 for a, b in zip(*box)) for box in boxes]
-    return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=-45.0, turn_deg=20.0,
+    return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=pitch_deg, turn_deg=20.0,
                         min_distance=min_distance, focus=centres)
 
 
