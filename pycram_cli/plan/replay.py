@@ -19,6 +19,10 @@ and drew back before the object settles). At most MAX_PHYSICS_FRAMES frames a st
 longer keeps every second frame (then every fourth, ...), each kept frame taking what the dropped one moved.
 `t` is the simulated time since the step began (seconds, 4 decimals).
 
+A `locate` step's entry also has `candidates`: its floor map (locations/plot.py `candidate_map`: every candidate
+position with the test that ruled it out, the poses found, the target), which the step gives only while a replay
+is recorded and which stays out of the trace's tree.
+
 Bounded like the trace tree: when a `retry` folds an attempt into its `folded attempts` node, the
 steps recorded for that attempt are folded too, into one entry at the place of the last of them
 that stands for all of them: `{"path": ".../folded attempts", "status": "failed", "folded": N,
@@ -37,6 +41,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterable
 
 from ..limits import MAX_PHYSICS_FRAMES
+from ..locations.plot import MAP_KEY
 from .trace import DIGITS, TraceNode, canonical_quaternion
 from ..world.bullet_world import STEP_HZ
 
@@ -108,10 +113,12 @@ class Recorder:
         self.steps: list[dict[str, Any]] = []
         self._physics = PhysicsFrames(world, self.initial)
         self._unwatch = world.watch_steps(self._physics.stepped)
+        world.recording_replay = True
 
     def close(self) -> None:
         """Stop watching the world's physics (the run is over)."""
         self._unwatch()
+        self.world.recording_replay = False
 
     def started(self, node: TraceNode) -> None:
         if self.inner is not None:
@@ -124,6 +131,9 @@ class Recorder:
             physics = self._physics.take(state)
             if physics:
                 entry["physics"] = physics
+            location = node.info.get("location")
+            if isinstance(location, dict) and MAP_KEY in location:  # the replay's, not the trace's
+                entry["candidates"] = location.pop(MAP_KEY)
             self.steps.append(entry)
             self._last = state
         if self.inner is not None:

@@ -291,7 +291,7 @@ class _Checker:
     def replay_step(self, step: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
         if not self.fields(step, path, "a replayed step", {"path": self.string, "status": self.status(NODE_STATUSES),
                                                             "changed": self.obj},
-                           {"folded": self.count, "physics": self.physics_frames}):
+                           {"folded": self.count, "physics": self.physics_frames, "candidates": self.obj}):
             return
         if refs and isinstance(step.get("path"), str) and step["path"] not in self.paths:
             self.add(path + ("path",), f"no step of the trace has the path {json.dumps(step['path'])}")

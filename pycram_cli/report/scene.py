@@ -17,7 +17,9 @@ import numpy as np
 from ..plan.replay import focus_points
 from ..world import BulletWorld, Object
 from ..world.camera import boxes_camera, movable_objects, objects_camera, robot_camera
-from .failures import FAILURE_DISTANCE, FAILURE_PITCH, failed_leaves, focus
+from .failures import FAILURE_DISTANCE, FAILURE_PITCH, failed_leaves, focus, named_values
+from ..robots.description import description_for
+from ..world.pose import quat_to_matrix
 from ..world.meshes import read_mesh
 
 POSE_DIGITS = 4  # 0.1 mm and 1e-4 of a quaternion: plenty to look at
@@ -147,6 +149,17 @@ def _detach_all(scene: Scene) -> None:
                 obj.detach(other)
 
 
+def _candidates(data: dict[str, Any]) -> dict[str, Any]:
+    """A locate step's candidate map for the page: positions as little-endian int16 mm pairs and outcomes as
+    bytes (base64), the rest as recorded."""
+    xy = np.asarray(data.get("xy") or [], dtype=np.int64)
+    outcome = np.asarray(data.get("outcome") or [], dtype=np.int64)
+    if len(xy) != 2 * len(outcome) or (len(xy) and np.abs(xy).max() > 32767):
+        return {}
+    return {**{k: v for k, v in data.items() if k not in ("xy", "outcome")},
+            "xy": _b64(xy.astype("<i2")), "outcome": _b64(outcome.astype("u1")), "count": len(outcome)}
+
+
 def frames(scene: Scene, replay: dict[str, Any] | None, nodes: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
     """The frames of `replay` (see `Replayer.frames`)."""
     return Replayer(scene, replay, nodes).frames()
@@ -178,6 +191,7 @@ class Replayer:
         focus = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
         result = [{"path": None, "status": None, "poses": _flat(last), "camera": _camera(world, focus)}]
         steps = self.replay.get("steps") or []
+        by_name = {obj.name: b for b, (obj, _) in enumerate(scene.links)}
         failed = {node.get("path") for node in failed_leaves(self.root)}
         order = [step.get("path") for step in steps]
         for k, step in enumerate(steps, start=1):
@@ -210,7 +224,12 @@ class Replayer:
             frame["poses"] = _flat(moved)
             if physics:
                 frame["physics"] = physics
+            if isinstance(step.get("candidates"), dict):
+                frame["candidates"] = _candidates(step["candidates"])
             node = self.nodes.get(step.get("path") or "", {})
+            reasoning = reasoning_of(world, node, by_name)
+            if reasoning:
+                frame["reasoning"] = reasoning
             focus = focus_points(world, node) or focus
             frame["camera"] = _camera(world, focus)
             if step.get("path") in failed and not step.get("folded"):
@@ -264,3 +283,72 @@ class Replayer:
         else:
             entry["camera"] = _camera(world, focus_points(world, node))
         return entry
+
+
+#: step types whose reasoning is what the robot's camera sees: drawn as its view cone
+SEEING = ("looking", "detecting", "visible", "occluding")
+#: step types whose reasoning is what an arm reaches: drawn as the target and what blocks it
+REACHING = ("reachable", "blocking")
+CONE_LENGTH = 1.5  # m: a view cone without a target this long
+
+
+def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, int]) -> dict[str, Any] | None:
+    """What a step's reasoning looks like in 3D, read from its record in the trace and the world as the step left
+    it: a view cone (the robot's camera: its pose, fields of view and how far it looks), with the visible
+    fraction and the occluders (body indices) where the step says them; or a reach target and its blockers."""
+    kind = node.get("type")
+    values = named_values(node)
+    query = node.get("query") if isinstance(node.get("query"), dict) else {}
+    details = query.get("details") if isinstance(query.get("details"), dict) else {}
+    result = query.get("result")
+    bound = [v for v in (node.get("bound") or {}).values() if isinstance(v, str) and v in by_name]
+    target = _point(world, values.get("object") or values.get("target") or (bound[0] if bound else None))
+    if kind in SEEING:
+        robot = world.robot
+        desc = description_for(robot) if robot is not None else None
+        if desc is None or desc.camera is None or values.get("from") not in (None, desc.camera.frame):
+            return None
+        position, orientation = robot.get_link_position_and_orientation(desc.camera.frame)
+        rotation = quat_to_matrix(orientation)
+        length = CONE_LENGTH
+        if target is not None:
+            length = max(0.3, float(np.dot(np.asarray(target) - np.asarray(position), rotation[:, 2])))
+        view: dict[str, Any] = {
+            "kind": "view", "eye": [round(float(v), 4) for v in position],
+            "axes": [round(float(v), 4) for v in rotation.T.reshape(-1)],  # right, down, forward
+            "fov": [round(desc.camera.horizontal_fov, 4), round(desc.camera.vertical_fov, 4)],
+            "length": round(length, 3), "target": _rounded(target)}
+        if isinstance(details.get("fraction"), (int, float)):
+            view["fraction"] = round(float(details["fraction"]), 4)
+        blockers = result if kind == "occluding" and isinstance(result, list) else []
+        view["occluders"] = [by_name[name] for name in blockers if isinstance(name, str) and name in by_name]
+        view["seen"] = [by_name[name] for name in _names(values.get("object"), by_name) + bound]
+        return view
+    if kind in REACHING:
+        blockers = result if kind == "blocking" and isinstance(result, list) else []
+        return {"kind": "reach", "target": _rounded(target), "reachable": result if kind == "reachable" else None,
+                "blockers": [by_name[name] for name in blockers if isinstance(name, str) and name in by_name],
+                "objects": [by_name[name] for name in _names(values.get("target"), by_name)]}
+    return None
+
+
+def _names(value: Any, by_name: dict[str, int]) -> list[str]:
+    return [value] if isinstance(value, str) and value in by_name else []
+
+
+def _rounded(point: Any) -> list[float] | None:
+    return [round(float(v), 4) for v in point] if point is not None else None
+
+
+def _point(world: BulletWorld, value: Any) -> tuple[float, float, float] | None:
+    """An object's bounding box centre (by name) or a position [x, y, z]."""
+    if isinstance(value, str):
+        obj = world.get_object_by_name(value)
+        if obj is None:
+            return None
+        lo, hi = obj.get_aabb()
+        return ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2)
+    if (isinstance(value, (list, tuple)) and len(value) == 3
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)):
+        return (float(value[0]), float(value[1]), float(value[2]))
+    return None

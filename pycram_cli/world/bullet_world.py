@@ -129,6 +129,8 @@ class BulletWorld:
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
         self._step_watchers: list[Callable[[], None]] = []  # called after every physics step (see watch_steps)
+        #: a replay of a run on this world is being recorded (plan/replay.py): steps may keep details for it
+        self.recording_replay = False
         self._view: ViewRenderer | None = None  # made on the first picture_of
         self._caption: int = -1  # the GUI's caption text item, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out

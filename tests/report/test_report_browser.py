@@ -179,3 +179,56 @@ def test_a_frame_in_the_middle_of_place_shows_the_milk_falling(failed_report, tm
             middle = (z, tilt)
     assert lying[1] > 60 and lying[0] < standing[0] - 0.3  # it fell off the island
     assert 10 < middle[1] < lying[1] - 10 or lying[0] + 0.05 < middle[0] < 0.85, (standing, middle, lying)
+
+
+@pytest.fixture(scope="module")
+def actions_report(tmp_path_factory) -> tuple[Path, Path]:
+    """set_table_actions: locate steps (candidate maps) and looking steps (view cones)."""
+    folder = tmp_path_factory.mktemp("actions")
+    result = CliRunner().invoke(cli, ["run", "set_table_actions", "--report", str(folder / "run.html"),
+                                      "--trace", str(folder / "run.json")])
+    assert result.exit_code == 0, result.output
+    return folder / "run.html", folder / "run.json"
+
+
+def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_report, tmp_path):
+    report, saved = actions_report
+    assert report.stat().st_size < 2_000_000  # with a candidate map for every locate step
+    data = _page_data(report)
+    frames = data["frames"]
+    locate = next(k for k, f in enumerate(frames) if f.get("candidates"))
+    looking = next(k for k, f in enumerate(frames) if (f.get("reasoning") or {}).get("kind") == "view")
+    assert frames[locate]["path"].endswith("locate") and frames[looking]["path"].endswith("looking")
+    # the map: as many positions as the resolution had; the chosen pose is the trace's found pose
+    node = {}
+    stack = [data["trace"]["root"]]
+    while stack:
+        n = stack.pop()
+        if n["path"] == frames[locate]["path"]:
+            node = n
+        stack.extend(n.get("children") or [])
+    found = node["location"]["found"]["position"]
+    assert frames[locate]["candidates"]["found"][0][:2] == pytest.approx(found[:2], abs=1e-3)
+    assert "candidate_map" not in saved.read_text()[:saved.read_text().index('"replay"')]  # not in the trace's tree
+
+    dom, attributes = dump(tmp_path, "locate", report.as_uri() + f"#step={locate}")
+    assert attributes["step"] == str(locate) and "candidates" in attributes["reasoning"]
+    legend = re.search(r'<div id="reasonbox">(.*?)</div>\s*<div id="tooltip"', dom, re.S)
+    assert legend and f"{node['location']['candidates']} tried for where to stand" in legend.group(1)
+    image = screenshot(tmp_path, "locate", report.as_uri() + f"#step={locate}")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 30:top + height - 100, left + 10:left + width - 10]
+    red = (view[:, :, 0] > 180) & (view[:, :, 1] < 110) & (view[:, :, 2] < 110)  # "collides" squares
+    r, g, b = view[:, :, 0], view[:, :, 1], view[:, :, 2]
+    peach = (r > 170) & (r - g > 20) & (r - g < 90) & (g - b > 25)  # "out of reach" squares (over the floor)
+    assert red.sum() > 200 and peach.sum() > 200, (red.sum(), peach.sum())
+
+    dom, attributes = dump(tmp_path, "looking", report.as_uri() + f"#step={looking}")
+    assert attributes["reasoning"] == "view"
+    legend = re.search(r'<div id="reasonbox">(.*?)</div>\s*<div id="tooltip"', dom, re.S)
+    assert legend and "view cone" in legend.group(1)
+    cone = screenshot(tmp_path, "looking", report.as_uri() + f"#step={looking}")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = cone[top + 30:top + height - 60, left + 10:left + width - 10]
+    blue = (view[:, :, 2] > 150) & (view[:, :, 2] - view[:, :, 0] > 90) & (view[:, :, 1] > 90)  # the cone's lines
+    assert blue.sum() > 100, blue.sum()

@@ -548,6 +548,148 @@
   }
   nextFailure.addEventListener("click", goToNextFailure);
 
+
+  // ---------------------------------------------------------------- reasoning drawn in 3D: view cones, candidate maps, reach
+  const OUTCOME_COLOURS = { "ok": 0x1ea03c, "collides": 0xdc3c32, "occupied": 0xdc3c32, "out of reach": 0xfabe78,
+    "out of view": 0xc8aae6, "cannot hold": 0x96643c, "blocked": 0xc828c8, "not visible": 0x3c6ee6, "unstable": 0xf09614,
+    "not tried": 0xcdcdcd };
+  const reasoning = new THREE.Group();
+  world.add(reasoning);
+  const lineMaterial = (colour) => new THREE.LineBasicMaterial({ color: colour, transparent: true, opacity: 0.9, depthTest: false });
+  function lines(points, colour) {  // points: [[a, b], ...] pairs of [x, y, z]
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.Float32BufferAttribute(points.flat(2), 3));
+    const segments = new THREE.LineSegments(geometry, lineMaterial(colour));
+    segments.renderOrder = 3;
+    return segments;
+  }
+  function viewCone(view) {  // the camera's frustum, from its optical frame (axes: right, down, forward)
+    const a = view.axes, eye = view.eye, L = view.length;
+    const tx = Math.tan(view.fov[0] / 2) * L, ty = Math.tan(view.fov[1] / 2) * L;
+    const at = (sx, sy) => [0, 1, 2].map((i) => eye[i] + a[6 + i] * L + a[i] * sx * tx + a[3 + i] * sy * ty);
+    const c = [at(-1, -1), at(1, -1), at(1, 1), at(-1, 1)];
+    const pairs = c.map((p) => [eye, p]).concat(c.map((p, i) => [p, c[(i + 1) % 4]]));
+    const group = new THREE.Group();
+    group.add(lines(pairs, view.occluders.length ? 0xe8590c : 0x1971c2));
+    const face = new THREE.BufferGeometry();
+    face.setAttribute("position", new THREE.Float32BufferAttribute([eye, c[0], c[1], eye, c[1], c[2], eye, c[2], c[3], eye, c[3], c[0]].flat(), 3));
+    group.add(new THREE.Mesh(face, new THREE.MeshBasicMaterial({ color: 0x74c0fc, transparent: true, opacity: 0.12, side: THREE.DoubleSide, depthWrite: false })));
+    if (view.target) group.add(lines([[eye, view.target]], 0x1971c2));
+    return group;
+  }
+  function bytesOf(text) { return new Uint8Array(bytes(text)); }
+  function candidateMap(map) {  // one square per candidate position, coloured by the test that ruled it out
+    const group = new THREE.Group();
+    const xy = new Int16Array(bytes(map.xy)), outcome = bytesOf(map.outcome);
+    const size = map.spacing * 0.7;
+    const square = new THREE.BoxGeometry(size, size, 0.004);
+    const mesh = new THREE.InstancedMesh(square, new THREE.MeshBasicMaterial({ transparent: true, opacity: 0.75, depthWrite: false }), map.count);
+    const matrix = new THREE.Matrix4(), colour = new THREE.Color();
+    for (let i = 0; i < map.count; i++) {
+      matrix.makeTranslation(xy[2 * i] / 1000, xy[2 * i + 1] / 1000, map.z + 0.004);
+      mesh.setMatrixAt(i, matrix);
+      mesh.setColorAt(i, colour.setHex(OUTCOME_COLOURS[map.outcomes[outcome[i]]] || 0x888888));
+    }
+    mesh.userData.map = map; mesh.userData.outcome = outcome; mesh.userData.xy = xy;
+    mesh.renderOrder = 1;
+    group.add(mesh);
+    const marks = [];
+    map.found.forEach(([x, y, yaw], i) => {  // the poses found: an arrow for the heading, the chosen one longest
+      const z = map.z + 0.01, r = i === 0 ? 0.35 : 0.2, c = Math.cos(yaw), s = Math.sin(yaw);
+      const tip = [x + c * r, y + s * r, z];
+      marks.push([[x, y, z], tip], [tip, [tip[0] - c * 0.08 + s * 0.06, tip[1] - s * 0.08 - c * 0.06, z]],
+        [tip, [tip[0] - c * 0.08 - s * 0.06, tip[1] - s * 0.08 + c * 0.06, z]]);
+    });
+    if (marks.length) group.add(lines(marks, 0x0b7285));
+    const t = map.target;
+    if (t) group.add(lines([[[t[0] - 0.06, t[1], t[2]], [t[0] + 0.06, t[1], t[2]]], [[t[0], t[1] - 0.06, t[2]], [t[0], t[1] + 0.06, t[2]]]], 0x000000));
+    group.userData.squares = mesh;
+    return group;
+  }
+  const drawnReasoning = new Map();  // step -> its Group (made when first shown)
+  let reasoningStep = -1, reasoningBodies = [];
+  function showReasoning(k) {
+    if (k === reasoningStep) return;
+    if (reasoningStep >= 0 && drawnReasoning.has(reasoningStep)) drawnReasoning.get(reasoningStep).visible = false;
+    paint(reasoningBodies, (base) => base);
+    reasoningBodies = [];
+    reasoningStep = k;
+    const frame = frames[k] || {}, info = frame.reasoning, map = frame.candidates;
+    const legend = $("reasonbox");
+    legend.textContent = "";
+    legend.hidden = true;
+    document.body.dataset.reasoning = [info ? info.kind : "", map && map.count ? "candidates" : ""].filter(Boolean).join(",");
+    if (!info && !(map && map.count)) return;
+    if (!drawnReasoning.has(k)) {
+      const group = new THREE.Group();
+      if (info && info.kind === "view") group.add(viewCone(info));
+      if (info && info.kind === "reach" && info.target) {
+        const t = info.target;
+        group.add(lines([[[t[0] - 0.05, t[1], t[2]], [t[0] + 0.05, t[1], t[2]]], [[t[0], t[1] - 0.05, t[2]], [t[0], t[1] + 0.05, t[2]]],
+          [[t[0], t[1], t[2] - 0.05], [t[0], t[1], t[2] + 0.05]]], info.reachable === false ? 0xe03131 : 0x2f9e44));
+      }
+      if (map && map.count) group.add(candidateMap(map));
+      reasoning.add(group);
+      drawnReasoning.set(k, group);
+    }
+    drawnReasoning.get(k).visible = true;
+    const rows = [];
+    if (info && info.kind === "view") {
+      const seen = (info.seen || []).map((b) => bodies[b].name), hid = (info.occluders || []).map((b) => bodies[b].name);
+      rows.push(el("div", {}, el("b", { text: "view cone" }), ` of the robot's camera${seen.length ? ` on ${seen.join(", ")}` : ""}` +
+        (info.fraction !== undefined ? `: ${(100 * info.fraction).toFixed(0)} % visible` : "") + (hid.length ? `, hidden by ${hid.join(", ")}` : "")));
+      reasoningBodies = info.occluders || [];
+      paint(reasoningBodies, glowingOrange);
+    }
+    if (info && info.kind === "reach") {
+      const blockers = (info.blockers || []).map((b) => bodies[b].name);
+      rows.push(el("div", {}, el("b", { text: "reach" }), info.reachable === null ? " target" : info.reachable ? ": reachable" : ": not reachable",
+        blockers.length ? `; in the way: ${blockers.join(", ")}` : ""));
+      reasoningBodies = info.blockers || [];
+      paint(reasoningBodies, glowingOrange);
+    }
+    if (map && map.count) {
+      const node = byPath.get(frame.path), location = node && node.data.location;
+      const counts = location && location.ruled_out ? Object.entries(location.ruled_out).filter(([, n]) => n > 0) : [];
+      const key = el("div", { class: "key" });
+      for (const [name, n] of [["ok", (map.found || []).length], ...counts]) {
+        const hex = (OUTCOME_COLOURS[name] || 0x888888).toString(16).padStart(6, "0");
+        key.append(el("span", { class: "item" }, el("span", { class: "swatch", style: `background:#${hex}` }), ` ${name}${name === "ok" ? " (found)" : ` ${n}`}`));
+      }
+      rows.push(el("div", {}, el("b", { text: "candidates" }), ` ${location ? location.candidates : map.count} tried for ${map.kind === "base" ? "where to stand" : "a spot"}` +
+        `, ${map.count} positions drawn (hover for why); arrow: the pose chosen`), key);
+    }
+    legend.append(...rows);
+    legend.hidden = false;
+  }
+  const orange = new Map();
+  function glowingOrange(material) {
+    return cached(orange, material.uuid, () => {
+      const copy = material.clone();
+      copy.emissive = new THREE.Color(0xf08c00);
+      copy.emissiveIntensity = 0.6;
+      return copy;
+    });
+  }
+  const tip = $("tooltip");
+  view.addEventListener("pointermove", (event) => {  // hover over a candidate: its outcome and why
+    const group = drawnReasoning.get(reasoningStep);
+    const squares = group && group.visible && group.children.map((c) => c.userData.squares).find(Boolean);
+    if (!squares || !renderer) { tip.hidden = true; return; }
+    const rect = renderer.domElement.getBoundingClientRect();
+    pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    raycaster.setFromCamera(pointer, camera);
+    const hit = raycaster.intersectObject(squares, false)[0];
+    if (!hit) { tip.hidden = true; return; }
+    const i = hit.instanceId, map = squares.userData.map;
+    const why = map.why && map.why[String(i)];
+    tip.textContent = `(${(squares.userData.xy[2 * i] / 1000).toFixed(2)}, ${(squares.userData.xy[2 * i + 1] / 1000).toFixed(2)}): ` +
+      `${map.outcomes[squares.userData.outcome[i]]}${why ? ` (${why})` : ""}`;
+    tip.style.left = `${event.clientX - rect.left + 12}px`;
+    tip.style.top = `${event.clientY - rect.top + 12}px`;
+    tip.hidden = false;
+  });
+
   // ---------------------------------------------------------------- the camera stays above the floor; an image of the view
   if (controls) {
     controls.addEventListener("change", () => {
@@ -611,6 +753,20 @@
     if (data.condition) add("condition", code(condition(data.condition)));
     if (data.message !== undefined) add("message", code(data.message));
     if (data.bound) add("bound", code(data.bound));
+    let action = node.parent;  // the action this step is part of: its expansion, this step marked
+    while (action && action.data.type !== "action") action = action.parent;
+    if (action) {
+      const list = el("ol", { class: "expansion" });
+      const walk = (n) => {
+        for (const child of n.children) {
+          const state = stateAt(child, k);
+          list.append(el("li", { class: `st-${state}${child === node || (child.first <= k && k <= child.last && child.children.length) ? " here" : ""}` },
+            `${ICON[state] || "?"} ${label(child.data)}`, child.children.length ? ` (${child.children.length} steps)` : ""));
+        }
+      };
+      walk(action);
+      add("expansion", el("span", {}, `${label(action.data)} → `, list));
+    }
     const failure = data.failure;
     if (failure) {
       const fatal = node.final !== "recovered";
@@ -679,6 +835,7 @@
       el("span", {}, el("b", { text: `step ${k}/${STEPS} ${current ? label(current.data) : ""} ` }),
         `${current ? describe(current.data) : ""}`, el("span", { class: "path", text: `  ${shortPath(frames[k].path)}` })));
     showFailure(k);
+    showReasoning(k);
     details(k);
   }
 
