@@ -1,7 +1,8 @@
 """What the report's 3D view draws: the world's visual shapes once, and the links' poses at every step.
 
 `scene(world)` lists every object's links with their visual shapes (boxes, spheres, cylinders,
-capsules, and OBJ/STL meshes, each mesh file stored once however many links use it).
+capsules, and OBJ/STL/COLLADA meshes, each mesh file stored once however many links use it, with at most
+MAX_PAGE_TRIANGLES triangles: simplify.py).
 `frames(world, replay)` puts the world into the recorded state of every step (see
 plan/replay.py: poses of bodies and joint values) and reads the links' poses, which the
 page then only has to set: frame 0 has every link, later frames only the links that moved.
@@ -17,6 +18,8 @@ import numpy as np
 from ..plan.replay import focus_points
 from ..world import BulletWorld, Object
 from ..world.camera import boxes_camera, movable_objects, objects_camera, robot_camera
+from .collada import read_collada
+from .simplify import simplify
 from .failures import FAILURE_DISTANCE, FAILURE_PITCH, failed_leaves, focus, named_values
 from ..robots.description import description_for
 from ..world.pose import quat_to_matrix
@@ -24,7 +27,7 @@ from ..world.meshes import read_mesh
 
 POSE_DIGITS = 4  # 0.1 mm and 1e-4 of a quaternion: plenty to look at
 VIEW_FOV, VIEW_ASPECT = 50.0, 1.6  # the page's camera (vertical field of view) and a typical shape of its view
-MESH_FILES = (".obj", ".stl")
+MESH_FILES = (".obj", ".stl", ".dae")
 
 
 def _b64(array: np.ndarray) -> str:
@@ -83,13 +86,18 @@ class Scene:
         key = str(path.resolve())
         if key not in self._mesh_ids:
             try:
-                mesh = read_mesh(path)
+                if path.suffix.lower() == ".dae":
+                    points, triangles = read_collada(path)
+                else:
+                    mesh = read_mesh(path)
+                    points, triangles = mesh.vertices, mesh.triangles
             except (OSError, ValueError):
                 return None
-            if not len(mesh.triangles):
+            if not len(triangles):
                 return None
-            vertices = mesh.vertices.astype("<f4")
-            indices = mesh.triangles.astype("<u4" if len(vertices) > 65535 else "<u2")
+            points, triangles = simplify(np.asarray(points, dtype=float), np.asarray(triangles))
+            vertices = points.astype("<f4")
+            indices = triangles.astype("<u4" if len(vertices) > 65535 else "<u2")
             self._mesh_ids[key] = len(self.meshes)
             self.meshes.append({"name": path.name, "positions": _b64(vertices), "indices": _b64(indices),
                                 "index_bytes": indices.dtype.itemsize})

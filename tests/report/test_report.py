@@ -122,3 +122,34 @@ def test_names_and_messages_that_look_like_html_are_embedded_so_the_page_still_s
     assert hostile in json.dumps(data, ensure_ascii=False)
     assert ('<!--<script>' + hostile) in json.dumps(data, ensure_ascii=False)
     assert text.rstrip().endswith("</html>") and text.count("<script") == text.lower().count("</script>")
+
+
+@pytest.fixture(scope="module")
+def actions_trace(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("actions")
+    result = run("run", "set_table_actions", "--report", folder / "run.html", "--trace", folder / "run.json")
+    assert result.exit_code == 0, result.output
+    return folder / "run.html", folder / "run.json"
+
+
+def test_the_report_of_set_table_actions_stays_under_2_mb(actions_trace):
+    report, _ = actions_trace
+    assert report.stat().st_size < 2_000_000
+    data = page_data(report)
+    assert sum(1 for f in data["frames"] if f.get("candidates")) >= 15  # with every locate step's candidate map
+
+
+def test_with_the_real_pr2s_detailed_meshes_the_report_stays_under_2_mb(actions_trace, shared_models, tmp_path):
+    _, saved = actions_trace
+    world = (REPO / "worlds" / "kitchen.yaml").read_text().replace(
+        "file: robots/pr2/pr2.urdf", f"file: {shared_models / 'pr2' / 'pr2.urdf'}")
+    (tmp_path / "real.yaml").write_text(world)
+    out = tmp_path / "real.html"
+    result = run("trace", "show", saved, "--world", tmp_path / "real.yaml", "--report", out)
+    assert result.exit_code == 0, result.output
+    data = page_data(out)
+    pr2 = next(b for b in data["scene"]["bodies"] if b["name"] == "pr2")
+    meshes = {data["scene"]["meshes"][s["mesh"]]["name"] for link in pr2["links"] for s in link["shapes"] if "mesh" in s}
+    assert {"base.dae", "upper_arm.dae", "head_tilt.dae", "l_finger.dae"} <= meshes  # its COLLADA looks are drawn
+    assert data["scene"]["skipped"] == []
+    assert out.stat().st_size < 2_000_000
