@@ -7,6 +7,7 @@ object and its target together, and `pycram run --render` of a failed run can fr
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable, Iterator
 
@@ -131,5 +132,14 @@ def failure_camera(world: "BulletWorld", trace: dict[str, Any], aspect: float = 
             boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
     if not boxes:
         return None
-    return boxes_camera(world, boxes, aspect=aspect, min_distance=FAILURE_DISTANCE,
-                        pitch_deg=FAILURE_PITCH)
+    return framing(world, boxes, aspect)
+
+
+def framing(world: "BulletWorld", boxes: list[Any], aspect: float, fov_deg: float = 50.0) -> "Camera":
+    """A camera on a failure's boxes, from above and at least FAILURE_DISTANCE away: past what stands in the way
+    where it can, else from outside whatever hides them (not from inside a closed drawer that holds the object)."""
+    camera = boxes_camera(world, boxes, fov_deg, aspect, min_distance=FAILURE_DISTANCE, pitch_deg=FAILURE_PITCH)
+    if math.dist(camera.eye, camera.target) < 0.9 * FAILURE_DISTANCE:  # moved in to see past what hides them
+        camera = boxes_camera(world, boxes, fov_deg, aspect, min_distance=FAILURE_DISTANCE, pitch_deg=FAILURE_PITCH,
+                              clear=False)
+    return camera

@@ -17,10 +17,10 @@ import numpy as np
 
 from ..plan.replay import focus_points
 from ..world import BulletWorld, Object
-from ..world.camera import boxes_camera, movable_objects, objects_camera, robot_camera
+from ..world.camera import movable_objects, objects_camera, robot_camera
 from .collada import read_collada
 from .simplify import simplify
-from .failures import FAILURE_DISTANCE, FAILURE_PITCH, failed_leaves, focus, named_values
+from .failures import failed_leaves, focus, framing, named_values
 from ..robots.description import description_for
 from ..world.pose import quat_to_matrix
 from ..world.meshes import read_mesh
@@ -286,8 +286,7 @@ class Replayer:
         elif found.target is not None:
             boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
         if boxes:
-            entry["camera"] = _eye_target(boxes_camera(world, boxes, VIEW_FOV, VIEW_ASPECT, min_distance=FAILURE_DISTANCE,
-                        pitch_deg=FAILURE_PITCH))
+            entry["camera"] = _eye_target(framing(world, boxes, VIEW_ASPECT, VIEW_FOV))
         else:
             entry["camera"] = _camera(world, focus_points(world, node))
         return entry

@@ -177,9 +177,10 @@ def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = No
 
 def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
                  fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8,
-                 pitch_deg: float = -45.0) -> Camera:
+                 pitch_deg: float = -45.0, clear: bool = True) -> Camera:
     """Bounding boxes (lo, hi) framed close, seen from the robot's side of them: `objects_camera`, for boxes that
-    are not (only) objects' — a failed object and the box of the pose it was meant to have."""
+    are not (only) objects' — a failed object and the box of the pose it was meant to have. `clear=False`: from
+    where the framing puts it, even if something stands in the way (a view that shows through walls)."""
     points = [c for box in boxes for c in _corners(box)]
     centre = np.mean(np.asarray(points), axis=0)
     heading: tuple[float, float] = (1.0, 0.0)
@@ -188,6 +189,8 @@ def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Se
         towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
         heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
     centres = [tuple((a + b) / 2 for a, b in zip(*box)) for box in boxes]
+    if not clear:
+        return framing_camera(points, heading, fov_deg, aspect, pitch_deg, 20.0, min_distance)
     return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=pitch_deg, turn_deg=20.0,
                         min_distance=min_distance, focus=centres)
 

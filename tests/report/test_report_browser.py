@@ -148,7 +148,7 @@ def test_a_failed_run_opens_at_its_failure_with_the_object_and_its_target_highli
     assert attributes["ready"] == "1" and attributes["webgl"] == "ok" and attributes["failures"] == "1"
     assert attributes["step"] == attributes["failure"] == str(steps)  # opened at the failing step: the last
     assert attributes["highlighted"] == "milk" and attributes["ghost"] == "milk"
-    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="notice"', dom, re.S)
+    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="reasonbox"', dom, re.S)
     assert failbox and "ReasoningFailure" in failbox.group(1) and "milk is not stable where it was placed" in failbox.group(1)
     assert "where it was meant to go [-0.65, 1.00, 0.86]" in failbox.group(1)
     assert 'id="next-failure"' in dom and 'id="next-failure" hidden' not in dom
@@ -232,3 +232,22 @@ def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_re
     view = cone[top + 30:top + height - 60, left + 10:left + width - 10]
     blue = (view[:, :, 2] > 150) & (view[:, :, 2] - view[:, :, 0] > 90) & (view[:, :, 1] > 90)  # the cone's lines
     assert blue.sum() > 100, blue.sum()
+
+
+def test_next_failure_walks_through_recovered_failures_too(tmp_path):
+    """fetch_spoon succeeds after a recovered PerceptionFailure: the page opens at the start, and the failure is
+    one `#failure=1` (or ⚠ next failure) away, marked recovered, its object drawn through the drawer that hides it."""
+    path = tmp_path / "spoon.html"
+    result = CliRunner().invoke(cli, ["run", "fetch_spoon", "--report", str(path)])
+    assert result.exit_code == 0, result.output
+    _, attributes = dump(tmp_path, "open", path.as_uri())
+    assert attributes["step"] == "0" and attributes["failures"] == "1" and not attributes.get("failure")
+    dom, attributes = dump(tmp_path, "first", path.as_uri() + "#failure=1")
+    assert attributes["failure"] == attributes["step"] != "0" and attributes["highlighted"] == "spoon"
+    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="reasonbox"', dom, re.S)
+    assert failbox and "recovered" in failbox.group(1) and "PerceptionFailure" in failbox.group(1)
+    image = screenshot(tmp_path, "first", path.as_uri() + "#failure=1")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 100:top + height - 10, left + 10:left + width - 10]
+    pink = (view[:, :, 0] > 150) & (view[:, :, 0] - view[:, :, 1] > 50) & (view[:, :, 2] - view[:, :, 1] > 10)
+    assert pink.sum() > 30, "the spoon in the closed drawer is not shown"

@@ -8,7 +8,7 @@
 //   failures every failed step: its step, failure, the bodies it names, the target meant for them, a ghost of
 //           the object there (its links' poses) and a camera on both.
 // URL: #step=N (N may be a fraction: 11.5 is half-way through step 12) or #step=last opens the report at that
-// step (a failed run opens at its failure); #play starts playing; #select=NAME selects a body; #hide=A,B hides
+// step (a failed run opens at its failure); #failure=N at the N-th failed step; #play starts playing; #select=NAME selects a body; #hide=A,B hides
 // bodies; #png makes the image of the view (the link #png-link). window.pycramReport: seek(k), step(), select().
 (function () {
   "use strict";
@@ -457,6 +457,9 @@
       const copy = material.clone();
       copy.emissive = new THREE.Color(0xd6336c);
       copy.emissiveIntensity = 0.55;
+      copy.depthTest = false;  // seen through whatever hides it (a drawer, the robot)
+      copy.transparent = true;
+      copy.opacity = Math.min(copy.opacity, 0.9);
       return copy;
     });
   }
@@ -522,6 +525,7 @@
     failure.drawn.visible = true;
     if (failure.objects.length || failure.target) paint(robots.filter((b) => !failure.objects.includes(b)), fading);
     paint(failure.objects, glowing);
+    for (const b of failure.objects) for (const group of bodyLinks[b] || []) for (const mesh of group.children) mesh.renderOrder = 5;
     box.textContent = "";
     const names = failure.objects.map((b) => bodies[b].name);
     box.append(el("div", {}, el("span", { class: `tag ${failure.fatal ? "fatal" : "recovered"}`, text: failure.fatal ? "✗ failed" : "↺ recovered" }),
@@ -891,7 +895,9 @@
   function fromHash(opening) {
     const hash = decodeURIComponent(location.hash);
     const match = /step=(\d+(?:\.\d+)?|last)/.exec(hash);
+    const nth = /failure=(\d+)/.exec(hash);  // the N-th failed step (1: the first), recovered ones too
     if (match) seek(match[1] === "last" ? STEPS : Number(match[1]));
+    else if (nth && failures[Number(nth[1]) - 1]) seek(failures[Number(nth[1]) - 1].step);
     else if (opening) {  // a failed run opens at its failure
       const fatal = failures.filter((f) => f.fatal).pop();
       if (fatal) seek(fatal.step);
