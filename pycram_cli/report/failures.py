@@ -11,6 +11,8 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable, Iterator
 
+import numpy as np
+
 from ..plan.replay import PLACES
 from ..world.camera import boxes_camera, movable_objects
 
@@ -138,8 +140,18 @@ def failure_camera(world: "BulletWorld", trace: dict[str, Any], aspect: float = 
 def framing(world: "BulletWorld", boxes: list[Any], aspect: float, fov_deg: float = 50.0) -> "Camera":
     """A camera on a failure's boxes, from above and at least FAILURE_DISTANCE away: past what stands in the way
     where it can, else from outside whatever hides them (not from inside a closed drawer that holds the object)."""
-    camera = boxes_camera(world, boxes, fov_deg, aspect, min_distance=FAILURE_DISTANCE, pitch_deg=FAILURE_PITCH)
+    heading = None
+    if len(boxes) > 1:  # the object and its target side by side: looking across the line between them
+        a, b = (np.add(*boxes[0]) / 2, np.add(*boxes[-1]) / 2)
+        across = (-(b[1] - a[1]), b[0] - a[0])
+        if math.hypot(*across) > 0.1:
+            robot = world.robot
+            middle = (a + b) / 2
+            away = (middle[0] - robot.get_position()[0], middle[1] - robot.get_position()[1]) if robot else across
+            heading = across if across[0] * away[0] + across[1] * away[1] >= 0 else (-across[0], -across[1])
+    camera = boxes_camera(world, boxes, fov_deg, aspect, min_distance=FAILURE_DISTANCE, pitch_deg=FAILURE_PITCH,
+                          heading=heading)
     if math.dist(camera.eye, camera.target) < 0.9 * FAILURE_DISTANCE:  # moved in to see past what hides them
         camera = boxes_camera(world, boxes, fov_deg, aspect, min_distance=FAILURE_DISTANCE, pitch_deg=FAILURE_PITCH,
-                              clear=False)
+                              clear=False, heading=heading)
     return camera

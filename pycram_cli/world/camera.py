@@ -177,14 +177,17 @@ def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = No
 
 def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
                  fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8,
-                 pitch_deg: float = -45.0, clear: bool = True) -> Camera:
+                 pitch_deg: float = -45.0, clear: bool = True,
+                 heading: Sequence[float] | None = None) -> Camera:
     """Bounding boxes (lo, hi) framed close, seen from the robot's side of them: `objects_camera`, for boxes that
     are not (only) objects' — a failed object and the box of the pose it was meant to have. `clear=False`: from
-    where the framing puts it, even if something stands in the way (a view that shows through walls)."""
+    where the framing puts it, even if something stands in the way (a view that shows through walls). `heading`:
+    the way (x, y) to look, default from the robot towards the boxes."""
     points = [c for box in boxes for c in _corners(box)]
     centre = np.mean(np.asarray(points), axis=0)
-    heading: tuple[float, float] = (1.0, 0.0)
-    if world.robot is not None:
+    if heading is None and world.robot is None:
+        heading = (1.0, 0.0)
+    elif heading is None:
         position = world.robot.get_position()
         towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
         heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
