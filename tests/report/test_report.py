@@ -38,6 +38,7 @@ def test_the_report_is_one_small_self_contained_file(set_table_report):
     report, _ = set_table_report
     text = report.read_text(encoding="utf-8")
     assert report.stat().st_size <= MAX_BYTES
+    assert round(report.stat().st_size / 1e6, 1) == 0.8  # as README.md says ("set_table's: 0.8 MB")
     assert text.startswith("<!DOCTYPE html>")
     # nothing is loaded from elsewhere: no external scripts, styles, images or fetches
     assert not re.search(r"<(script|link|img|iframe)[^>]+(src|href)=", text)
