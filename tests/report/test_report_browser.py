@@ -113,12 +113,15 @@ def test_the_view_can_be_saved_as_a_png(report, tmp_path):
 
 
 def test_the_layout_holds_at_800_pixels(report, tmp_path):
-    dom, attributes = dump(tmp_path, "narrow", report.as_uri() + "#step=last")
-    image = screenshot(tmp_path, "narrow", report.as_uri() + "#step=last", (800, 700))
-    # the view and the controls fit the narrow window; nothing is cut at its right edge
-    assert image.shape[1] == 800
-    controls = image[:, :, :]
-    assert (np.abs(controls - np.array([0xDD, 0xE3, 0xEA])).sum(axis=2) > 30).mean() > 0.3
+    for width, height in ((1400, 900), (1024, 700), (800, 600)):
+        dom = chromium(tmp_path / f"w{width}", "--dump-dom", f"--window-size={width},{height}",
+                       report.as_uri() + "#step=last").stdout.decode(errors="replace")
+        attributes = body_of(dom)
+        assert attributes["fits"] == "true", (width, height, attributes.get("view"))
+    image = screenshot(tmp_path, "narrow", report.as_uri() + "#step=last", (800, 600))
+    left, top, w, h = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 30:top + h - 10, left + 10:left + w - 10]
+    assert (np.abs(view - np.array([0xDD, 0xE3, 0xEA])).sum(axis=2) > 30).mean() > 0.3  # the scene is drawn
 
 
 FAILING = {"jobs": [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]}
@@ -246,6 +249,11 @@ def test_next_failure_walks_through_recovered_failures_too(tmp_path):
     assert attributes["failure"] == attributes["step"] != "0" and attributes["highlighted"] == "spoon"
     failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="reasonbox"', dom, re.S)
     assert failbox and "recovered" in failbox.group(1) and "PerceptionFailure" in failbox.group(1)
+    # the caption says the action first; the failed detecting has slots but nothing resolved: no empty row
+    caption = re.search(r'<div id="caption"><span><b>([^<]*)</b>', dom)
+    assert caption and caption.group(1).strip() == f"step {attributes['step']}/15 1:detecting"
+    details = re.search(r'<div id="details"[^>]*>(.*?)</div>', dom, re.S).group(1)
+    assert "<td>slots</td>" in details and "<td>resolved</td>" not in details
     image = screenshot(tmp_path, "first", path.as_uri() + "#failure=1")
     left, top, width, height = (int(v) for v in attributes["view"].split(","))
     view = image[top + 100:top + height - 10, left + 10:left + width - 10]

@@ -367,6 +367,10 @@
     if (renderer) renderer.setSize(width, height, false);
     const rect = view.getBoundingClientRect();
     document.body.dataset.view = [rect.left, rect.top, rect.width, rect.height].map(Math.round).join(",");
+    // whether the layout fits the window: nothing wider than it, the controls on screen, a view to see
+    const controlsBox = $("controls").getBoundingClientRect();
+    document.body.dataset.fits = String(document.documentElement.scrollWidth <= window.innerWidth + 1 &&
+      controlsBox.right <= window.innerWidth + 1 && controlsBox.bottom <= window.innerHeight + 1 && rect.height >= 200);
     dirty = true;
   }
   window.addEventListener("resize", () => { resize(); buildTimeline(); showStep(shown, true); });
