@@ -154,3 +154,18 @@ def test_with_the_real_pr2s_detailed_meshes_the_report_stays_under_2_mb(actions_
     assert {"base.dae", "upper_arm.dae", "head_tilt.dae", "l_finger.dae"} <= meshes  # its COLLADA looks are drawn
     assert data["scene"]["skipped"] == []
     assert out.stat().st_size < 2_000_000
+
+
+def test_the_reasoning_of_a_step_is_in_its_frame(set_table_report):
+    data = page_data(set_table_report[0])
+    names = [b["name"] for b in data["scene"]["bodies"]]
+    reach = [f["reasoning"] for f in data["frames"] if (f.get("reasoning") or {}).get("kind") == "reach"]
+    # the bowl's blocking query: the cereal is in the way (set_table moves it first)
+    assert any([names[b] for b in r["objects"]] == ["bowl"] and [names[b] for b in r["blockers"]] == ["cereal"]
+               for r in reach)
+    views = [f["reasoning"] for f in data["frames"] if (f.get("reasoning") or {}).get("kind") == "view"]
+    assert views and all(len(v["eye"]) == 3 and len(v["axes"]) == 9 and 0 < v["fov"][0] < 3.2 for v in views)
+    # the camera's optical axes are a rotation: unit and orthogonal
+    import numpy as np
+    axes = np.array(views[0]["axes"]).reshape(3, 3)
+    assert np.allclose(axes @ axes.T, np.eye(3), atol=1e-3)
