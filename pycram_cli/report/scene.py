@@ -310,6 +310,8 @@ def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, in
     result = query.get("result")
     bound = [v for v in (node.get("bound") or {}).values() if isinstance(v, str) and v in by_name]
     target = _point(world, values.get("object") or values.get("target") or (bound[0] if bound else None))
+    if kind == "locate":
+        return _planned_view(world, node)
     if kind in SEEING:
         robot = world.robot
         desc = description_for(robot) if robot is not None else None
@@ -337,6 +339,38 @@ def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, in
                 "blockers": [by_name[name] for name in blockers if isinstance(name, str) and name in by_name],
                 "objects": [by_name[name] for name in _names(values.get("target"), by_name)]}
     return None
+
+
+def _planned_view(world: BulletWorld, node: dict[str, Any]) -> dict[str, Any] | None:
+    """A locate step that chose where to stand to see something (`found` has a `look-at`): the view cone the
+    robot's camera will have from there — its camera where it sits on the robot now, carried to the pose found,
+    turned to the point to look at."""
+    location = node.get("location") if isinstance(node.get("location"), dict) else {}
+    found = location.get("found") if isinstance(location.get("found"), dict) else {}
+    look = _point(world, found.get("look-at"))
+    position, orientation = found.get("position"), found.get("orientation")
+    robot = world.robot
+    desc = description_for(robot) if robot is not None else None
+    if look is None or desc is None or desc.camera is None or _point(world, position) is None or not (
+            isinstance(orientation, list) and len(orientation) == 4 and all(isinstance(v, (int, float)) for v in orientation)):
+        return None
+    base_position, base_orientation = robot.get_pose()
+    camera_position, _ = robot.get_link_position_and_orientation(desc.camera.frame)
+    offset = quat_to_matrix(base_orientation).T @ (np.asarray(camera_position) - np.asarray(base_position))
+    eye = quat_to_matrix([float(v) for v in orientation]) @ offset + np.asarray(position, dtype=float)
+    forward = np.asarray(look) - eye
+    length = float(np.linalg.norm(forward))
+    if length < 1e-6:
+        return None
+    forward /= length
+    up = np.array([0.0, 0.0, 1.0]) if abs(forward[2]) < 0.999 else np.array([1.0, 0.0, 0.0])
+    right = np.cross(forward, up)
+    right /= np.linalg.norm(right)
+    down = np.cross(forward, right)
+    return {"kind": "view", "planned": True, "eye": [round(float(v), 4) for v in eye],
+            "axes": [round(float(v), 4) for v in (*right, *down, *forward)],
+            "fov": [round(desc.camera.horizontal_fov, 4), round(desc.camera.vertical_fov, 4)],
+            "length": round(max(0.3, length), 3), "target": _rounded(look), "occluders": [], "seen": []}
 
 
 def _names(value: Any, by_name: dict[str, int]) -> list[str]:

@@ -200,7 +200,8 @@ def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_re
     data = _page_data(report)
     frames = data["frames"]
     locate = next(k for k, f in enumerate(frames) if f.get("candidates"))
-    looking = next(k for k, f in enumerate(frames) if (f.get("reasoning") or {}).get("kind") == "view")
+    looking = next(k for k, f in enumerate(frames) if f["path"] and f["path"].endswith("looking"))
+    assert frames[looking]["reasoning"]["kind"] == "view"
     assert frames[locate]["path"].endswith("locate") and frames[looking]["path"].endswith("looking")
     # the map: as many positions as the resolution had; the chosen pose is the trace's found pose
     node = {}
@@ -215,9 +216,13 @@ def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_re
     assert "candidate_map" not in saved.read_text()[:saved.read_text().index('"replay"')]  # not in the trace's tree
 
     dom, attributes = dump(tmp_path, "locate", report.as_uri() + f"#step={locate}")
-    assert attributes["step"] == str(locate) and "candidates" in attributes["reasoning"]
+    # the first locate chooses where to stand to see the bowl: its candidates, and the view cone from the pose chosen
+    assert attributes["step"] == str(locate) and attributes["reasoning"] == "view,candidates"
     legend = re.search(r'<div id="reasonbox">(.*?)</div>\s*<div id="tooltip"', dom, re.S)
     assert legend and f"{node['location']['candidates']} tried for where to stand" in legend.group(1)
+    assert "view cone" in legend.group(1) and "from the pose chosen" in legend.group(1)
+    planned = frames[locate]["reasoning"]
+    assert planned["target"] == pytest.approx(node["location"]["found"]["look-at"], abs=1e-3)
     image = screenshot(tmp_path, "locate", report.as_uri() + f"#step={locate}")
     left, top, width, height = (int(v) for v in attributes["view"].split(","))
     view = image[top + 30:top + height - 100, left + 10:left + width - 10]

@@ -644,7 +644,7 @@
     const rows = [];
     if (info && info.kind === "view") {
       const seen = (info.seen || []).map((b) => bodies[b].name), hid = (info.occluders || []).map((b) => bodies[b].name);
-      rows.push(el("div", {}, el("b", { text: "view cone" }), ` of the robot's camera${seen.length ? ` on ${seen.join(", ")}` : ""}` +
+      rows.push(el("div", {}, el("b", { text: "view cone" }), `${info.planned ? " the robot's camera will have from the pose chosen" : " of the robot's camera"}${seen.length ? ` on ${seen.join(", ")}` : ""}` +
         (info.fraction !== undefined ? `: ${(100 * info.fraction).toFixed(0)} % visible` : "") + (hid.length ? `, hidden by ${hid.join(", ")}` : "")));
       reasoningBodies = info.occluders || [];
       paint(reasoningBodies, glowingOrange);
