@@ -19,6 +19,10 @@ and drew back before the object settles). At most MAX_PHYSICS_FRAMES frames a st
 longer keeps every second frame (then every fourth, ...), each kept frame taking what the dropped one moved.
 `t` is the simulated time since the step began (seconds, 4 decimals).
 
+A step whose query simulated what would happen on the world's prospection copy (`stable`: does the object stay
+put?) has `prospection`: the same frames of what that simulation did to the objects the step names (the
+world itself never moved).
+
 A `locate` step's entry also has `candidates`: its floor map (locations/plot.py `candidate_map`: every candidate
 position with the test that ruled it out, the poses found, the target), which the step gives only while a replay
 is recorded and which stays out of the trace's tree.
@@ -112,12 +116,15 @@ class Recorder:
         self._last = self.initial
         self.steps: list[dict[str, Any]] = []
         self._physics = PhysicsFrames(world, self.initial)
-        self._unwatch = world.watch_steps(self._physics.stepped)
+        self._whatif = PhysicsFrames(world, self.initial, free_only=True)
+        self._unwatch = [world.watch_steps(self._physics.stepped),
+                         world.watch_steps(self._whatif.stepped, prospection=True)]
         world.recording_replay = True
 
     def close(self) -> None:
         """Stop watching the world's physics (the run is over)."""
-        self._unwatch()
+        for unwatch in self._unwatch:
+            unwatch()
         self.world.recording_replay = False
 
     def started(self, node: TraceNode) -> None:
@@ -131,6 +138,11 @@ class Recorder:
             physics = self._physics.take(state)
             if physics:
                 entry["physics"] = physics
+            named = {v for v in _named(node.info) if isinstance(v, str)}
+            whatif = [frame for frame in ({"t": f["t"], "changed": {k: v for k, v in f["changed"].items() if k in named}}
+                                          for f in self._whatif.take(state)) if frame["changed"]]
+            if whatif:  # what a query (stable) simulated on the prospection copy: the objects the step names
+                entry["prospection"] = whatif
             location = node.info.get("location")
             if isinstance(location, dict) and MAP_KEY in location:  # the replay's, not the trace's
                 entry["candidates"] = location.pop(MAP_KEY)
@@ -159,20 +171,21 @@ class PhysicsFrames:
     """The physics frames of the step running now (see the module docstring): `stepped` after every simulation
     step, `take` when the step has finished."""
 
-    def __init__(self, world: "BulletWorld", state: State) -> None:
+    def __init__(self, world: "BulletWorld", state: State, free_only: bool = False) -> None:
         self.world = world
+        self.free_only = free_only  # only the free objects' poses, also in the first frame (a prospection copy's)
         self._last = state  # the state the next frame's changes are counted from
         self._frames: list[dict[str, Any]] = []
         self._pending: State = {}  # what a dropped frame moved, for the next kept one
         self._steps = 0  # simulation steps since the step began
         self._every = PHYSICS_EVERY
 
-    def stepped(self) -> None:
+    def stepped(self, world: "BulletWorld") -> None:
         self._steps += 1
         if self._steps % self._every:
             return
-        first = not self._frames and not self._pending
-        now = world_state(self.world, free_only=not first)
+        first = not self._frames and not self._pending and not self.free_only
+        now = world_state(world, free_only=not first)
         moved = changes(self._last, now) if first else {
             name: entry for name, entry in now.items() if _moved(self._last.get(name), entry)}
         self._last = now if first else {**self._last, **moved}
@@ -199,6 +212,20 @@ class PhysicsFrames:
         frames, self._frames, self._pending = self._frames, [], {}
         self._last, self._steps, self._every = state, 0, PHYSICS_EVERY
         return [frame for frame in frames if frame["changed"]]
+
+
+def _named(info: dict[str, Any]) -> Iterable[Any]:
+    """The values a step's record names: its designator's slots, its query's arguments and its condition's."""
+    for key in ("designator",):
+        if isinstance(info.get(key), dict):
+            yield from (info[key].get("resolved") or info[key].get("slots") or {}).values()
+    if isinstance(info.get("query"), dict):
+        yield from (info["query"].get("args") or {}).values()
+    condition = info.get("condition")
+    while isinstance(condition, dict):
+        if isinstance(condition.get("query"), dict):
+            yield from (condition["query"].get("args") or {}).values()
+        condition = condition.get("not")
 
 
 def _moved(before: dict[str, Any] | None, after: dict[str, Any]) -> bool:

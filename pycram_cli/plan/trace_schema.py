@@ -294,16 +294,18 @@ class _Checker:
     def replay_step(self, step: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
         if not self.fields(step, path, "a replayed step", {"path": self.string, "status": self.status(NODE_STATUSES),
                                                             "changed": self.obj},
-                           {"folded": self.count, "physics": self.physics_frames, "candidates": self.candidate_map}):
+                           {"folded": self.count, "physics": self.physics_frames, "prospection": self.physics_frames,
+                            "candidates": self.candidate_map}):
             return
         if refs and isinstance(step.get("path"), str) and step["path"] not in self.paths:
             self.add(path + ("path",), f"no step of the trace has the path {json.dumps(step['path'])}")
         changes = [(path, step.get("changed"))]
-        physics = step.get("physics")
-        if isinstance(physics, list):
-            for index, frame in enumerate(physics):
-                if self.fields(frame, path + ("physics", index), "a physics frame", {"t": self.seconds, "changed": self.obj}):
-                    changes.append((path + ("physics", index), frame.get("changed")))
+        for key in ("physics", "prospection"):
+            physics = step.get(key)
+            if isinstance(physics, list):
+                for index, frame in enumerate(physics):
+                    if self.fields(frame, path + (key, index), "a physics frame", {"t": self.seconds, "changed": self.obj}):
+                        changes.append((path + (key, index), frame.get("changed")))
         for where_from, changed in changes:
             if isinstance(changed, dict):
                 for name, entry in changed.items():

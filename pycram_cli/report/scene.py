@@ -232,6 +232,9 @@ class Replayer:
             frame["poses"] = _flat(moved)
             if physics:
                 frame["physics"] = physics
+            whatif = self.whatif(step.get("prospection") or [], by_name)
+            if whatif:
+                frame["whatif"] = whatif
             if isinstance(step.get("candidates"), dict):
                 frame["candidates"] = _candidates(step["candidates"])
             node = self.nodes.get(step.get("path") or "", {})
@@ -250,6 +253,26 @@ class Replayer:
         if len(result) > 1 and moved_objects and not (self.failures and self.failures[-1]["step"] == len(result) - 1):
             result[-1]["camera"] = _eye_target(objects_camera(world, moved_objects, VIEW_FOV, VIEW_ASPECT))
         return result
+
+    def whatif(self, frames: list[dict[str, Any]], by_name: dict[str, int]) -> dict[str, Any] | None:
+        """What a query simulated on the prospection copy (a replay step's `prospection`), for the first object it
+        moved: its links' poses at each frame (the world itself stays as it is)."""
+        names = [name for frame in frames for name in frame.get("changed") or {} if name in by_name]
+        if not names:
+            return None
+        b = by_name[names[0]]
+        obj = self.scene.links[b][0]
+        pose = obj.get_pose()
+        drawn = []
+        try:
+            for frame in frames:
+                entry = (frame.get("changed") or {}).get(names[0])
+                if entry and "position" in entry and "orientation" in entry:
+                    obj.set_position_and_orientation(entry["position"], entry["orientation"])
+                    drawn.append({"t": frame.get("t"), "poses": _flat(self.scene.poses({b}))})
+        finally:
+            obj.set_position_and_orientation(*pose)
+        return {"body": b, "frames": drawn} if drawn else None
 
     def failure(self, k: int, node: dict[str, Any], order: list[str]) -> dict[str, Any]:
         """A failed step k (the world in its state after it): its failure, the bodies it names, the target meant

@@ -128,7 +128,8 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
-        self._step_watchers: list[Callable[[], None]] = []  # called after every physics step (see watch_steps)
+        self._step_watchers: list[Callable[["BulletWorld"], None]] = []  # called after every step (watch_steps)
+        self._copy_watchers: list[Callable[["BulletWorld"], None]] = []  # the same, for the prospection copy's steps
         #: a replay of a run on this world is being recorded (plan/replay.py): steps may keep details for it
         self.recording_replay = False
         self._view: ViewRenderer | None = None  # made on the first picture_of
@@ -159,14 +160,16 @@ class BulletWorld:
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
         self._exit_hooks.append(hook)
 
-    def watch_steps(self, watcher: Callable[[], None]) -> Callable[[], None]:
-        """Call `watcher` after every physics step of this world (a replay recording the motion physics makes);
-        returns the function that stops it."""
-        self._step_watchers.append(watcher)
+    def watch_steps(self, watcher: Callable[["BulletWorld"], None], prospection: bool = False) -> Callable[[], None]:
+        """Call `watcher(world)` after every physics step of this world (a replay recording the motion physics
+        makes), or with `prospection` of its prospection copy, where queries like `stable` simulate what would
+        happen (prospection.py; the copy is passed); returns the function that stops it."""
+        watchers = self._copy_watchers if prospection else self._step_watchers
+        watchers.append(watcher)
 
         def unwatch() -> None:
-            if watcher in self._step_watchers:
-                self._step_watchers.remove(watcher)
+            if watcher in watchers:
+                watchers.remove(watcher)
 
         return unwatch
 
@@ -301,7 +304,7 @@ class BulletWorld:
         self.mark_changed()
         self._follow_parents()
         for watcher in self._step_watchers:
-            watcher()
+            watcher(self)
 
     def _follow_parents(self) -> None:
         """Every parent, in world order, moves what is attached to it (children only: nothing to do)."""

@@ -244,3 +244,13 @@ def test_the_physics_frames_are_the_same_on_every_run_and_outside_the_comparable
     again = prepare(REPO / "plans" / "set_table.yaml", params=FAILING_MILK).run(replay=True)
     assert traces.dumps(again.trace[traces.REPLAY_KEY]) == traces.dumps(milk_over_the_edge.trace[traces.REPLAY_KEY])
     assert "physics" not in json.dumps(traces.comparable(milk_over_the_edge.trace))
+
+
+def test_what_stable_simulates_on_the_prospection_copy_is_recorded_apart(milk_over_the_edge):
+    steps = milk_over_the_edge.trace[traces.REPLAY_KEY]["steps"]
+    check = steps[-1]
+    assert check["path"].endswith("12:assert") and check["status"] == "failed"
+    frames = check["prospection"]  # stable(milk) tried it out on the copy: the milk goes on moving there
+    assert frames and all(set(f["changed"]) == {"milk"} for f in frames)  # only what the step names
+    assert [f["t"] for f in frames] == sorted(f["t"] for f in frames)
+    assert "milk" not in check["changed"] and "physics" not in check  # the world itself did not move

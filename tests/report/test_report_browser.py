@@ -181,6 +181,11 @@ def test_a_frame_in_the_middle_of_place_shows_the_milk_falling(failed_report, tm
         else:
             middle = (z, tilt)
     assert lying[1] > 60 and lying[0] < standing[0] - 0.3  # it fell off the island
+    # during the failed stable check, what it simulated on a copy of the world: the milk as an amber ghost
+    last = len(data["frames"]) - 1
+    assert data["frames"][last]["whatif"]["body"] == [b["name"] for b in data["scene"]["bodies"]].index("milk")
+    _, attributes = dump(tmp_path, "whatif", failed_report.as_uri() + f"#step={last - 0.5}")
+    assert attributes["whatif"] == "milk" and attributes["step"] == str(last)
     assert 10 < middle[1] < lying[1] - 10 or lying[0] + 0.05 < middle[0] < 0.85, (standing, middle, lying)
 
 

@@ -339,6 +339,7 @@
         group.quaternion.copy(qa.slerp(qb, s));
       }
     }
+    showWhatif(t);
     if (follow.checked) {
       const c0 = frames[k].camera, c1 = frames[next].camera, e = ease(a);
       if (c0) {
@@ -510,6 +511,47 @@
   const robots = bodies.map((body, b) => (body.type === "robot" ? b : -1)).filter((b) => b >= 0);
   function paint(list, make) {
     for (const b of list) for (const group of bodyLinks[b] || []) for (const mesh of group.children) mesh.material = make(mesh.userData.base);
+  }
+  // what a query simulated on the prospection copy (stable): an amber ghost of the object moving through it
+  const whatifMaterial = new THREE.MeshLambertMaterial({ color: 0xf08c00, transparent: true, opacity: 0.45, depthWrite: false });
+  const whatifGhosts = new Map();  // step -> [link Groups of the ghost]
+  function whatifGhost(k) {
+    const info = frames[k] && frames[k].whatif;
+    if (!info || !bodyLinks[info.body]) return null;
+    if (!whatifGhosts.has(k)) {
+      const parts = bodyLinks[info.body].map((source) => {
+        const link = new THREE.Group();
+        for (const mesh of source.children) {
+          const copy = new THREE.Mesh(mesh.geometry, whatifMaterial);
+          copy.position.copy(mesh.position); copy.quaternion.copy(mesh.quaternion); copy.scale.copy(mesh.scale);
+          copy.renderOrder = 2;
+          link.add(copy);
+        }
+        link.visible = false;
+        world.add(link);
+        return link;
+      });
+      whatifGhosts.set(k, parts);
+    }
+    return whatifGhosts.get(k);
+  }
+  let whatifShown = null;
+  function showWhatif(t) {  // at t in (k-1, k]: the ghost at the simulation's frame for the step's progress
+    const k = Math.max(1, Math.min(STEPS, Math.ceil(t - 1e-6)));
+    const parts = t > 0 ? whatifGhost(k) : null;
+    if (whatifShown && whatifShown !== parts) for (const link of whatifShown) link.visible = false;
+    whatifShown = parts;
+    document.body.dataset.whatif = parts ? bodies[frames[k].whatif.body].name : "";
+    if (!parts) return;
+    const list = frames[k].whatif.frames, a = t - (k - 1);
+    const flat = list[Math.min(list.length - 1, Math.floor(a * list.length))].poses;
+    for (let i = 0; i + 9 <= flat.length; i += 9) {
+      const link = parts[flat[i + 1]];
+      if (!link) continue;
+      link.position.set(flat[i + 2], flat[i + 3], flat[i + 4]);
+      link.quaternion.set(flat[i + 5], flat[i + 6], flat[i + 7], flat[i + 8]);
+      link.visible = true;
+    }
   }
   let activeFailure = null;
   function showFailure(k) {
@@ -757,6 +799,8 @@
     }
     const physics = frames[k].physics;
     if (physics && physics.length) add("physics", `${physics.length} frames over ${physics[physics.length - 1].t.toFixed(2)} s simulated (scrub through the step to see them)`);
+    const whatif = frames[k].whatif;
+    if (whatif && whatif.frames.length) add("simulated", `what the query tried out on a copy of the world: ${bodies[whatif.body].name} over ${whatif.frames[whatif.frames.length - 1].t.toFixed(2)} s (the amber ghost; the world itself did not move)`);
     if (data.query) { add("query", code(`${data.type}(${slots(data.query.args)})`)); add("answer", code(data.query.result)); add("details", code(data.query.details)); }
     if (data.condition) add("condition", code(condition(data.condition)));
     if (data.message !== undefined) add("message", code(data.message));
