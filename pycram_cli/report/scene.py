@@ -91,7 +91,7 @@ class Scene:
                 else:
                     mesh = read_mesh(path)
                     points, triangles = mesh.vertices, mesh.triangles
-            except (OSError, ValueError):
+            except (OSError, ValueError, IndexError):  # unreadable: listed as not drawn
                 return None
             if not len(triangles):
                 return None

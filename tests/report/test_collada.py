@@ -43,7 +43,8 @@ def test_triangles_and_polygons_are_placed_by_the_nodes_in_metres(tmp_path):
 
 
 def test_what_is_not_collada_is_a_value_error(tmp_path):
-    for text in ("not xml", "<?xml version='1.0'?><mesh/>"):
+    broken = SQUARE.replace("<p>0 1 2 3</p>", "<p>0 1 9 3</p>")  # a vertex the mesh does not have
+    for text in ("not xml", "<?xml version='1.0'?><mesh/>", broken, SQUARE.replace('meter="0.01"', 'meter="x"')):
         path = tmp_path / "bad.dae"
         path.write_text(text)
         with pytest.raises(ValueError):
