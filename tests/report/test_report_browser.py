@@ -95,6 +95,13 @@ def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     assert blue.sum() > 20
 
 
+def test_a_composite_opens_at_its_first_step(report, tmp_path):
+    dom, attributes = dump(tmp_path, "node", report.as_uri() + "#node=body/0:for_each/item 1")
+    current = re.search(r'<li class="([^"]*\bcurrent\b[^"]*)" data-path="([^"]+)"', dom)
+    assert current and current.group(2) == "body/0:for_each/item 1/0:world-state-detecting"  # its first step
+    assert 0 < int(attributes["step"]) < 67
+
+
 def test_the_report_plays_by_itself(report, tmp_path):
     dom = chromium(tmp_path / "play", "--dump-dom", report.as_uri() + "#step=3&play").stdout.decode(errors="replace")
     body = re.search(r"<body([^>]*)>", dom)

@@ -8,7 +8,8 @@
 //   failures every failed step: its step, failure, the bodies it names, the target meant for them, a ghost of
 //           the object there (its links' poses) and a camera on both.
 // URL: #step=N (N may be a fraction: 11.5 is half-way through step 12) or #step=last opens the report at that
-// step (a failed run opens at its failure); #failure=N at the N-th failed step; #play starts playing; #select=NAME selects a body; #hide=A,B hides
+// step (a failed run opens at its failure); #failure=N at the N-th failed step; #node=PATH at a node (a
+// composite: its first step), as clicking it in the tree does; #play starts playing; #select=NAME selects a body; #hide=A,B hides
 // bodies; #png makes the image of the view (the link #png-link). window.pycramReport: seek(k), step(), select().
 (function () {
   "use strict";
@@ -944,7 +945,9 @@
     const hash = decodeURIComponent(location.hash);
     const match = /step=(\d+(?:\.\d+)?|last)/.exec(hash);
     const nth = /failure=(\d+)/.exec(hash);  // the N-th failed step (1: the first), recovered ones too
+    const path = /node=([^&]*)/.exec(hash);  // a node by its path: a step's frame, a composite's first step
     if (match) seek(match[1] === "last" ? STEPS : Number(match[1]));
+    else if (path && byPath.has(path[1])) seek(stepOf(byPath.get(path[1])));
     else if (nth && failures[Number(nth[1]) - 1]) seek(failures[Number(nth[1]) - 1].step);
     else if (opening) {  // a failed run opens at its failure
       const fatal = failures.filter((f) => f.fatal).pop();
@@ -966,7 +969,8 @@
   if (renderer) { renderer.render(world, camera); placeLabels(); }
   dirty = false;
   // for a page that embeds this one (or a test): go to a step, tell the step, select a body
-  window.pycramReport = { seek, step: () => shown, position: () => position, select: (name) => select(bodyIndex.has(name) ? bodyIndex.get(name) : -1) };
+  window.pycramReport = { seek, step: () => shown, position: () => position, select: (name) => select(bodyIndex.has(name) ? bodyIndex.get(name) : -1),
+    stepOf: (path) => (byPath.has(path) ? stepOf(byPath.get(path)) : null) };
   document.body.dataset.steps = String(STEPS);
   document.body.dataset.ready = "1";
   setInterval(tick, 30);
