@@ -407,7 +407,7 @@
       v3.project(camera);
       const inside = v3.z < 1 && Math.abs(v3.x) <= 1 && Math.abs(v3.y) <= 1;
       tag.hidden = !inside;
-      if (inside) tag.style.transform = `translate(${((v3.x + 1) / 2) * width}px, ${((1 - v3.y) / 2) * height}px) translate(-50%, -100%)`;
+      if (inside) tag.style.transform = `translate(${((v3.x + 1) / 2) * width}px, ${((1 - v3.y) / 2) * height}px) translate(-50%, calc(-100% - 14px))`;
       tag.classList.toggle("selected", b === selected);
     });
   }
