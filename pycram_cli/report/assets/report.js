@@ -438,8 +438,8 @@
   function select(b) {
     selected = b;
     document.body.dataset.selected = b >= 0 ? bodies[b].name : "";
+    repaint();
     details(shown);
-    dirty = true;
   }
   const raycaster = new THREE.Raycaster(), pointer = new THREE.Vector2();
   let pressed = null;
@@ -554,15 +554,33 @@
       link.visible = true;
     }
   }
-  let activeFailure = null;
+  let activeFailure = null, painted = [], reasoningBodies = [];
+  const selectedMaterial = new Map();
+  function selecting(material) {
+    return cached(selectedMaterial, material.uuid, () => {
+      const copy = material.clone();
+      copy.emissive = new THREE.Color(0xfab005);
+      copy.emissiveIntensity = 0.45;
+      return copy;
+    });
+  }
+  function repaint() {  // every highlight from scratch: a failure's, the reasoning's, the selection
+    paint(painted, (base) => base);
+    painted = [];
+    const apply = (list, make) => { paint(list, make); painted.push(...list); };
+    const failed = activeFailure ? activeFailure.objects : [];
+    if (activeFailure && (failed.length || activeFailure.target)) apply(robots.filter((b) => !failed.includes(b)), fading);
+    apply(reasoningBodies, glowingOrange);
+    if (selected >= 0 && !failed.includes(selected)) apply([selected], selecting);
+    apply(failed, glowing);
+    dirty = true;
+  }
   function showFailure(k) {
     const failure = failures.find((f) => f.step === k) || null;
     if (failure === activeFailure) return;
-    if (activeFailure) {
-      activeFailure.drawn.visible = false;
-      paint([...activeFailure.objects, ...robots], (base) => base);
-    }
+    if (activeFailure) activeFailure.drawn.visible = false;
     activeFailure = failure;
+    repaint();
     const box = $("failbox");
     box.hidden = !failure;
     document.body.dataset.failure = failure ? String(failure.step) : "";
@@ -570,8 +588,6 @@
     document.body.dataset.ghost = failure && failure.ghost ? bodies[failure.ghost.body].name : "";
     if (!failure) return;
     failure.drawn.visible = true;
-    if (failure.objects.length || failure.target) paint(robots.filter((b) => !failure.objects.includes(b)), fading);
-    paint(failure.objects, glowing);
     for (const b of failure.objects) for (const group of bodyLinks[b] || []) for (const mesh of group.children) mesh.renderOrder = 5;
     box.textContent = "";
     const names = failure.objects.map((b) => bodies[b].name);
@@ -658,11 +674,10 @@
     return group;
   }
   const drawnReasoning = new Map();  // step -> its Group (made when first shown)
-  let reasoningStep = -1, reasoningBodies = [];
+  let reasoningStep = -1;
   function showReasoning(k) {
     if (k === reasoningStep) return;
     if (reasoningStep >= 0 && drawnReasoning.has(reasoningStep)) drawnReasoning.get(reasoningStep).visible = false;
-    paint(reasoningBodies, (base) => base);
     reasoningBodies = [];
     reasoningStep = k;
     const frame = frames[k] || {}, info = frame.reasoning, map = frame.candidates;
@@ -670,7 +685,7 @@
     legend.textContent = "";
     legend.hidden = true;
     document.body.dataset.reasoning = [info ? info.kind : "", map && map.count ? "candidates" : ""].filter(Boolean).join(",");
-    if (!info && !(map && map.count)) return;
+    if (!info && !(map && map.count)) { repaint(); return; }
     if (!drawnReasoning.has(k)) {
       const group = new THREE.Group();
       if (info && info.kind === "view") group.add(viewCone(info));
@@ -690,14 +705,12 @@
       rows.push(el("div", {}, el("b", { text: "view cone" }), `${info.planned ? " the robot's camera will have from the pose chosen" : " of the robot's camera"}${seen.length ? ` on ${seen.join(", ")}` : ""}` +
         (info.fraction !== undefined ? `: ${(100 * info.fraction).toFixed(0)} % visible` : "") + (hid.length ? `, hidden by ${hid.join(", ")}` : "")));
       reasoningBodies = info.occluders || [];
-      paint(reasoningBodies, glowingOrange);
     }
     if (info && info.kind === "reach") {
       const blockers = (info.blockers || []).map((b) => bodies[b].name);
       rows.push(el("div", {}, el("b", { text: "reach" }), info.reachable === null ? " target" : info.reachable ? ": reachable" : ": not reachable",
         blockers.length ? `; in the way: ${blockers.join(", ")}` : ""));
       reasoningBodies = info.blockers || [];
-      paint(reasoningBodies, glowingOrange);
     }
     if (map && map.count) {
       const node = byPath.get(frame.path), location = node && node.data.location;
@@ -712,6 +725,7 @@
     }
     legend.append(...rows);
     legend.hidden = false;
+    repaint();
   }
   const orange = new Map();
   function glowingOrange(material) {
