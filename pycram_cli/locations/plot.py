@@ -103,15 +103,21 @@ def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: floa
 
 def best_outcomes(resolution: BasePoseResolution | SpotResolution) -> dict[tuple[int, int], tuple[int, int]]:
     """Per candidate position (x, y in 5 mm units): the outcome code furthest along the tests of its turns, and the
-    index of the candidate that reached it."""
+    index of the candidate that reached it (the first such)."""
     cand = resolution.candidates
-    best: dict[tuple[int, int], tuple[int, int]] = {}
-    for i in range(len(cand)):
-        key = (int(round(cand.xs[i] / 0.005)), int(round(cand.ys[i] / 0.005)))
-        outcome = OUTCOMES[cand.outcome[i]] or "not tried"
-        if key not in best or RANK.index(outcome) > RANK.index(OUTCOMES[best[key][0]] or "not tried"):
-            best[key] = (int(cand.outcome[i]), i)
-    return best
+    if not len(cand):
+        return {}
+    kx = np.round(np.asarray(cand.xs) / 0.005).astype(np.int64)
+    ky = np.round(np.asarray(cand.ys) / 0.005).astype(np.int64)
+    rank_of = np.array([RANK.index(name or "not tried") for name in OUTCOMES])
+    rank = rank_of[np.asarray(cand.outcome, dtype=np.int64)]
+    index = np.arange(len(cand))
+    order = np.lexsort((index, -rank, ky, kx))  # by position, then the best outcome first, then the first
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = (kx[order][1:] != kx[order][:-1]) | (ky[order][1:] != ky[order][:-1])
+    chosen = order[first]
+    codes = np.asarray(cand.outcome, dtype=np.int64)
+    return {(int(kx[i]), int(ky[i])): (int(codes[i]), int(i)) for i in chosen}
 
 
 def candidate_map(resolution: BasePoseResolution | SpotResolution) -> dict[str, Any]:
