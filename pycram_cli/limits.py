@@ -29,6 +29,8 @@ MAX_CALL_DEPTH = 64
 MAX_STEP_DEPTH = 100
 #: steps a run records (summarised retry attempts do not count)
 MAX_TRACE_NODES = 50_000
+#: physics frames a replayed step keeps at most (plan/replay.py: a longer simulation keeps fewer per second)
+MAX_PHYSICS_FRAMES = 48
 #: branch threads one run may have alive at once
 MAX_THREADS = 256
 #: items (list elements, mapping entries and single values, a shared part counted each time it appears) in one

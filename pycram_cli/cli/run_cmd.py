@@ -18,6 +18,7 @@ from ..limits import MAX_PROJECTED
 from ..scenario.starts import ImpossibleStart, possible_variant
 from ..sweep.projection import Projection, project
 from ..scenario.variations import read_variations, variation_file
+from ..report.failures import failure_camera
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
@@ -244,7 +245,10 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if trace_file is not None:
             write_output(trace_file, dumps(result.trace), "trace")
         if render_file is not None and not interrupted:
-            cam = image_camera(world, view_name, image_size, moved_since(world, before) or None)
+            cam = None
+            if not result.succeeded and (camera is None or view_name == "target"):  # a failure: what failed, where
+                cam = failure_camera(world, result.trace, image_size[0] / image_size[1])
+            cam = cam or image_camera(world, view_name, image_size, moved_since(world, before) or None)
             write_output(render_file, encode_image(render(world, cam, *image_size), render_file.suffix),
                          f"{image_size[0]}x{image_size[1]} {image_format(render_file.suffix)}")
         if report_file is not None and not interrupted:

@@ -21,6 +21,9 @@ import numpy as np
 from .resolve import OUTCOMES, REASONS, BasePoseResolution, SpotResolution
 from .resolve import floor_map as build_floor_map
 
+#: the key under which a locate step's record holds its `candidate_map` while a replay is recorded (the replay
+#: record takes it out of the step: the trace itself never holds it)
+MAP_KEY = "candidate_map"
 #: colour of each outcome (RGB)
 COLOURS: dict[str, tuple[int, int, int]] = {
     "ok": (30, 160, 60),
@@ -69,12 +72,7 @@ def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: floa
     canvas.put(px[occupied], OBSTACLE, radius=max(1, int(round(floor_map.resolution * pixels_per_metre / 2))))
     # the candidates, one square per position
     step = 0.05 if isinstance(resolution, BasePoseResolution) else 0.025
-    best: dict[tuple[int, int], int] = {}
-    for i in range(len(cand)):
-        key = (int(round(cand.xs[i] / 0.005)), int(round(cand.ys[i] / 0.005)))
-        outcome = OUTCOMES[cand.outcome[i]] or "not tried"
-        if key not in best or RANK.index(outcome) > RANK.index(OUTCOMES[best[key]] or "not tried"):
-            best[key] = int(cand.outcome[i])
+    best = {key: code for key, (code, _) in best_outcomes(resolution).items()}
     half = max(1, int(step * pixels_per_metre * 0.35))
     for (kx, ky), code in sorted(best.items(), key=lambda kv: RANK.index(OUTCOMES[kv[1]] or "not tried")):
         outcome = OUTCOMES[code] or "not tried"
@@ -101,6 +99,51 @@ def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: floa
     canvas.cross(target[:2], (0, 0, 0), 7)
     _legend(canvas, resolution)
     return canvas.image
+
+
+def best_outcomes(resolution: BasePoseResolution | SpotResolution) -> dict[tuple[int, int], tuple[int, int]]:
+    """Per candidate position (x, y in 5 mm units): the outcome code furthest along the tests of its turns, and the
+    index of the candidate that reached it (the first such)."""
+    cand = resolution.candidates
+    if not len(cand):
+        return {}
+    kx = np.round(np.asarray(cand.xs) / 0.005).astype(np.int64)
+    ky = np.round(np.asarray(cand.ys) / 0.005).astype(np.int64)
+    rank_of = np.array([RANK.index(name or "not tried") for name in OUTCOMES])
+    rank = rank_of[np.asarray(cand.outcome, dtype=np.int64)]
+    index = np.arange(len(cand))
+    order = np.lexsort((index, -rank, ky, kx))  # by position, then the best outcome first, then the first
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = (kx[order][1:] != kx[order][:-1]) | (ky[order][1:] != ky[order][:-1])
+    chosen = order[first]
+    codes = np.asarray(cand.outcome, dtype=np.int64)
+    return {(int(kx[i]), int(ky[i])): (int(codes[i]), int(i)) for i in chosen}
+
+
+def candidate_map(resolution: BasePoseResolution | SpotResolution) -> dict[str, Any]:
+    """The floor map of `draw` as data, for a replay to draw in 3D: every candidate position (x, y in mm) with its
+    outcome (an index into `outcomes`) and why (the test's detail, where it said one), the height they stand at,
+    the spacing, the poses found ([x, y, yaw]) and the target."""
+    resolution.prepare()
+    best = best_outcomes(resolution)
+    names = [name for name in RANK[1:] if name in COLOURS]
+    index = {name: k for k, name in enumerate(names)}
+    xy: list[int] = []
+    outcome: list[int] = []
+    why: dict[str, str] = {}
+    for (kx, ky), (code, i) in sorted(best.items()):
+        xy.extend((kx * 5, ky * 5))
+        outcome.append(index[OUTCOMES[code] or "not tried"])
+        detail = resolution.candidates.detail.get(i)
+        if detail:
+            why[str(len(outcome) - 1)] = detail
+    base = isinstance(resolution, BasePoseResolution)
+    z = float(resolution.robot.body.get_position()[2]) if base else float(getattr(resolution, "top", 0.0))
+    found = [[round(float(f.position[0]), 3), round(float(f.position[1]), 3),
+              round(float(getattr(f, "yaw", 0.0)), 3)] for f in resolution.found]
+    return {"kind": "base" if base else "spot", "z": round(z, 3), "spacing": 0.05 if base else 0.025,
+            "xy": xy, "outcome": outcome, "outcomes": names, "why": why, "found": found,
+            "target": [round(float(v), 3) for v in _target(resolution)]}
 
 
 def _target(resolution: BasePoseResolution | SpotResolution) -> np.ndarray:

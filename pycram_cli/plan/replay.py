@@ -7,7 +7,25 @@ values) and again whenever a leaf step has finished, and keeps what changed:
     {"world_file": "/.../kitchen.yaml",
      "initial": {"pr2": {"position": [...], "orientation": [...], "joints": {...}}, ...},
      "steps": [{"path": "body/0:for_each/item 0/0:world-state-detecting", "status": "succeeded",
-                "changed": {"pr2": {"joints": {"torso_lift_joint": 0.3}}, "milk": {"position": [...]}}}, ...]}
+                "changed": {"pr2": {"joints": {"torso_lift_joint": 0.3}}, "milk": {"position": [...]}}}, ...,
+               {"path": ".../0:place", "status": "succeeded", "changed": {...},
+                "physics": [{"t": 0.05, "changed": {"milk": {"position": [...], "orientation": [...]}}}, ...]}]}
+
+Physics inside a step (place lets the object go and settles it) is kept too, so that a replay shows the
+motion and not only where it ended: every PHYSICS_EVERY simulation steps (20 per simulated second) the
+step's `physics` list gets a frame of what moved since the previous one — the free objects' poses; the
+robots' and environments' joints only in a step's first frame, as physics holds them still (the arm let go
+and drew back before the object settles). At most MAX_PHYSICS_FRAMES frames a step: a step that simulates
+longer keeps every second frame (then every fourth, ...), each kept frame taking what the dropped one moved.
+`t` is the simulated time since the step began (seconds, 4 decimals).
+
+A step whose query simulated what would happen on the world's prospection copy (`stable`: does the object stay
+put?) has `prospection`: the same frames of what that simulation did to the objects the step names (the
+world itself never moved).
+
+A `locate` step's entry also has `candidates`: its floor map (locations/plot.py `candidate_map`: every candidate
+position with the test that ruled it out, the poses found, the target), which the step gives only while a replay
+is recorded and which stays out of the trace's tree.
 
 Bounded like the trace tree: when a `retry` folds an attempt into its `folded attempts` node, the
 steps recorded for that attempt are folded too, into one entry at the place of the last of them
@@ -26,13 +44,22 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterable
 
+from ..limits import MAX_PHYSICS_FRAMES
+from ..locations.plot import MAP_KEY
 from .trace import DIGITS, TraceNode, canonical_quaternion
+from ..world.bullet_world import STEP_HZ
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
     from .executor import Observer
 
 State = dict[str, dict[str, Any]]
+
+#: simulation steps (1/240 s) between two physics frames of a step: 20 frames per simulated second
+PHYSICS_EVERY = 12
+#: what a free object must move (m, or a quaternion coordinate) to be in a physics frame: 0.1 mm
+PHYSICS_TOLERANCE = 1e-4
+
 Point = tuple[float, float, float]
 
 #: slot and argument names whose values are places (objects are recognised by their names)
@@ -41,15 +68,18 @@ PLACES = ("target", "look", "position")
 SCENERY = ("robot", "environment")
 
 
-def world_state(world: "BulletWorld") -> State:
-    """Every object's pose and movable joint values, rounded as traces are (6 decimals)."""
+def world_state(world: "BulletWorld", free_only: bool = False) -> State:
+    """Every object's pose and movable joint values, rounded as traces are (6 decimals); `free_only`: only the
+    objects physics moves (neither robots nor environments), and their poses only."""
     state: State = {}
     with world.lock:
         for obj in world.objects:
+            if free_only and obj.fixed:
+                continue
             position, orientation = obj.get_pose()
             entry: dict[str, Any] = {"position": [round(float(v), DIGITS) + 0.0 for v in position],
                                      "orientation": [round(v, DIGITS) + 0.0 for v in canonical_quaternion(orientation)]}
-            joints = obj.get_joint_positions()
+            joints = {} if free_only else obj.get_joint_positions()
             if joints:
                 entry["joints"] = {name: round(value, DIGITS) + 0.0 for name, value in joints.items()}
             state[obj.name] = entry
@@ -85,6 +115,17 @@ class Recorder:
         self.initial = world_state(world)
         self._last = self.initial
         self.steps: list[dict[str, Any]] = []
+        self._physics = PhysicsFrames(world, self.initial)
+        self._whatif = PhysicsFrames(world, self.initial, free_only=True)
+        self._unwatch = [world.watch_steps(self._physics.stepped),
+                         world.watch_steps(self._whatif.stepped, prospection=True)]
+        world.recording_replay = True
+
+    def close(self) -> None:
+        """Stop watching the world's physics (the run is over)."""
+        for unwatch in self._unwatch:
+            unwatch()
+        self.world.recording_replay = False
 
     def started(self, node: TraceNode) -> None:
         if self.inner is not None:
@@ -93,7 +134,19 @@ class Recorder:
     def finished(self, node: TraceNode) -> None:
         if not node.children:  # a leaf step (or an empty composite: recorded as a step that changed nothing)
             state = world_state(self.world)
-            self.steps.append({"path": node.path, "status": node.status, "changed": changes(self._last, state)})
+            entry: dict[str, Any] = {"path": node.path, "status": node.status, "changed": changes(self._last, state)}
+            physics = self._physics.take(state)
+            if physics:
+                entry["physics"] = physics
+            named = {v for v in _named(node.info) if isinstance(v, str)}
+            whatif = [frame for frame in ({"t": f["t"], "changed": {k: v for k, v in f["changed"].items() if k in named}}
+                                          for f in self._whatif.take(state)) if frame["changed"]]
+            if whatif:  # what a query (stable) simulated on the prospection copy: the objects the step names
+                entry["prospection"] = whatif
+            location = node.info.get("location")
+            if isinstance(location, dict) and MAP_KEY in location:  # the replay's, not the trace's
+                entry["candidates"] = location.pop(MAP_KEY)
+            self.steps.append(entry)
             self._last = state
         if self.inner is not None:
             self.inner.finished(node)
@@ -112,6 +165,88 @@ class Recorder:
     def record(self) -> dict[str, Any]:
         """The replay record (see the module docstring), ready for the trace's `replay` key."""
         return {"world_file": self.world_file, "initial": self.initial, "steps": list(self.steps)}
+
+
+class PhysicsFrames:
+    """The physics frames of the step running now (see the module docstring): `stepped` after every simulation
+    step, `take` when the step has finished."""
+
+    def __init__(self, world: "BulletWorld", state: State, free_only: bool = False) -> None:
+        self.world = world
+        self.free_only = free_only  # only the free objects' poses, also in the first frame (a prospection copy's)
+        self._last = state  # the state the next frame's changes are counted from
+        self._frames: list[dict[str, Any]] = []
+        self._pending: State = {}  # what a dropped frame moved, for the next kept one
+        self._steps = 0  # simulation steps since the step began
+        self._every = PHYSICS_EVERY
+
+    def stepped(self, world: "BulletWorld") -> None:
+        self._steps += 1
+        if self._steps % self._every:
+            return
+        first = not self._frames and not self._pending and not self.free_only
+        now = world_state(world, free_only=not first)
+        moved = changes(self._last, now) if first else {
+            name: entry for name, entry in now.items() if _moved(self._last.get(name), entry)}
+        self._last = now if first else {**self._last, **moved}
+        if self._pending:
+            moved = _merged(self._pending, moved)  # the dropped frame's changes: already counted in _last
+            self._pending = {}
+        self._frames.append({"t": round(self._steps / STEP_HZ, 4) + 0.0, "changed": moved})
+        if len(self._frames) > MAX_PHYSICS_FRAMES:
+            self._thin()
+
+    def _thin(self) -> None:
+        """Keep every second frame (each taking what the one before it moved); an odd last one waits for the next."""
+        kept: list[dict[str, Any]] = []
+        frames = self._frames
+        for index in range(1, len(frames), 2):
+            kept.append({"t": frames[index]["t"], "changed": _merged(frames[index - 1]["changed"],
+                                                                       frames[index]["changed"])})
+        self._pending = frames[-1]["changed"] if len(frames) % 2 else {}
+        self._frames = kept
+        self._every *= 2
+
+    def take(self, state: State) -> list[dict[str, Any]]:
+        """The frames of the step that has just finished (in the world `state`); the next step starts afresh."""
+        frames, self._frames, self._pending = self._frames, [], {}
+        self._last, self._steps, self._every = state, 0, PHYSICS_EVERY
+        return [frame for frame in frames if frame["changed"]]
+
+
+def _named(info: dict[str, Any]) -> Iterable[Any]:
+    """The values a step's record names: its designator's slots, its query's arguments and its condition's."""
+    for key in ("designator",):
+        if isinstance(info.get(key), dict):
+            yield from (info[key].get("resolved") or info[key].get("slots") or {}).values()
+    if isinstance(info.get("query"), dict):
+        yield from (info["query"].get("args") or {}).values()
+    condition = info.get("condition")
+    while isinstance(condition, dict):
+        if isinstance(condition.get("query"), dict):
+            yield from (condition["query"].get("args") or {}).values()
+        condition = condition.get("not")
+
+
+def _moved(before: dict[str, Any] | None, after: dict[str, Any]) -> bool:
+    """Whether a free object's pose changed by more than PHYSICS_TOLERANCE (in a coordinate of its position or
+    quaternion) since its last physics frame: what rests keeps out of the frames, a slow drift still shows."""
+    if before is None:
+        return True
+    return any(abs(a - b) > PHYSICS_TOLERANCE for key in ("position", "orientation")
+               for a, b in zip(before[key], after[key]))
+
+
+def _merged(earlier: State, later: State) -> State:
+    """Two frames' changes as one: the later one's values where both changed something."""
+    merged: State = {name: dict(entry) for name, entry in earlier.items()}
+    for name, entry in later.items():
+        into = merged.setdefault(name, {})
+        joints = {**into.get("joints", {}), **entry.get("joints", {})}
+        into.update(entry)
+        if joints:
+            into["joints"] = joints
+    return merged
 
 
 def _earlier_attempts(summary_path: str, child_path: str) -> Callable[[str], bool]:

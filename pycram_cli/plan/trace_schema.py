@@ -17,7 +17,10 @@ import re
 from typing import Any, Callable
 
 from ..errors import InputError, InputErrors, Location
-from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_STEP_DEPTH, MAX_TRACE_NODES
+from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_PHYSICS_FRAMES, MAX_STEP_DEPTH, MAX_TRACE_NODES
+
+#: candidate positions one locate step's map may hold in a trace's replay record
+MAX_CANDIDATES = 200_000
 
 Path = tuple[Any, ...]  # keys and indices from the top of the trace
 RUN_STATUSES = ("succeeded", "failed", "cancelled", "interrupted")
@@ -290,16 +293,80 @@ class _Checker:
 
     def replay_step(self, step: Any, path: Path, objects: set[str] | None, refs: bool) -> None:
         if not self.fields(step, path, "a replayed step", {"path": self.string, "status": self.status(NODE_STATUSES),
-                                                            "changed": self.obj}, {"folded": self.count}):
+                                                            "changed": self.obj},
+                           {"folded": self.count, "physics": self.physics_frames, "prospection": self.physics_frames,
+                            "candidates": self.candidate_map}):
             return
         if refs and isinstance(step.get("path"), str) and step["path"] not in self.paths:
             self.add(path + ("path",), f"no step of the trace has the path {json.dumps(step['path'])}")
-        changed = step.get("changed")
-        if isinstance(changed, dict):
-            for name, entry in changed.items():
-                where = path + ("changed", name)
-                if not refs or self.known_object(name, where, objects):
-                    self.body_state(entry, where, f"the change of '{name}'", full=False)
+        changes = [(path, step.get("changed"))]
+        for key in ("physics", "prospection"):
+            physics = step.get(key)
+            if isinstance(physics, list):
+                for index, frame in enumerate(physics):
+                    if self.fields(frame, path + (key, index), "a physics frame", {"t": self.seconds, "changed": self.obj}):
+                        changes.append((path + (key, index), frame.get("changed")))
+        for where_from, changed in changes:
+            if isinstance(changed, dict):
+                for name, entry in changed.items():
+                    where = where_from + ("changed", name)
+                    if not refs or self.known_object(name, where, objects):
+                        self.body_state(entry, where, f"the change of '{name}'", full=False)
+
+    def candidate_map(self, value: Any, path: Path) -> None:
+        """A locate step's candidate map (locations/plot.py `candidate_map`), which the report draws."""
+        if not self.fields(value, path, "a candidate map",
+                           {"kind": self.string, "z": self.place_number, "spacing": self.spacing, "xy": self.millimetres,
+                            "outcome": self.outcome_indices, "outcomes": self.names, "found": self.found_poses},
+                           {"why": self.reasons, "target": self.vector(3)}):
+            return
+        xy, outcome, names = value.get("xy"), value.get("outcome"), value.get("outcomes")
+        if isinstance(xy, list) and isinstance(outcome, list) and len(xy) != 2 * len(outcome):
+            self.add(path, "a candidate map needs two coordinates ('xy') for each outcome")
+        if isinstance(outcome, list) and isinstance(names, list) and any(
+                isinstance(v, int) and v >= len(names) for v in outcome):
+            self.add(path + ("outcome",), f"an outcome beyond the {len(names)} named in 'outcomes'")
+        if value.get("kind") not in ("base", "spot", None):
+            self.add(path + ("kind",), "expected 'base' or 'spot'")
+
+    def place_number(self, value: Any, path: Path) -> None:
+        if not _is_number(value) or abs(value) > MAX_MAGNITUDE:
+            self.add(path, f"expected a number between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}")
+
+    def spacing(self, value: Any, path: Path) -> None:
+        if not _is_number(value) or not 0 < value <= 1:
+            self.add(path, "expected a spacing in metres, above 0 and at most 1")
+
+    def millimetres(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and len(value) <= 2 * MAX_CANDIDATES and all(
+                isinstance(v, int) and not isinstance(v, bool) and abs(v) <= 32767 for v in value)):
+            self.add(path, f"expected at most {2 * MAX_CANDIDATES} whole numbers of millimetres, each at most 32767 in size")
+
+    def outcome_indices(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and len(value) <= MAX_CANDIDATES and all(
+                isinstance(v, int) and not isinstance(v, bool) and 0 <= v < 256 for v in value)):
+            self.add(path, f"expected at most {MAX_CANDIDATES} whole numbers from 0 to 255")
+
+    def names(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and len(value) <= 256 and all(isinstance(v, str) for v in value)):
+            self.add(path, "expected a list of at most 256 strings")
+
+    def reasons(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, dict) and all(isinstance(v, str) for v in value.values())):
+            self.add(path, "expected an object of strings")
+
+    def found_poses(self, value: Any, path: Path) -> None:
+        if not (isinstance(value, list) and all(isinstance(f, list) and len(f) == 3 and all(_is_number(v) for v in f)
+                                                for f in value)):
+            self.add(path, "expected a list of poses [x, y, yaw]")
+
+    def physics_frames(self, value: Any, path: Path) -> None:
+        if self.typed(value, path, list, "a list of physics frames") and len(value) > MAX_PHYSICS_FRAMES:
+            self.add(path, f"more than {MAX_PHYSICS_FRAMES} physics frames (a step records at most that many)")
+
+    def seconds(self, value: Any, path: Path) -> None:
+        if not _is_number(value) or not 0 <= value <= MAX_MAGNITUDE:
+            self.add(path, f"expected a number of seconds from 0 to {MAX_MAGNITUDE:g}")
 
     def known_object(self, name: str, path: Path, objects: set[str] | None) -> bool:
         if objects is not None and name not in objects:

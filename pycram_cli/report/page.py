@@ -18,7 +18,7 @@ from ..files import probe
 from ..paths import find_world
 from ..plan.trace import REPLAY_KEY
 from ..worldfile.loader import load_world
-from .scene import Scene, frames
+from .scene import Replayer, Scene
 
 ASSETS = Path(__file__).resolve().parent / "assets"
 REPORT_FORMATS = {".html": "HTML", ".htm": "HTML"}
@@ -64,12 +64,13 @@ def report_data(trace: dict[str, Any], world_path: Path) -> dict[str, Any]:
     world = load_world(world_path)
     try:
         scene = Scene(world)
-        steps = frames(scene, replay, _index(trace.get("root") or {}, {}))
+        replayer = Replayer(scene, replay, _index(trace.get("root") or {}, {}), trace.get("root") or {})
+        steps = replayer.frames()
         drawn = scene.to_dict()
     finally:
         world.exit()
     shown = {k: v for k, v in trace.items() if k != REPLAY_KEY}
-    return {"trace": shown, "scene": drawn, "frames": steps, "replayed": bool(replay),
+    return {"trace": shown, "scene": drawn, "frames": steps, "failures": replayer.failures, "replayed": bool(replay),
             "world_file": world_path.name, "generator": f"pycram {_pycram_version()}"}
 
 

@@ -90,8 +90,12 @@ class Scenario:
 
     def _run(self, world: BulletWorld, observer: Observer | None, replay: bool) -> RunResult:
         recorder = Recorder(world, observer, self.world_path) if replay else None
-        result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
-                          bound=True)
+        try:
+            result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
+                              bound=True)
+        finally:
+            if recorder is not None:
+                recorder.close()
         if recorder is not None:
             result.trace[REPLAY_KEY] = recorder.record()
         return result

@@ -128,6 +128,10 @@ class BulletWorld:
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
+        self._step_watchers: list[Callable[["BulletWorld"], None]] = []  # called after every step (watch_steps)
+        self._copy_watchers: list[Callable[["BulletWorld"], None]] = []  # the same, for the prospection copy's steps
+        #: a replay of a run on this world is being recorded (plan/replay.py): steps may keep details for it
+        self.recording_replay = False
         self._view: ViewRenderer | None = None  # made on the first picture_of
         self._captions: dict[int, int] = {}  # the GUI's caption text items by line, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
@@ -155,6 +159,19 @@ class BulletWorld:
     def add_exit_hook(self, hook: Callable[[], None]) -> None:
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
         self._exit_hooks.append(hook)
+
+    def watch_steps(self, watcher: Callable[["BulletWorld"], None], prospection: bool = False) -> Callable[[], None]:
+        """Call `watcher(world)` after every physics step of this world (a replay recording the motion physics
+        makes), or with `prospection` of its prospection copy, where queries like `stable` simulate what would
+        happen (prospection.py; the copy is passed); returns the function that stops it."""
+        watchers = self._copy_watchers if prospection else self._step_watchers
+        watchers.append(watcher)
+
+        def unwatch() -> None:
+            if watcher in watchers:
+                watchers.remove(watcher)
+
+        return unwatch
 
     def exit(self) -> None:
         """Disconnect the client; the current world becomes the newest live one (or None)."""
@@ -286,6 +303,8 @@ class BulletWorld:
         p.stepSimulation(physicsClientId=self.client_id)
         self.mark_changed()
         self._follow_parents()
+        for watcher in self._step_watchers:
+            watcher(self)
 
     def _follow_parents(self) -> None:
         """Every parent, in world order, moves what is attached to it (children only: nothing to do)."""

@@ -23,7 +23,6 @@ from PIL import Image
 from ..files import write_atomic
 from ..kinds import parse_vector
 from ..limits import MAX_MAGNITUDE
-from ..limits import MAX_MAGNITUDE
 
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
@@ -185,16 +184,30 @@ def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = No
     chosen = list(objects) if objects is not None else movable_objects(world)
     if not chosen:
         return robot_camera(world, (), fov_deg, aspect)
-    points = [c for o in chosen for c in _corners(o.get_aabb())]
+    return boxes_camera(world, [o.get_aabb() for o in chosen], fov_deg, aspect)
+
+
+def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
+                 fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8,
+                 pitch_deg: float = -45.0, clear: bool = True,
+                 heading: Sequence[float] | None = None) -> Camera:
+    """Bounding boxes (lo, hi) framed close, seen from the robot's side of them: `objects_camera`, for boxes that
+    are not (only) objects' — a failed object and the box of the pose it was meant to have. `clear=False`: from
+    where the framing puts it, even if something stands in the way (a view that shows through walls). `heading`:
+    the way (x, y) to look, default from the robot towards the boxes."""
+    points = [c for box in boxes for c in _corners(box)]
     centre = np.mean(np.asarray(points), axis=0)
-    heading: tuple[float, float] = (1.0, 0.0)
-    if world.robot is not None:
+    if heading is None and world.robot is None:
+        heading = (1.0, 0.0)
+    elif heading is None:
         position = world.robot.get_position()
         towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
         heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
-    centres = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in chosen]
-    return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=-45.0, turn_deg=20.0, min_distance=0.8,
-                        focus=centres)
+    centres = [tuple((a + b) / 2 for a, b in zip(*box)) for box in boxes]
+    if not clear:
+        return framing_camera(points, heading, fov_deg, aspect, pitch_deg, 20.0, min_distance)
+    return clear_camera(world, points, heading, fov_deg, aspect, pitch_deg=pitch_deg, turn_deg=20.0,
+                        min_distance=min_distance, focus=centres)
 
 
 def poses(world: "BulletWorld") -> dict[str, tuple[tuple[float, ...], tuple[float, ...]]]:

@@ -63,6 +63,7 @@ class Prospection:
         self.world = world
         self.copy = BulletWorld(mode="direct", gravity=world.gravity, _hidden=True)
         p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=self.copy.client_id)
+        self.copy._step_watchers = world._copy_watchers  # the world's watchers of its copy's steps (watch_steps)
         self._pairs: list[tuple[Object, Object]] = []  # (object, its copy), in the world's order
         self._copies: dict[int, Object] = {}  # by id() of the object (the pairs keep both alive)
         self._originals: dict[int, Object] = {}

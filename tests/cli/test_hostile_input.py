@@ -344,6 +344,16 @@ def test_a_corrupt_replay_record_is_an_input_error_naming_the_entry(tmp_path):
         'replay.steps[0].path: no step of the trace has the path "body/9:log"':
             lambda r: r["steps"][0].update(path="body/9:log"),
         "replay: the replay record needs 'initial'": lambda r: r.pop("initial"),
+        "replay.steps[0].physics[0].t: expected a number of seconds from 0 to 1e+06":
+            lambda r: r["steps"][0].update(physics=[{"t": -1, "changed": {}}]),
+        "replay.steps[0].physics[0].changed.box.position: expected a position: a list of 3 numbers":
+            lambda r: r["steps"][0].update(physics=[{"t": 0.05, "changed": {"box": {"position": [0], "orientation": [0, 0, 0, 1]}}}]),
+        "replay.steps[0].candidates: a candidate map needs two coordinates ('xy') for each outcome":
+            lambda r: r["steps"][0].update(candidates={"kind": "base", "z": 0, "spacing": 0.05, "xy": [1, 2, 3],
+                                                       "outcome": [0], "outcomes": ["ok"], "found": []}),
+        "replay.steps[0].candidates.found: expected a list of poses [x, y, yaw]":
+            lambda r: r["steps"][0].update(candidates={"kind": "base", "z": 0, "spacing": 0.05, "xy": [1, 2],
+                                                       "outcome": [0], "outcomes": ["ok"], "found": "here"}),
     }
     for message, change in broken.items():
         copy = json.loads(json.dumps(data))

@@ -182,3 +182,75 @@ def test_folding_steps_keeps_the_state_after_them_when_other_branches_interleave
     assert steps[1]["folded"] == 2
     # after it: a where the other branch put it last (2.0), b where the attempt put it (3.0)
     assert steps[1]["changed"] == {"a": pose(2.0), "b": pose(3.0)}
+
+
+FAILING_MILK = {"jobs": [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]}
+
+
+@pytest.fixture(scope="module")
+def milk_over_the_edge():
+    """The README's failing example: the milk placed over the island's edge tips over while place settles it."""
+    return prepare(REPO / "plans" / "set_table.yaml", params=FAILING_MILK).run(replay=True)
+
+
+def _tilt(orientation) -> float:
+    """Degrees between an object's z axis and the vertical."""
+    import math
+    x, y, z, w = orientation
+    return math.degrees(math.acos(max(-1.0, min(1.0, 1 - 2 * (x * x + y * y)))))
+
+
+def test_physics_inside_a_step_is_recorded_at_20_frames_per_simulated_second(milk_over_the_edge):
+    assert milk_over_the_edge.status == "failed"
+    steps = milk_over_the_edge.trace[traces.REPLAY_KEY]["steps"]
+    with_physics = [s for s in steps if s.get("physics")]
+    assert [s["path"].rsplit("/", 1)[1] for s in with_physics] == ["0:place"]  # only place lets physics run
+    frames = with_physics[0]["physics"]
+    times = [f["t"] for f in frames]
+    assert times == sorted(times) and times[0] == pytest.approx(0.05) and len(frames) >= 20 * times[-1] - 1
+    milk = [f["changed"]["milk"] for f in frames if "milk" in f["changed"]]
+    tilts = [_tilt(m["orientation"]) for m in milk]
+    heights = [m["position"][2] for m in milk]
+    # the fall itself: standing at first, lying at the end, and frames in between
+    assert tilts[0] < 5 and tilts[-1] > 60 and any(15 < t < 60 for t in tilts)
+    assert heights[0] > 0.85 and heights[-1] < 0.5
+    # only what moved: the robot's joints in the first frame only (physics holds them), resting objects rarely
+    assert all("pr2" not in f["changed"] for f in frames[1:])
+    assert sum(len(f["changed"]) for f in frames) < 3 * len(frames)
+
+
+def test_physics_frames_are_bounded_per_step(world, data_dir):
+    from pycram_cli import Object
+    from pycram_cli.limits import MAX_PHYSICS_FRAMES
+    from pycram_cli.plan.trace import TraceNode
+
+    world.set_gravity((0, 0, -9.81))
+    Object("cube", "box", data_dir / "cube.obj", position=(0, 0, 50))  # falls for the whole time
+    recorder = Recorder(world)
+    world.simulate(10.0)  # 200 frames at 20 per second: thinned to every 8th
+    recorder.finished(TraceNode("body/0:wait", "wait"))
+    recorder.close()
+    frames = recorder.record()["steps"][0]["physics"]
+    assert MAX_PHYSICS_FRAMES // 2 <= len(frames) <= MAX_PHYSICS_FRAMES
+    gaps = {round(b["t"] - a["t"], 4) for a, b in zip(frames, frames[1:])}
+    assert len(gaps) == 1  # evenly spaced after thinning
+    heights = [f["changed"]["cube"]["position"][2] for f in frames]
+    assert heights == sorted(heights, reverse=True)
+    world.simulate(0.5)  # no longer watched
+    assert len(recorder.record()["steps"]) == 1
+
+
+def test_the_physics_frames_are_the_same_on_every_run_and_outside_the_comparable_trace(milk_over_the_edge):
+    again = prepare(REPO / "plans" / "set_table.yaml", params=FAILING_MILK).run(replay=True)
+    assert traces.dumps(again.trace[traces.REPLAY_KEY]) == traces.dumps(milk_over_the_edge.trace[traces.REPLAY_KEY])
+    assert "physics" not in json.dumps(traces.comparable(milk_over_the_edge.trace))
+
+
+def test_what_stable_simulates_on_the_prospection_copy_is_recorded_apart(milk_over_the_edge):
+    steps = milk_over_the_edge.trace[traces.REPLAY_KEY]["steps"]
+    check = steps[-1]
+    assert check["path"].endswith("12:assert") and check["status"] == "failed"
+    frames = check["prospection"]  # stable(milk) tried it out on the copy: the milk goes on moving there
+    assert frames and all(set(f["changed"]) == {"milk"} for f in frames)  # only what the step names
+    assert [f["t"] for f in frames] == sorted(f["t"] for f in frames)
+    assert "milk" not in check["changed"] and "physics" not in check  # the world itself did not move

@@ -38,6 +38,7 @@ def test_the_report_is_one_small_self_contained_file(set_table_report):
     report, _ = set_table_report
     text = report.read_text(encoding="utf-8")
     assert report.stat().st_size <= MAX_BYTES
+    assert round(report.stat().st_size / 1e6, 1) == 0.8  # as README.md says ("set_table's: 0.8 MB")
     assert text.startswith("<!DOCTYPE html>")
     # nothing is loaded from elsewhere: no external scripts, styles, images or fetches
     assert not re.search(r"<(script|link|img|iframe)[^>]+(src|href)=", text)
@@ -122,3 +123,49 @@ def test_names_and_messages_that_look_like_html_are_embedded_so_the_page_still_s
     assert hostile in json.dumps(data, ensure_ascii=False)
     assert ('<!--<script>' + hostile) in json.dumps(data, ensure_ascii=False)
     assert text.rstrip().endswith("</html>") and text.count("<script") == text.lower().count("</script>")
+
+
+@pytest.fixture(scope="module")
+def actions_trace(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("actions")
+    result = run("run", "set_table_actions", "--report", folder / "run.html", "--trace", folder / "run.json")
+    assert result.exit_code == 0, result.output
+    return folder / "run.html", folder / "run.json"
+
+
+def test_the_report_of_set_table_actions_stays_under_2_mb(actions_trace):
+    report, _ = actions_trace
+    assert report.stat().st_size < 2_000_000
+    data = page_data(report)
+    assert sum(1 for f in data["frames"] if f.get("candidates")) >= 15  # with every locate step's candidate map
+
+
+def test_with_the_real_pr2s_detailed_meshes_the_report_stays_under_2_mb(actions_trace, shared_models, tmp_path):
+    _, saved = actions_trace
+    world = (REPO / "worlds" / "kitchen.yaml").read_text().replace(
+        "file: robots/pr2/pr2.urdf", f"file: {shared_models / 'pr2' / 'pr2.urdf'}")
+    (tmp_path / "real.yaml").write_text(world)
+    out = tmp_path / "real.html"
+    result = run("trace", "show", saved, "--world", tmp_path / "real.yaml", "--report", out)
+    assert result.exit_code == 0, result.output
+    data = page_data(out)
+    pr2 = next(b for b in data["scene"]["bodies"] if b["name"] == "pr2")
+    meshes = {data["scene"]["meshes"][s["mesh"]]["name"] for link in pr2["links"] for s in link["shapes"] if "mesh" in s}
+    assert {"base.dae", "upper_arm.dae", "head_tilt.dae", "l_finger.dae"} <= meshes  # its COLLADA looks are drawn
+    assert data["scene"]["skipped"] == []
+    assert out.stat().st_size < 2_000_000
+
+
+def test_the_reasoning_of_a_step_is_in_its_frame(set_table_report):
+    data = page_data(set_table_report[0])
+    names = [b["name"] for b in data["scene"]["bodies"]]
+    reach = [f["reasoning"] for f in data["frames"] if (f.get("reasoning") or {}).get("kind") == "reach"]
+    # the bowl's blocking query: the cereal is in the way (set_table moves it first)
+    assert any([names[b] for b in r["objects"]] == ["bowl"] and [names[b] for b in r["blockers"]] == ["cereal"]
+               for r in reach)
+    views = [f["reasoning"] for f in data["frames"] if (f.get("reasoning") or {}).get("kind") == "view"]
+    assert views and all(len(v["eye"]) == 3 and len(v["axes"]) == 9 and 0 < v["fov"][0] < 3.2 for v in views)
+    # the camera's optical axes are a rotation: unit and orthogonal
+    import numpy as np
+    axes = np.array(views[0]["axes"]).reshape(3, 3)
+    assert np.allclose(axes @ axes.T, np.eye(3), atol=1e-3)

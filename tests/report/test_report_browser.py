@@ -40,12 +40,29 @@ def report(tmp_path_factory) -> Path:
     return path
 
 
+def body_of(dom: str) -> dict[str, str]:
+    """The data attributes the page keeps on <body> (data-selected-pose as selectedpose)."""
+    body = re.search(r"<body([^>]*)>", dom)
+    assert body, dom[:2000]
+    return {k.replace("-", ""): v for k, v in re.findall(r'data-([a-z-]+)="([^"]*)"', body.group(1))}
+
+
+def dump(tmp_path: Path, name: str, url: str) -> tuple[str, dict[str, str]]:
+    dom = chromium(tmp_path / name, "--dump-dom", url).stdout.decode(errors="replace")
+    return dom, body_of(dom)
+
+
+def screenshot(tmp_path: Path, name: str, url: str, size: tuple[int, int] = WINDOW) -> np.ndarray:
+    shot = tmp_path / f"{name}.png"
+    done = chromium(tmp_path / name, f"--screenshot={shot}", f"--window-size={size[0]},{size[1]}", url)
+    assert shot.is_file(), done.stderr.decode(errors="replace")[-2000:]
+    return np.asarray(Image.open(io.BytesIO(shot.read_bytes())).convert("RGB")).astype(int)
+
+
 def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     url = report.as_uri() + "#step=last"
     dom = chromium(tmp_path / "dom", "--dump-dom", url).stdout.decode(errors="replace")
-    body = re.search(r"<body([^>]*)>", dom)
-    assert body, dom[:2000]
-    attributes = dict(re.findall(r'data-([a-z]+)="([^"]*)"', body.group(1)))
+    attributes = body_of(dom)
     assert attributes.get("ready") == "1", "the page's script did not finish"
     assert attributes.get("webgl") == "ok", "no WebGL: the 3D view cannot draw"
     assert attributes["step"] == attributes["steps"] == "67"  # seeked to the last step
@@ -56,6 +73,11 @@ def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     current = re.search(r'<li class="([^"]*\bcurrent\b[^"]*)" data-path="([^"]+)"', dom)
     assert current and current.group(2).endswith("item 3/1:if/else/0:call move_object/12:assert")
     assert not re.search(r"<li class=\"st-pending", dom)  # at the last step everything has run
+    # the final frame shows the result: the four placed objects are in view, each with its label
+    for name in ("bowl", "milk", "cereal", "spoon"):
+        tag = re.search(rf'<span class="label3d[^"]*" data-body="{name}"[^>]*>', dom)
+        assert tag and "hidden" not in tag.group(0), f"{name} is not in view at the end"
+    assert attributes["failures"] == "0" and not attributes.get("failure")  # a run without failures
 
     shot = tmp_path / "report.png"
     done = chromium(tmp_path / "shot", f"--screenshot={shot}", url)
@@ -73,9 +95,184 @@ def test_the_report_replays_to_the_last_step_in_chromium(report, tmp_path):
     assert blue.sum() > 20
 
 
+def test_a_composite_opens_at_its_first_step(report, tmp_path):
+    dom, attributes = dump(tmp_path, "node", report.as_uri() + "#node=body/0:for_each/item 1")
+    current = re.search(r'<li class="([^"]*\bcurrent\b[^"]*)" data-path="([^"]+)"', dom)
+    assert current and current.group(2) == "body/0:for_each/item 1/0:world-state-detecting"  # its first step
+    assert 0 < int(attributes["step"]) < 67
+
+
 def test_the_report_plays_by_itself(report, tmp_path):
     dom = chromium(tmp_path / "play", "--dump-dom", report.as_uri() + "#step=3&play").stdout.decode(errors="replace")
     body = re.search(r"<body([^>]*)>", dom)
     assert body
     attributes = dict(re.findall(r'data-([a-z]+)="([^"]*)"', body.group(1)))
     assert int(attributes["step"]) > 6, "playing did not move on from step 3"
+
+
+def test_the_view_can_be_saved_as_a_png(report, tmp_path):
+    dom, attributes = dump(tmp_path, "png", report.as_uri() + "#step=last&png")
+    link = re.search(r'<a id="png-link"[^>]*href="data:image/png;base64,([^"]+)"', dom)
+    assert link, "no image was made"
+    image = Image.open(io.BytesIO(__import__("base64").b64decode(link.group(1))))
+    assert image.format == "PNG" and image.width > 300 and image.height > 200
+    assert len(np.unique(np.asarray(image.convert("RGB")).reshape(-1, 3) // 8, axis=0)) > 40  # the kitchen, not blank
+
+
+def test_the_layout_holds_at_800_pixels(report, tmp_path):
+    for width, height in ((1400, 900), (1024, 700), (800, 600)):
+        dom = chromium(tmp_path / f"w{width}", "--dump-dom", f"--window-size={width},{height}",
+                       report.as_uri() + "#step=last").stdout.decode(errors="replace")
+        attributes = body_of(dom)
+        assert attributes["fits"] == "true", (width, height, attributes.get("view"))
+    image = screenshot(tmp_path, "narrow", report.as_uri() + "#step=last", (800, 600))
+    left, top, w, h = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 30:top + h - 10, left + 10:left + w - 10]
+    assert (np.abs(view - np.array([0xDD, 0xE3, 0xEA])).sum(axis=2) > 30).mean() > 0.3  # the scene is drawn
+
+
+FAILING = {"jobs": [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]}
+
+
+@pytest.fixture(scope="module")
+def failed_report(tmp_path_factory) -> Path:
+    """The README's failing example: the milk placed over the island's edge falls while place settles it."""
+    import json as _json
+    path = tmp_path_factory.mktemp("failed") / "run.html"
+    result = CliRunner().invoke(cli, ["run", "set_table", "-p", f"jobs={_json.dumps(FAILING['jobs'])}",
+                                      "--report", str(path)])
+    assert result.exit_code == 1, result.output
+    return path
+
+
+def _page_data(path: Path) -> dict:
+    import json as _json
+    text = path.read_text(encoding="utf-8")
+    return _json.loads(re.search(r'id="pycram-data">(.*?)</script>', text, re.S).group(1))
+
+
+def test_a_failed_run_opens_at_its_failure_with_the_object_and_its_target_highlighted(failed_report, tmp_path):
+    data = _page_data(failed_report)
+    steps = len(data["frames"]) - 1
+    dom, attributes = dump(tmp_path, "failed", failed_report.as_uri())
+    assert attributes["ready"] == "1" and attributes["webgl"] == "ok" and attributes["failures"] == "1"
+    assert attributes["step"] == attributes["failure"] == str(steps)  # opened at the failing step: the last
+    assert attributes["highlighted"] == "milk" and attributes["ghost"] == "milk"
+    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="reasonbox"', dom, re.S)
+    assert failbox and "ReasoningFailure" in failbox.group(1) and "milk is not stable where it was placed" in failbox.group(1)
+    assert "where it was meant to go [-0.65, 1.00, 0.86]" in failbox.group(1)
+    assert 'id="next-failure"' in dom and 'id="next-failure" hidden' not in dom
+    # drawn: the milk glows (pink-red), its ghost stands green at the island's edge
+    image = screenshot(tmp_path, "failed", failed_report.as_uri())
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 80:top + height - 10, left + 10:left + width - 10]  # below the caption and the failure text
+    pink = (view[:, :, 0] > 150) & (view[:, :, 0] - view[:, :, 1] > 50) & (view[:, :, 2] - view[:, :, 1] > 10)
+    green = (view[:, :, 1] - view[:, :, 0] > 25) & (view[:, :, 1] - view[:, :, 2] > 15)
+    assert pink.sum() > 30, "the failed object is not highlighted"
+    assert green.sum() > 100, "the ghost of the target is not drawn"
+
+
+def test_a_frame_in_the_middle_of_place_shows_the_milk_falling(failed_report, tmp_path):
+    data = _page_data(failed_report)
+    place = next(k for k, f in enumerate(data["frames"]) if f.get("physics"))
+    assert data["frames"][place]["path"].endswith("0:place")
+    standing = lying = None
+    for at, name in ((place - 1, "before"), (place - 0.5, "middle"), (place, "after")):
+        _, attributes = dump(tmp_path, f"at{name}", failed_report.as_uri() + f"#step={at}&select=milk")
+        assert attributes["selected"] == "milk"
+        x, y, z, tilt = (float(v) for v in attributes["selectedpose"].split(","))
+        if name == "before":
+            standing = (z, tilt)
+        elif name == "after":
+            lying = (z, tilt)
+        else:
+            middle = (z, tilt)
+    assert lying[1] > 60 and lying[0] < standing[0] - 0.3  # it fell off the island
+    # during the failed stable check, what it simulated on a copy of the world: the milk as an amber ghost
+    last = len(data["frames"]) - 1
+    assert data["frames"][last]["whatif"]["body"] == [b["name"] for b in data["scene"]["bodies"]].index("milk")
+    _, attributes = dump(tmp_path, "whatif", failed_report.as_uri() + f"#step={last - 0.5}")
+    assert attributes["whatif"] == "milk" and attributes["step"] == str(last)
+    assert 10 < middle[1] < lying[1] - 10 or lying[0] + 0.05 < middle[0] < 0.85, (standing, middle, lying)
+
+
+@pytest.fixture(scope="module")
+def actions_report(tmp_path_factory) -> tuple[Path, Path]:
+    """set_table_actions: locate steps (candidate maps) and looking steps (view cones)."""
+    folder = tmp_path_factory.mktemp("actions")
+    result = CliRunner().invoke(cli, ["run", "set_table_actions", "--report", str(folder / "run.html"),
+                                      "--trace", str(folder / "run.json")])
+    assert result.exit_code == 0, result.output
+    return folder / "run.html", folder / "run.json"
+
+
+def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_report, tmp_path):
+    report, saved = actions_report
+    assert report.stat().st_size < 2_000_000  # with a candidate map for every locate step
+    data = _page_data(report)
+    frames = data["frames"]
+    locate = next(k for k, f in enumerate(frames) if f.get("candidates"))
+    looking = next(k for k, f in enumerate(frames) if f["path"] and f["path"].endswith("looking"))
+    assert frames[looking]["reasoning"]["kind"] == "view"
+    assert frames[locate]["path"].endswith("locate") and frames[looking]["path"].endswith("looking")
+    # the map: as many positions as the resolution had; the chosen pose is the trace's found pose
+    node = {}
+    stack = [data["trace"]["root"]]
+    while stack:
+        n = stack.pop()
+        if n["path"] == frames[locate]["path"]:
+            node = n
+        stack.extend(n.get("children") or [])
+    found = node["location"]["found"]["position"]
+    assert frames[locate]["candidates"]["found"][0][:2] == pytest.approx(found[:2], abs=1e-3)
+    assert "candidate_map" not in saved.read_text()[:saved.read_text().index('"replay"')]  # not in the trace's tree
+
+    dom, attributes = dump(tmp_path, "locate", report.as_uri() + f"#step={locate}")
+    # the first locate chooses where to stand to see the bowl: its candidates, and the view cone from the pose chosen
+    assert attributes["step"] == str(locate) and attributes["reasoning"] == "view,candidates"
+    legend = re.search(r'<div id="reasonbox">(.*?)</div>\s*<div id="tooltip"', dom, re.S)
+    assert legend and f"{node['location']['candidates']} tried for where to stand" in legend.group(1)
+    assert "view cone" in legend.group(1) and "from the pose chosen" in legend.group(1)
+    planned = frames[locate]["reasoning"]
+    assert planned["target"] == pytest.approx(node["location"]["found"]["look-at"], abs=1e-3)
+    image = screenshot(tmp_path, "locate", report.as_uri() + f"#step={locate}")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 30:top + height - 100, left + 10:left + width - 10]
+    red = (view[:, :, 0] > 180) & (view[:, :, 1] < 110) & (view[:, :, 2] < 110)  # "collides" squares
+    r, g, b = view[:, :, 0], view[:, :, 1], view[:, :, 2]
+    peach = (r > 170) & (r - g > 20) & (r - g < 90) & (g - b > 25)  # "out of reach" squares (over the floor)
+    assert red.sum() > 200 and peach.sum() > 200, (red.sum(), peach.sum())
+
+    dom, attributes = dump(tmp_path, "looking", report.as_uri() + f"#step={looking}")
+    assert attributes["reasoning"] == "view"
+    legend = re.search(r'<div id="reasonbox">(.*?)</div>\s*<div id="tooltip"', dom, re.S)
+    assert legend and "view cone" in legend.group(1)
+    cone = screenshot(tmp_path, "looking", report.as_uri() + f"#step={looking}")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = cone[top + 30:top + height - 60, left + 10:left + width - 10]
+    blue = (view[:, :, 2] > 150) & (view[:, :, 2] - view[:, :, 0] > 90) & (view[:, :, 1] > 90)  # the cone's lines
+    assert blue.sum() > 100, blue.sum()
+
+
+def test_next_failure_walks_through_recovered_failures_too(tmp_path):
+    """fetch_spoon succeeds after a recovered PerceptionFailure: the page opens at the start, and the failure is
+    one `#failure=1` (or ⚠ next failure) away, marked recovered, its object drawn through the drawer that hides it."""
+    path = tmp_path / "spoon.html"
+    result = CliRunner().invoke(cli, ["run", "fetch_spoon", "--report", str(path)])
+    assert result.exit_code == 0, result.output
+    _, attributes = dump(tmp_path, "open", path.as_uri())
+    assert attributes["step"] == "0" and attributes["failures"] == "1" and not attributes.get("failure")
+    dom, attributes = dump(tmp_path, "first", path.as_uri() + "#failure=1")
+    assert attributes["failure"] == attributes["step"] != "0" and attributes["highlighted"] == "spoon"
+    failbox = re.search(r'<div id="failbox">(.*?)</div>\s*<div id="reasonbox"', dom, re.S)
+    assert failbox and "recovered" in failbox.group(1) and "PerceptionFailure" in failbox.group(1)
+    # the caption says the action first; the failed detecting has slots but nothing resolved: no empty row
+    caption = re.search(r'<div id="caption"><span><b>([^<]*)</b>', dom)
+    assert caption and caption.group(1).strip() == f"step {attributes['step']}/15 1:detecting"
+    details = re.search(r'<div id="details"[^>]*>(.*?)</div>', dom, re.S).group(1)
+    assert "<td>slots</td>" in details and "<td>resolved</td>" not in details
+    image = screenshot(tmp_path, "first", path.as_uri() + "#failure=1")
+    left, top, width, height = (int(v) for v in attributes["view"].split(","))
+    view = image[top + 100:top + height - 10, left + 10:left + width - 10]
+    pink = (view[:, :, 0] > 150) & (view[:, :, 0] - view[:, :, 1] > 50) & (view[:, :, 2] - view[:, :, 1] > 10)
+    assert pink.sum() > 30, "the spoon in the closed drawer is not shown"

@@ -22,6 +22,7 @@ from ...errors import PycramError
 from ...failures import Failure, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
+from ...locations.plot import MAP_KEY, candidate_map
 from ...process_modules import Robot
 from ...reasoning import QueryAnswer, run_query
 from ...world import BulletWorld, Object
@@ -57,8 +58,11 @@ class Finder:
         if res is None:
             return {"spec": jsonable(self.location)}
         counts = res.candidates.counts() if res.prepared else {}
-        return {"spec": jsonable(res.spec.to_json()), "candidates": len(res.candidates) if res.prepared else 0,
-                "tried": res.cursor, "ruled_out": dict(sorted(counts.items()))}
+        record = {"spec": jsonable(res.spec.to_json()), "candidates": len(res.candidates) if res.prepared else 0,
+                  "tried": res.cursor, "ruled_out": dict(sorted(counts.items()))}
+        if res.prepared and res.robot.world.recording_replay:  # the replay takes it (plan/replay.py), the trace not
+            record[MAP_KEY] = candidate_map(res)
+        return record
 
 
 class Actor:
