@@ -1,6 +1,6 @@
-"""Accessing: grasp a drawer handle and pull the drawer open, the gripper following the handle.
+"""Accessing, planned: grasp a drawer handle and pull the drawer open, the gripper following the handle.
 
-The handle is grasped like an object (`grasping.py`), from its link's box: the tool approaches
+The handle is grasped like an object (`grasps.py`), from its link's box: the tool approaches
 the way the description's first grasp points (the one `accessing` pulls handles with), the
 fingers close across the handle's thin side (a bar along y is taken across its height). The
 tool comes in from `APPROACH` back until it touches, the fingers close until they touch the
@@ -9,20 +9,19 @@ collision-checked (`motion.py`). What rests in the drawer rides along.
 """
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Sequence
 
 import numpy as np
 
-from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
-from ..kinds import arm_words, gripper_words
+from ..failures import GripperFailure, ManipulationFailure
+from ..kinds import gripper_words
 from ..reasoning.ik import IKSolution
+from ..robots import Robot
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
-from .arms import back_off, close_on, move_from_above, reach, set_gripper, solve_tool
-from .base import ProcessModule, Robot
-from .grasping import Grasp, grasps_of_box, holdable
-from .registry import process_module
+from .grasps import Grasp, grasps_of_box, holdable
+from .reach import reach, solve_tool
 
 #: how many steps the drawer is pulled in (the arm's path between two is checked)
 STEPS = 6
@@ -94,7 +93,7 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     index = part.joint(joint).index
-    moving = [(part, link) for link in range(len(part.joints)) if _below(part, link, index)]
+    moving = [(part, link) for link in range(len(part.joints)) if below_joint(part, link, index)]
     hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links
     with part.joints_kept([joint]), body.joints_kept(names):
         body.reset_joints(at.joint_positions)
@@ -113,7 +112,7 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
     return True
 
 
-def _below(part: Object, link: int, joint_index: int) -> bool:
+def below_joint(part: Object, link: int, joint_index: int) -> bool:
     """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
     while link != -1:
         if link == joint_index:
@@ -136,49 +135,3 @@ def drawer_pushes_into(robot: Robot, part: Object, moving: list[tuple[Object, in
             raise ManipulationFailure(f"{part.get_link_name(point.link_b)} would be {-point.distance * 1000:.0f} mm "
                                       f"inside {robot.body.get_link_name(point.link_a)}",
                                       colliding=[part.name], link=part.get_link_name(point.link_b))
-
-
-@process_module("accessing")
-class Accessing(ProcessModule):
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        part: Object = slots["part-of"]
-        joint = part.joint(slots["drawer-joint"])
-        handle = slots["drawer-handle"]
-        arm = slots["arm"]
-        start = part.get_joint_position(joint.name)
-        goal = min(joint.upper, joint.lower + float(slots["distance"])) if joint.limited else start + float(slots["distance"])
-        what = f"the handle {handle}"
-        set_gripper(robot, arm, "open")
-        grasp, pre, at = plan_handle_grasp(robot, arm, part, handle)
-        move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to {what}")
-        motion.advance(robot, at.joint_positions)
-        close_on(robot, arm)
-        # where the tool holds the handle, in the handle's frame: it follows the handle as the drawer moves
-        held = held_pose(robot, arm, part, handle)
-        riders = contents_of(part, joint.index)
-        hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links  # what holds the handle
-        # the hand holds the handle and moves with the drawer: the drawer's moving links are not in its way
-        moving = [(part, link) for link in range(len(part.joints)) if _below(part, link, joint.index)]
-        for obj in riders:
-            part.attach(obj, parent_link=part.get_link_name(joint.index))
-        try:
-            for value in pull_values(start, goal):
-                previous = part.get_joint_position(joint.name)
-                part.set_joint_position(joint.name, value)
-                tool = compose(part.get_link_position_and_orientation(handle), held)
-                try:
-                    solution = solve_tool(robot, arm, tool[0], tool[1], what)
-                    motion.move(robot, solution.joint_positions, f"the {arm_words(arm)} pulling {what}", ignore_links=moving)
-                    drawer_pushes_into(robot, part, moving, hand)
-                except (ReachabilityFailure, ManipulationFailure) as exc:
-                    part.set_joint_position(joint.name, previous)
-                    raise ManipulationFailure(
-                        f"the {arm_words(arm)} cannot follow {handle} beyond {previous - start:.2f} m "
-                        f"(asked to open {joint.name} to {goal:.2f} m): {exc}", arm=arm, joint=joint.name) from None
-        finally:
-            for obj in riders:
-                part.detach(obj)
-            set_gripper(robot, arm, "open")
-        back_off(robot, arm, what)
-

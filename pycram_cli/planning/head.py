@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from enum import Enum
-from typing import Any, Mapping, Sequence
+from typing import Sequence
 
 import numpy as np
 
@@ -22,12 +22,11 @@ from ..errors import InputError, Location
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
 from ..reasoning.ik import solve
+from ..robots import Robot
 from ..world.pose import compose, invert, matrix_to_quat, yaw_quaternion
-from .arms import move_over
-from .base import ProcessModule, Robot
-from .collisions import collisions
+from .contacts import collisions
 from .motion import followers
-from .registry import process_module
+from .paths import move_over
 
 #: how close to the optical axis a look must end (rad)
 AIM = math.radians(2.0)
@@ -245,10 +244,3 @@ def _move_wrist(robot: Robot, arm: str, target: Sequence[float]) -> None:
     raise ReachabilityFailure(f"the {arm_words(arm)} cannot hold its camera to look at {_where(target)}"
                               + (f": the ways are blocked by {', '.join(blocked)}" if blocked else ""),
                               target=list(target), colliding=blocked)
-
-
-@process_module("head")
-class MoveHead(ProcessModule):
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        look_at(robot, slots["target"])

@@ -1,6 +1,6 @@
 """Pick-up and place, with physics where it matters and every arm motion collision-checked (`motion.py`).
 
-Pick-up: the grasp comes from the object's own frame (`grasping.py`); the gripper opens, the tool
+Pick-up: the grasp comes from the object's own frame (`grasps.py`); the gripper opens, the tool
 goes to a pre-grasp pose `APPROACH` back along its approach, moves in until the fingers or the palm
 touch something (never inside it: the object, the drawer's bottom), the fingers close until they
 touch the object, the object is attached to the tool frame and lifted `LIFT` straight up. A hand whose
@@ -25,14 +25,13 @@ import numpy as np
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution
+from ..robots import Robot
 from ..world import Object
 from ..world.pose import (Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix,
                           yaw_quaternion)
 from . import motion
-from .arms import back_off, close_on, move_from_above, reach, reach_from, reach_near, reach_near_each, set_gripper
-from .base import ProcessModule, Robot
-from .grasping import Grasp, gripper_values, holdable_grasps, wanted_orientation
-from .registry import process_module
+from .grasps import Grasp, gripper_values, holdable_grasps, wanted_orientation
+from .reach import close_on, reach, reach_from, reach_near, reach_near_each, set_gripper
 
 #: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
 APPROACH = 0.10
@@ -70,7 +69,7 @@ def grasp_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
     return wanted_orientation(robot, grasp)
 
 
-def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:
+def offset_along(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:
     p = np.asarray(position, dtype=float) + direction * distance
     return (float(p[0]), float(p[1]), float(p[2]))
 
@@ -124,7 +123,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
         return False
 
     # every way's pre-grasp pose near where the arm is, searched a few at a time (`reach_near_each`)
-    reach_near_each(robot, arm, [(_offset(c.position, c.approach, -(c.depth + APPROACH)), c.orientation)
+    reach_near_each(robot, arm, [(offset_along(c.position, c.approach, -(c.depth + APPROACH)), c.orientation)
                                  for c in candidates], attempt)
     if taken:
         return taken[0]
@@ -145,7 +144,7 @@ def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolu
     flat spoon: the approach stops there anyway), if the gripper there is inside nothing and its closing fingers still
     meet the object; else None."""
     back = max(h.depth for h in hits) + SHORT_MARGIN
-    position = _offset(candidate.position, candidate.approach, -back)
+    position = offset_along(candidate.position, candidate.approach, -back)
     solution = reach_from(robot, arm, pre.joint_positions, position, candidate.orientation)
     if not solution.success or motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj]):
         return None
@@ -177,7 +176,7 @@ def retreat(robot: Robot, arm: str, obj: Object) -> None:
 
     def leg(direction: np.ndarray, distance: float) -> bool:
         tool = robot.body.get_link_position_and_orientation(tool_frame)
-        solution = reach(robot, arm, _offset(tool[0], direction, distance), tool[1])
+        solution = reach(robot, arm, offset_along(tool[0], direction, distance), tool[1])
         if not solution.success:
             raise ReachabilityFailure(f"{arm_words(arm)} cannot lift {obj.name}: the tool frame stays "
                                       f"{solution.position_error * 100:.1f} cm away", arm=arm, object=obj.name)
@@ -253,35 +252,6 @@ def level(orientation: Sequence[float], upright: Sequence[float] = (0.0, 0.0, 0.
     if tuple(upright) == (0.0, 0.0, 0.0, 1.0):
         return yaw_quaternion(heading)
     return quat_multiply(yaw_quaternion(heading), upright)
-
-
-@process_module("pick-up")
-class PickUp(ProcessModule):
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        obj: Object = slots["object"]
-        arm, grasp = slots["arm"], slots["grasp"]
-        holder = next((a.parent for a in obj.attachments.values() if a.child is obj), None)
-        if holder is not None:
-            raise ManipulationFailure(f"{obj.name} is already held by {holder.name}", object=obj.name)
-        held = robot.held_objects(arm)
-        if held:
-            raise GripperFailure(f"the {gripper_words(arm)} already holds {held[0].name}", arm=arm)
-        how = f"a {grasp} grasp" if isinstance(grasp, str) else "that grasp"
-        candidate, pre, solution = plan_grasp(robot, arm, obj, grasp)
-        move_from_above(robot, arm, pre, f"the {arm_words(arm)}'s motion to the pre-grasp pose for {obj.name}")
-        set_gripper(robot, arm, "open")  # there, clear of what stands around the object
-        # in until the fingers or the palm touch something, never into it
-        motion.advance(robot, solution.joint_positions)
-        if not grip(robot, arm, obj, pre.joint_positions):
-            raise GripperFailure(f"the {gripper_words(arm)} closed on nothing: {obj.name} did not come between its fingers "
-                                 f"with {how}", arm=arm, object=obj.name)
-        robot.body.attach(obj, parent_link=robot.description.arm(arm).tool_frame)
-        try:
-            retreat(robot, arm, obj)
-        except (ManipulationFailure, ReachabilityFailure):
-            robot.body.detach(obj)
-            raise
 
 
 def support_height(robot: Robot, obj: Object, orientation: Quat, xy: Sequence[float], top: float,
@@ -395,7 +365,7 @@ def plan_place(robot: Robot, arm: str, obj: Object,
         solution = reach_near(robot, arm, tool[0], tool[1])
         if solution.success:
             for height in (LOWER, LOWER / 2):  # above the place, from there down onto it: one branch
-                above = reach_near(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
+                above = reach_near(robot, arm, offset_along(tool[0], np.array([0.0, 0.0, 1.0]), height), tool[1])
                 if above.success:
                     down = reach_from(robot, arm, above.joint_positions, tool[0], tool[1])
                     if down.success:
@@ -411,26 +381,3 @@ def plan_place(robot: Robot, arm: str, obj: Object,
         raise ReachabilityFailure(f"{arm_words(arm)} cannot place {obj.name} at {where}: the tool frame stays "
                                   f"{error * 100:.1f} cm away", arm=arm, object=obj.name)
     return chosen
-
-
-@process_module("place")
-class Place(ProcessModule):
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        obj: Object = slots["object"]
-        arm: str = slots["arm"]
-        target = tuple(float(v) for v in slots["target"])
-        position, orientation, solution, above, support = plan_place(robot, arm, obj, target)
-        move_from_above(robot, arm, above, f"the {arm_words(arm)}'s motion above the place for {obj.name}")
-        motion.advance(robot, solution.joint_positions)  # down until it touches the surface
-        robot.body.detach(obj)
-        set_gripper(robot, arm, "open")
-        back_off(robot, arm, obj.name)
-        tool = robot.body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
-        up = reach(robot, arm, _offset(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
-        if up.success:  # and up, clear of what stands there, if the way is free
-            try:
-                motion.move(robot, up.joint_positions, f"the {arm_words(arm)}'s retreat from {obj.name}")
-            except ManipulationFailure:
-                pass
-        settle(obj)

@@ -1,5 +1,6 @@
-"""Arm motion: inverse kinematics for the tool frame, joint poses, grippers; every motion collision-checked
-along its path (`motion.py`)."""
+"""Reaching: inverse kinematics for the tool frame (near the arm's configuration, in straight moves), the arms'
+named and resting poses, grippers; every motion collision-checked along its path (`motion.py`), ways around
+what is in the way in `paths.py`."""
 from __future__ import annotations
 
 import math
@@ -8,15 +9,13 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from ..errors import did_you_mean
-from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution, Query, solve, solve_each
-from ..world import JointLimitError, Object
+from ..robots import Robot
 from ..world.pose import angle_between, quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
-from .base import ProcessModule, Robot
-from .grasping import gripper_values, tool_axes
-from .registry import process_module
+from .grasps import gripper_values, tool_axes
 
 
 #: how close the arm must bring its tool to a pose it moves to: 1 cm, and 2° of the orientation (grasps are aligned
@@ -57,7 +56,7 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     current = body.get_joint_positions(names)
-    middle = _middle(robot, arm)
+    middle = middle_of_ranges(robot, arm)
 
     def spread(s: IKSolution) -> float:
         return max((abs(s.joint_positions[n] - current[n]) for n in names if n in s.joint_positions), default=0.0)
@@ -117,7 +116,7 @@ def reach_each(robot: Robot, arm: str, queries: Sequence[Query],
     return solve_each(robot.body, tool, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough)
 
 
-def _middle(robot: Robot, arm: str) -> dict[str, float]:
+def middle_of_ranges(robot: Robot, arm: str) -> dict[str, float]:
     """The middle of the arm's joint ranges (an arm held out in front, elbow out); a joint without limits as it is."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
@@ -129,9 +128,9 @@ def _middle(robot: Robot, arm: str) -> dict[str, float]:
     return middle
 
 
-def _from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
+def reach_from_middle(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
     """`reach` solved from the middle of the arm's joint ranges (an arm held out in front, elbow out)."""
-    return reach_from(robot, arm, _middle(robot, arm), position, orientation)
+    return reach_from(robot, arm, middle_of_ranges(robot, arm), position, orientation)
 
 
 #: a short straight move of the tool (`reach_from`) may stray this far from the straight line between its two poses
@@ -221,139 +220,6 @@ def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: S
     return solution
 
 
-def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
-              what: str) -> IKSolution:
-    """Bring the arm's tool frame to a pose along a collision-free path (straight in joint space, else around what is
-    in the way: `move_over`): ReachabilityFailure when no arm configuration gets there, ManipulationFailure naming
-    what the arm (or what it holds) would hit on the straight way when no way is free."""
-    solution = solve_tool(robot, arm, position, orientation, what)
-    if motion.hits_at(robot, solution.joint_positions):  # a configuration there inside nothing, if there is one
-        other = _from_middle(robot, arm, position, orientation)
-        if other.success and not motion.hits_at(robot, other.joint_positions):
-            solution = other
-    move_over(robot, arm, solution.joint_positions, f"the {arm_words(arm)}'s motion to {what}")
-    return solution
-
-
-#: when the straight path (in joint space) is blocked, the arm tries to go around what is in the way: up from where
-#: it is (these heights, m), back towards the robot's base (BACK, m) and up, and down onto its goal from above it
-VIA_HEIGHTS = (0.1, 0.2, 0.3)
-BACK = 0.15
-
-
-def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: float,
-             back: float = 0.0) -> dict[str, float] | None:
-    """Joint values that put the arm's tool `up` higher and `back` nearer the robot's base (horizontally) than `joints`
-    put it, same orientation (None: out of reach); solved from `joints`, so that they are close to them."""
-    if joints is None:
-        return None
-    body = robot.body
-    with body.joints_kept(joints):
-        body.reset_joints(joints)
-        position, orientation = body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
-        toward = np.subtract(body.get_position(), position)[:2]
-        toward = toward / (np.linalg.norm(toward) or 1.0) * back
-        target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
-        # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
-        here, middle = reach_each(robot, arm, [(target, orientation, None), (target, orientation, _middle(robot, arm))],
-                                  enough=lambda k, s: k == 0 and s.success)
-        assert here is not None
-        solution = here if here.success else middle
-    return solution.joint_positions if solution is not None and solution.success else None
-
-
-def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True,
-              around: bool = True, search: bool = True, ignore: Sequence[Object] = (),
-              straight: ManipulationFailure | None = None, edges: int = motion.SEARCH_EDGES) -> None:
-    """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
-    what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
-    or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
-    arm's named poses (the description's park, carry, ...), and, for a goal that is
-    a tool pose, down onto the goal from above it; last, a search through the arm's joint space
-    (`motion.search_path`). Each leg is checked. Raises the straight path's ManipulationFailure when no way is
-    free; then nothing has moved. `around=False`: the straight path only (a cheap first test); `search=False`: no
-    joint-space search (the dearest test: about 0.4 s when no way exists). `ignore`: what the arm may pass through.
-    `straight`: the straight path's failure, when it is already known (from the same configuration): it is not
-    walked again. `edges`: the search's budget (legs checked)."""
-    if straight is not None:
-        if not around:
-            raise straight
-        first = straight
-    else:
-        try:
-            motion.move(robot, goal, what, ignore)
-            return
-        except ManipulationFailure as exc:
-            if not around:
-                raise
-            first = exc
-    body = robot.body
-    start = body.get_joint_positions(list(goal))
-    # the poses the ways go through are solved only when a way needs them (a way that works early saves the rest),
-    # each once: a way is a list of keys of `_VIAS`-like recipes, looked up in `solved`
-    solved: dict[tuple, dict[str, float] | None] = {}
-
-    def via(key: tuple) -> dict[str, float] | None:
-        if key not in solved:
-            kind = key[0]
-            if kind == "up":  # up from where it is (and back towards the base)
-                solved[key] = _shifted(robot, arm, start, key[1], key[2])
-            elif kind == "back-up":  # back, then up from there
-                solved[key] = _shifted(robot, arm, via(("up", 0.0, BACK)), key[1])
-            elif kind == "onto":  # above the goal
-                solved[key] = _shifted(robot, arm, goal, key[1])
-        return solved[key]
-
-    departures: list[list[Any]] = [[]]
-    for h in VIA_HEIGHTS:
-        departures.append([("up", h, 0.0)])
-    departures.append([("up", 0.0, BACK)])
-    for h in VIA_HEIGHTS:
-        departures.append([("up", 0.0, BACK), ("back-up", h)])
-    for h in VIA_HEIGHTS:  # up and back at once (where the arm cannot draw back at its height)
-        departures.append([("up", h, BACK)])
-    # or joint by joint: the arm's outer half first (folding it in, out of the way), or its inner half first
-    names = [n for n in robot.description.arm(arm).joints if n in goal]
-    half = len(names) // 2
-    outer_first = {n: (goal[n] if i >= half else start[n]) for i, n in enumerate(names)}
-    inner_first = {n: (goal[n] if i < half else start[n]) for i, n in enumerate(names)}
-    departures += [[outer_first], [("up", VIA_HEIGHTS[0], 0.0), outer_first], [inner_first]]
-    # or through one of the arm's named poses (its description's park, carry, ...): folded in, away from things
-    for pose in robot.description.arm(arm).poses:
-        named = arm_configuration(robot, arm, pose)
-        if any(abs(named[n] - goal[n]) > 1e-9 for n in named if n in goal):
-            departures.append([named])
-    arrivals: list[list[Any]] = [[]]
-    if down_onto_goal:
-        arrivals += [[("onto", h)] for h in VIA_HEIGHTS]
-    for arrival in arrivals:
-        for departure in departures:
-            plan = departure + arrival
-            if not plan:
-                continue
-            way = [via(leg) if isinstance(leg, tuple) else leg for leg in plan]
-            if any(leg is None for leg in way):
-                continue
-            try:
-                for leg in way:
-                    motion.move(robot, leg, what, ignore)  # type: ignore[arg-type]
-                motion.move(robot, goal, what, ignore)
-                return
-            except ManipulationFailure:
-                body.reset_joints(start)  # back where it was, along legs that were free
-                body.move_attached()
-    way = motion.search_path(robot, goal, ignore, edges) if search else None  # last: a search in the joint space
-    if way:
-        try:
-            for leg in way:
-                motion.move(robot, leg, what, ignore)
-            return
-        except ManipulationFailure:
-            body.reset_joints(start)
-            body.move_attached()
-    raise first
-
-
 #: after letting go, the tool backs off along its approach this far, or, when the arm cannot, the shorter of these (m)
 BACK_OFF = (0.08, 0.05, 0.03)
 
@@ -422,11 +288,6 @@ def rest_configuration(robot: Robot, arm: str, holding: bool | None = None) -> d
     return config
 
 
-def move_from_above(robot: Robot, arm: str, solution: IKSolution, what: str) -> None:
-    """`move_over` to an IK solution."""
-    move_over(robot, arm, solution.joint_positions, what)
-
-
 def set_gripper(robot: Robot, arm: str, opening: str) -> None:
     """Open the gripper fully (the fingers' path checked), or close it until the fingers touch something."""
     gripper = robot.description.arm(arm).gripper
@@ -474,93 +335,3 @@ def arm_configs(slots: Mapping[str, Any]) -> dict[str, Any]:
         if key.endswith("-arm") and config is not None:
             configs[key[: -len("-arm")]] = config
     return configs
-
-
-#: the joint-space search's budget (legs checked) for a commanded arm configuration (`move-arm-joints`): it has no
-#: other goal to fall back on, so it searches longer than a motion to a tool pose (`motion.SEARCH_EDGES`). Measured
-#: once, for issue 23: of 22 random PR2 arm configurations beside the bundled kitchen's oven whose straight way to
-#: park brushes the oven, the 6 that the ways `move_over` tries first did not clear needed 341 to 2416 legs (about
-#: 4 to 28 s on the 2-core machine); tests/process_modules/test_arm_joints.py keeps one of them
-ARM_JOINTS_SEARCH_EDGES = 2500
-
-
-@process_module("arm-joints")
-class MoveArmJoints(ProcessModule):
-    """Arms to joint values (a named pose of the description, a list in joint order, or a mapping): all at once
-    along the straight path in joint space when it is free, else one arm after the other around what is in the way
-    (`move_over`, then a longer joint-space search). A goal that is itself inside something fails at once, naming
-    it; when no way is found the failure names what blocks the straight path. Either way nothing has moved."""
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        values: dict[str, float] = {}
-        for arm, config in arm_configs(slots).items():
-            if arm not in robot.description.arms:
-                raise ManipulationFailure(f"robot '{robot.description.name}' has no arm '{arm}' "
-                                          f"(arms: {', '.join(robot.description.arms)})")
-            values.update(arm_configuration(robot, arm, config))
-        for name, value in values.items():  # limits first: a pose out of range is said as such, not as a collision
-            joint = robot.body.joint(name)
-            if joint.limited and not (joint.lower - 1e-9 <= value <= joint.upper + 1e-9):
-                raise ManipulationFailure(f"joint '{name}' of '{robot.body.name}': {value:g} is outside its limits "
-                                          f"[{joint.lower:g}, {joint.upper:g}]")
-        arms = list(arm_configs(slots))
-        what = f"moving the {', '.join(arms)} arm{'s' if len(arms) > 1 else ''}"
-        hits = motion.hits_at_goal(robot, values)
-        if hits:  # no path ends there: said at once, not after a search
-            raise motion.collision_failure(what, hits, 1.0, at_goal=True)
-        try:
-            motion.move(robot, values, what)
-            return
-        except JointLimitError as exc:
-            raise ManipulationFailure(str(exc)) from None
-        except ManipulationFailure:
-            pass
-        # one arm after the other, each around what is in its way if need be; all or nothing
-        body = robot.body
-        start = body.get_joint_positions(list(values))
-        try:
-            for arm in arms:
-                goal = {name: values[name] for name in robot.description.arm(arm).joints if name in values}
-                try:  # the failure names the arm that is blocked
-                    move_over(robot, arm, goal, f"moving the {arm} arm", down_onto_goal=False,
-                              edges=ARM_JOINTS_SEARCH_EDGES)
-                except ManipulationFailure as exc:
-                    raise ManipulationFailure(f"{exc}; no way around it was found", **exc.details) from None
-        except BaseException:
-            body.reset_joints(start)
-            body.move_attached()
-            raise
-
-
-@process_module("tcp")
-class MoveTCP(ProcessModule):
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        target = slots["target"]
-        move_tool(robot, slots["arm"], target, slots.get("orientation"), f"({', '.join(f'{v:.3f}' for v in target)})")
-
-
-class _Gripper(ProcessModule):
-    opening = "open"
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        arm = slots["gripper"]
-        if self.opening == "open":
-            for obj in robot.held_objects(arm):  # an opened gripper lets go
-                robot.body.detach(obj)
-        set_gripper(robot, arm, self.opening)
-
-
-@process_module("open-gripper")
-class OpeningGripper(_Gripper):
-    opening = "open"
-
-
-@process_module("close-gripper")
-class ClosingGripper(_Gripper):
-    opening = "closed"
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> None:
-        if not robot.description.arm(slots["gripper"]).gripper.joints:
-            raise GripperFailure(f"the {slots['gripper']} arm has no gripper")
-        super().execute(robot, slots)

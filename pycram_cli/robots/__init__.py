@@ -2,7 +2,8 @@
 from .description import (ArmDescription, CameraDescription, GripperDescription, HeadDescription, RobotDescription,
                           assign_description, bundled_descriptions, check_description, description_for,
                           find_description, load_description)
+from .robot import Robot
 
 __all__ = ["ArmDescription", "CameraDescription", "GripperDescription", "HeadDescription", "RobotDescription",
            "assign_description", "bundled_descriptions", "check_description", "description_for", "find_description",
-           "load_description"]
+           "load_description", "Robot"]

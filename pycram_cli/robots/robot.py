@@ -1,12 +1,14 @@
-"""What every process module shares: the robot it drives and the world it acts in."""
+"""The robot: its body in a world together with its description (arms, frames, poses as data).
+
+Every layer above `robots/` takes a `Robot` (reasoning, planning, the process modules, locations, designators),
+so what the robot is and what it holds is answered in one place."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Mapping
 
 from ..errors import InputError, Location
-from ..robots import RobotDescription, description_for
 from ..world import BulletWorld, Object
+from .description import ArmDescription, RobotDescription, description_for
 
 
 @dataclass
@@ -30,6 +32,10 @@ class Robot:
                                         "'description:' in the world file (see docs/robots.md)")
         return cls(world, body, description)
 
+    def arm(self, name: str) -> ArmDescription:
+        """The description of one arm (a KeyError naming the arms for an unknown one)."""
+        return self.description.arm(name)
+
     def held_objects(self, arm: str | None = None) -> list[Object]:
         """Objects attached to a tool frame (of `arm`, or of any arm)."""
         arms = [self.description.arm(arm)] if arm else list(self.description.arms.values())
@@ -38,14 +44,9 @@ class Robot:
                        if att.parent is self.body and att.parent_link in tool_ids), key=lambda o: o.name)
 
     def arm_holding(self, obj: Object) -> str | None:
+        """The arm whose tool holds `obj`, or None."""
         att = self.body.attachments.get(obj)
         if att is None or att.parent is not self.body:
             return None
         return self.description.arm_of_link(self.body.get_link_name(att.parent_link))
 
-
-class ProcessModule:
-    """Executes one kind of resolved designator on a robot. Subclasses implement `execute`."""
-
-    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Any:  # pragma: no cover - interface
-        raise NotImplementedError

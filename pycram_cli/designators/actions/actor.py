@@ -22,7 +22,7 @@ from ...errors import PycramError
 from ...failures import Failure, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
-from ...process_modules import Robot
+from ...robots import Robot
 from ...reasoning import QueryAnswer, run_query
 from ...world import BulletWorld, Object
 from ..performing import perform

@@ -1,0 +1,13 @@
+"""What every process module is: an executor of one kind of resolved designator on a robot."""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..robots import Robot
+
+
+class ProcessModule:
+    """Executes one kind of resolved designator on a robot. Subclasses implement `execute`."""
+
+    def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Any:  # pragma: no cover - interface
+        raise NotImplementedError
