@@ -21,6 +21,8 @@ class Robot:
 
     @classmethod
     def of(cls, world: BulletWorld) -> "Robot":
+        """The world's robot with its description: the one the world loader gave it, kept by the world (else found for
+        its model once, `description_for`); an input error when the world has no robot or it has no description."""
         body = world.robot
         if body is None:
             raise InputError("the world has no robot (an object of type 'robot')", Location("world"),
