@@ -182,8 +182,8 @@ def test_plan_has_no_import_inside_a_function():
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
 #: bottom to top; a module may import its own layer and the layers below it
-LAYERS = ["world", "robots", "worldfile", "reasoning", "planning", "process_modules", "locations", "designators", "design",
-          "plan", "scenario", "sweep", "report", "cli"]
+LAYERS = ["world", "robots", "worldfile", "reasoning", "planning", "process_modules", "locations", "designators",
+          "design", "plan", "scenario", "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
 SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet", "limits", "files",
           "interrupts"}
@@ -260,7 +260,7 @@ def test_the_process_modules_are_executors_only():
             continue
         for node in ast.parse(path.read_text()).body:
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_"):
-                found.append(f"process_modules/{path.name}:{node.lineno}: def {node.name} (planning belongs in planning/)")
+                found.append(f"process_modules/{path.name}:{node.lineno}: def {node.name} (planning goes in planning/)")
     assert not found, "\n".join(found)
 
 

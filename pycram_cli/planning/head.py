@@ -226,7 +226,7 @@ def _move_wrist(robot: Robot, arm: str, target: Sequence[float]) -> None:
     joints = list(robot.description.arm(arm).joints)
     blocked: list[str] = []
     for eye, orientation in _viewpoints(robot, arm, target):
-        solution = solve(body, camera.frame, tuple(eye), orientation, joints=joints, threshold=0.03,
+        solution = solve(robot, arm, tuple(eye), orientation, frame=camera.frame, joints=joints, threshold=0.03,
                          angle_threshold=WRIST_ANGLE)
         if not solution.success:
             continue

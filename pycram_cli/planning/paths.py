@@ -174,7 +174,8 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         toward = toward / (np.linalg.norm(toward) or 1.0) * back
         target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
         # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
-        here, middle = reach_each(robot, arm, [(target, orientation, None), (target, orientation, middle_of_ranges(robot, arm))],
+        here, middle = reach_each(robot, arm, [(target, orientation, None),
+                                               (target, orientation, middle_of_ranges(robot, arm))],
                                   enough=lambda k, s: k == 0 and s.success)
         assert here is not None
         solution = here if here.success else middle

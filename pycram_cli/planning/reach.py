@@ -25,8 +25,7 @@ REACH_ANGLE = math.radians(2.0)
 
 
 def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
-    tool = robot.description.arm(arm).tool_frame
-    return solve(robot.body, tool, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE)
+    return solve(robot, arm, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE)
 
 
 #: an IK solution that turns some joint of the arm farther than this from where it is (rad) is compared with one
@@ -112,8 +111,7 @@ def reach_each(robot: Robot, arm: str, queries: Sequence[Query],
                enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
     """`reach` for each query (target position, orientation, start configuration), searched at once
     (`ik.solve_each`)."""
-    tool = robot.description.arm(arm).tool_frame
-    return solve_each(robot.body, tool, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough)
+    return solve_each(robot, arm, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough)
 
 
 def middle_of_ranges(robot: Robot, arm: str) -> dict[str, float]:
