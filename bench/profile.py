@@ -53,6 +53,7 @@ import pycram_cli  # noqa: E402
 #: phase -> its entry points ("module:function" or "module:Class.method"), in the order they are reported
 PHASES: dict[str, tuple[str, ...]] = {
     "IK": ("pycram_cli.reasoning.ik:solve", "pycram_cli.reasoning.ik:solve_each",
+           "pycram_cli.reasoning.ik:solve_link", "pycram_cli.reasoning.ik:solve_link_each",
            "pycram_cli.reasoning.ik:forward_pose"),
     "path checks / collision": (
         "pycram_cli.planning.motion:Motion.__init__", "pycram_cli.planning.motion:Motion.walk",
