@@ -42,7 +42,7 @@ import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 from pycram_cli.locations import locate, parse_location  # noqa: E402
 from pycram_cli.locations import resolve as resolving  # noqa: E402
 from pycram_cli.locations.resolve import BasePoseResolution, Candidates  # noqa: E402
-from pycram_cli.process_modules import Robot  # noqa: E402
+from pycram_cli.robots import Robot  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
 KITCHEN = REPO / "worlds" / "kitchen.yaml"

@@ -182,8 +182,8 @@ def test_plan_has_no_import_inside_a_function():
 
 PACKAGE_DIR = Path(__file__).resolve().parents[1] / "pycram_cli"
 #: bottom to top; a module may import its own layer and the layers below it
-LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "locations", "designators", "design", "plan",
-          "scenario", "sweep", "report", "cli"]
+LAYERS = ["world", "robots", "worldfile", "reasoning", "planning", "process_modules", "locations", "designators",
+          "design", "plan", "scenario", "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
 SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet", "limits", "files",
           "interrupts"}
@@ -249,6 +249,27 @@ def test_every_package_is_placed_in_a_layer():
     modules = {p.stem for p in PACKAGE_DIR.glob("*.py")} - {"__init__", "__main__"}
     assert packages <= set(LAYERS), f"packages without a layer: {packages - set(LAYERS)}"
     assert modules <= SHARED, f"top-level modules without a place: {modules - SHARED}"
+
+
+def test_the_process_modules_are_executors_only():
+    """Motion planning lives in planning/: a process module carries out what planning/ plans, so its modules define
+    executors (and private helpers), the registry its lookup; nothing public besides."""
+    found = []
+    for path in sorted((PACKAGE_DIR / "process_modules").glob("*.py")):
+        if path.stem in ("__init__", "registry"):
+            continue
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and not node.name.startswith("_"):
+                found.append(f"process_modules/{path.name}:{node.lineno}: def {node.name} (planning goes in planning/)")
+    assert not found, "\n".join(found)
+
+
+def test_only_performing_reaches_the_executors():
+    """Locations and designators ask planning/ what would work; only performing a designator chooses its executor."""
+    importers = sorted(_module_name(path) for path in PACKAGE_DIR.rglob("*.py")
+                       if _layer_of(_module_name(path)) not in (None, "process_modules")
+                       and any(_layer_of(t) == "process_modules" for t in _imported(path)))
+    assert importers == ["pycram_cli.designators.performing"]
 
 
 def test_the_layer_check_sees_an_upward_import(tmp_path):

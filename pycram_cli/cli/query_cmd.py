@@ -24,7 +24,7 @@ from ..reasoning import QUERIES, QuerySpec, run_query
 from ..reasoning.query import QueryParam
 from ..reasoning.query import unknown_query
 from ..limits import MAX_MAGNITUDE
-from ..process_modules.collisions import collisions
+from ..planning.contacts import collisions
 from ..world import BulletWorld
 from ..world.pose import yaw_quaternion
 from . import console

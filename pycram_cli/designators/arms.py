@@ -5,9 +5,9 @@ from typing import Any, Mapping
 
 from ..failures import ReachabilityFailure
 from ..kinds import KINDS, Robots
-from ..process_modules import Robot
-from ..process_modules.arms import arm_configs, reach
-from ..process_modules.manipulation import grasp_orientation
+from ..planning.pick_place import grasp_orientation
+from ..planning.reach import arm_configs, reach
+from ..robots import Robot
 from .declaration import ANY_ARM, Designator, Slot, SlotProblem, declare_designator, drives_arm
 
 

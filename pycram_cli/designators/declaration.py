@@ -19,7 +19,7 @@ from ..errors import InputError, did_you_mean
 from ..kinds import KINDS, NOTHING_KNOWN, Robots
 
 if TYPE_CHECKING:
-    from ..process_modules import Robot
+    from ..robots import Robot
     from ..robots import RobotDescription
 
 Resolver = Callable[["Robot", Mapping[str, Any]], dict[str, Any]]

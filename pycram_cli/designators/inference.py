@@ -5,9 +5,9 @@ from typing import Any, Callable, Sequence
 
 from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ReachabilityFailure
-from ..process_modules import Robot
 from ..kinds import arm_phrase
-from ..process_modules.arms import reach
+from ..planning.reach import reach
+from ..robots import Robot
 from ..world import Object
 
 

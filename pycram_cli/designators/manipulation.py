@@ -7,8 +7,8 @@ from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, gripper_words
 from ..locations import take_from_here
-from ..process_modules import Robot
-from ..process_modules.accessing import handle_pose
+from ..planning.drawers import handle_pose
+from ..robots import Robot
 from .declaration import Designator, Slot, declare_designator, drives_arm
 from ..world import Object
 from .inference import choose_arm_and_grasp, free_arms, the_object

@@ -6,7 +6,8 @@ from typing import Any, Mapping
 from ..errors import InputError, Location, raise_if_any
 from ..jsonable import jsonable
 from ..kinds import Robots
-from ..process_modules import Robot, choose
+from ..process_modules import choose
+from ..robots import Robot
 from ..world import BulletWorld, Object
 from .declaration import DESIGNATORS, check_designator
 from .result import Performed

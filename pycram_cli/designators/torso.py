@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from ..process_modules import Robot
+from ..robots import Robot
 from .declaration import Designator, Slot, declare_designator, drives
 
 

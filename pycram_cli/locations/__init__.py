@@ -11,14 +11,14 @@ A location is a slot value written as a mapping (the `location` kind of `pycram_
 lazily into a ranked, deterministic sequence of poses (`resolve.py`): candidates from a map
 of the floor (`floor.py`), tested cheapest first, verified with the reasoning queries; an
 unsatisfiable location raises `LocationFailure` saying what ruled the candidates out.
-This package sits between the process modules (whose geometry it reuses: grasp points, the
+This package sits between motion planning (`planning/`, whose geometry it reuses: grasp points, the
 head, collisions) and the designators (whose actions use it).
 """
 from __future__ import annotations
 
 from typing import Any
 
-from ..process_modules import Robot
+from ..robots import Robot
 from ..world import BulletWorld, Object
 from .floor import FloorMap
 from .resolve import (REASONS, BasePose, BasePoseResolution, Candidates, Spot, SpotResolution, floor_map, resolution,

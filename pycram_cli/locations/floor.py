@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 
 import numpy as np
 
-from ..process_modules.collisions import PENETRATION, SUPPORT_SLACK, collisions, ground_z, support_links, supports_from_below
+from ..planning.contacts import PENETRATION, SUPPORT_SLACK, collisions, ground_z, support_links, supports_from_below
 from ..world.pose import yaw_quaternion
 
 if TYPE_CHECKING:

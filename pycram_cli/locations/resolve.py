@@ -45,11 +45,12 @@ import numpy as np
 
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, arm_words
-from ..process_modules import Robot
-from ..process_modules.accessing import follows_handle, plan_handle_grasp
-from ..process_modules.arms import move_over, reach, rest_configuration, rest_pose
-from ..process_modules.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
-from ..process_modules.manipulation import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
+from ..planning.drawers import follows_handle, plan_handle_grasp
+from ..planning.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
+from ..planning.paths import move_over
+from ..planning.pick_place import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
+from ..planning.reach import reach, rest_configuration, rest_pose
+from ..robots import Robot
 from ..reasoning import stable, visible
 from ..reasoning.supporting import support_points
 from ..reasoning.reachability import TakeAnswer, register_take_check

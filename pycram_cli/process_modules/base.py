@@ -1,47 +1,9 @@
-"""What every process module shares: the robot it drives and the world it acts in."""
+"""What every process module is: an executor of one kind of resolved designator on a robot."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
-from ..errors import InputError, Location
-from ..robots import RobotDescription, description_for
-from ..world import BulletWorld, Object
-
-
-@dataclass
-class Robot:
-    """The robot object together with its description."""
-
-    world: BulletWorld
-    body: Object
-    description: RobotDescription
-
-    @classmethod
-    def of(cls, world: BulletWorld) -> "Robot":
-        body = world.robot
-        if body is None:
-            raise InputError("the world has no robot (an object of type 'robot')", Location("world"),
-                             suggestion="add an object of type robot to the world file")
-        description = description_for(body)
-        if description is None:
-            raise InputError(f"no robot description for '{body.name}' ({body.path.name})", Location(str(body.path)),
-                             suggestion=f"write {body.path.with_suffix('.yaml').name} beside it, or name one with "
-                                        "'description:' in the world file (see docs/robots.md)")
-        return cls(world, body, description)
-
-    def held_objects(self, arm: str | None = None) -> list[Object]:
-        """Objects attached to a tool frame (of `arm`, or of any arm)."""
-        arms = [self.description.arm(arm)] if arm else list(self.description.arms.values())
-        tool_ids = {self.body.get_link_id(a.tool_frame) for a in arms}
-        return sorted((child for child, att in self.body.attachments.items()
-                       if att.parent is self.body and att.parent_link in tool_ids), key=lambda o: o.name)
-
-    def arm_holding(self, obj: Object) -> str | None:
-        att = self.body.attachments.get(obj)
-        if att is None or att.parent is not self.body:
-            return None
-        return self.description.arm_of_link(self.body.get_link_name(att.parent_link))
+from ..robots import Robot
 
 
 class ProcessModule:

@@ -4,9 +4,10 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..failures import NavigationFailure
-from .base import ProcessModule, Robot
-from .collisions import collisions
-from .motion import followers
+from ..planning.contacts import collisions
+from ..planning.motion import followers
+from ..robots import Robot
+from .base import ProcessModule
 from .registry import process_module
 
 

@@ -5,8 +5,9 @@ from typing import Any, Mapping
 
 from ..failures import PerceptionFailure
 from ..reasoning import occluding, visible
+from ..robots import Robot
 from ..world import Object
-from .base import ProcessModule, Robot
+from .base import ProcessModule
 from .registry import process_module
 
 

@@ -4,8 +4,9 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..failures import ManipulationFailure
+from ..robots import Robot
 from ..world import JointLimitError
-from .base import ProcessModule, Robot
+from .base import ProcessModule
 from .registry import process_module
 
 

@@ -14,7 +14,7 @@ plans and `pycram query`. A new query is a module with its `declare_query(...)`,
 """
 from . import queries  # noqa: F401  (declares the design's seven queries)
 from .contact import ContactAnswer, contact
-from .ik import IKSolution, solve
+from .ik import IKSolution, solve, solve_link
 from .query import QUERIES, Call, QueryAnswer, QueryParam, QuerySpec, check_query_args, declare_query, run_query
 from .reachability import ReachableAnswer, blocking, reachable
 from .stable import StableAnswer, stable
@@ -23,6 +23,6 @@ from .visibility import VisibleAnswer, occluding, visible
 
 __all__ = [
     "stable", "contact", "visible", "occluding", "reachable", "blocking", "supporting",
-    "StableAnswer", "ContactAnswer", "VisibleAnswer", "ReachableAnswer", "IKSolution", "solve",
+    "StableAnswer", "ContactAnswer", "VisibleAnswer", "ReachableAnswer", "IKSolution", "solve", "solve_link",
     "QUERIES", "QuerySpec", "QueryParam", "QueryAnswer", "Call", "run_query", "check_query_args", "declare_query",
 ]

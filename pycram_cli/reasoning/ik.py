@@ -12,8 +12,10 @@ never touch the world; only the final answer is checked against PyBullet's own f
 kinematics (joints set, link pose read, joints put back with their saved positions and
 velocities), so the errors reported are PyBullet's.
 
-Only the requested joints move (by default the seven joints of the arm that owns the tool
-link); the torso, head and base keep their current values.
+Only the requested joints move (by default the joints of the arm); the torso, head and base keep
+their current values. `solve(robot, arm, ...)` is the front door: the robot (robots/robot.py) says
+which joints the arm has and where its tool frame is; `solve_link(body, link, ...)` solves for any
+link of a body (the design's `reachable(target, robot, gripper_link)`, a robot without a description).
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
 import numpy as np
 
-from ..robots import description_for
+from ..robots import Robot, description_for
 from ..world.pose import Quat, Vec3, check_position, check_quaternion
 
 if TYPE_CHECKING:
@@ -441,6 +443,38 @@ def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, flo
 
 
 def solve(
+    robot: Robot,
+    arm: str,
+    position: Sequence[float],
+    orientation: Sequence[float] | None = None,
+    frame: str | None = None,
+    joints: Sequence[str] | None = None,
+    threshold: float = 0.01,
+    angle_threshold: float = 0.1,
+    seeds: int = RESTARTS,
+    max_iterations: int = MAX_ITERATIONS,
+) -> IKSolution:
+    """Joint positions of `arm` (or `joints`) that bring its tool frame (or `frame`, a link the arm moves: a camera on
+    its wrist) to `position` (and `orientation`, a world quaternion): `solve_link` for the arm."""
+    return solve_link(robot.body, frame or robot.arm(arm).tool_frame, position, orientation,
+                      list(robot.arm(arm).joints) if joints is None else joints, threshold, angle_threshold, seeds,
+                      max_iterations)
+
+
+def solve_each(
+    robot: Robot,
+    arm: str,
+    queries: "Sequence[Query]",
+    threshold: float = 0.01,
+    angle_threshold: float = 0.1,
+    enough: "Callable[[int, IKSolution], bool] | None" = None,
+) -> list[IKSolution | None]:
+    """`solve` for several queries at once (`solve_link_each`), for the arm's tool frame and joints."""
+    return solve_link_each(robot.body, robot.arm(arm).tool_frame, queries, list(robot.arm(arm).joints), threshold,
+                           angle_threshold, enough=enough)
+
+
+def solve_link(
     robot: "Object",
     tool_link: str,
     position: Sequence[float],
@@ -457,8 +491,8 @@ def solve(
     The world is left untouched. Deterministic: the same world and inputs give the same answer, bitwise.
     A failed search returns the best configuration found and its remaining errors.
     """
-    found = solve_each(robot, tool_link, [(position, orientation, None)], joints, threshold, angle_threshold, seeds,
-                       max_iterations)[0]
+    found = solve_link_each(robot, tool_link, [(position, orientation, None)], joints, threshold, angle_threshold,
+                            seeds, max_iterations)[0]
     assert found is not None
     return found
 
@@ -467,7 +501,7 @@ def solve(
 Query = tuple[Sequence[float], "Sequence[float] | None", "Mapping[str, float] | None"]
 
 
-def solve_each(
+def solve_link_each(
     robot: "Object",
     tool_link: str,
     queries: Sequence[Query],
@@ -478,8 +512,8 @@ def solve_each(
     max_iterations: int = MAX_ITERATIONS,
     enough: Callable[[int, IKSolution], bool] | None = None,
 ) -> list[IKSolution | None]:
-    """`solve` for several queries (target position, orientation, start configuration: None for where the joints
-    are, else values of the joints that move) in one batched search: answer `k` is exactly what `solve` gives for
+    """`solve_link` for several queries (target position, orientation, start configuration: None for where the joints
+    are, else values of the joints that move) in one batched search: answer `k` is exactly what `solve_link` gives for
     query `k` with the joints first set to its start, for not much more than the price of one (the pre-grasp poses
     of the ways to hold an object, tried in turn, cost one search when none is reachable). Either every query
     has an orientation or none has. `enough(k, answer)`, called as each answer is found, may end the search: the

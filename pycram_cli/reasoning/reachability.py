@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterable
 from ..robots import description_for
 from ..world.pose import check_position, check_quaternion, quat_multiply
 from ._common import attached_descendants
-from .ik import solve
+from .ik import solve_link
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -108,7 +108,7 @@ def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshol
     wanted = grasp_orientation(robot, grasp)
     if wanted is None:
         wanted = orientation
-    return solve(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
+    return solve_link(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
 
 
 def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = 0.01,

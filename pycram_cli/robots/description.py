@@ -19,7 +19,6 @@ import dataclasses
 import functools
 import warnings
 import math
-import weakref
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -553,13 +552,16 @@ def check_description(desc: RobotDescription, model_path: Path) -> None:
     raise_if_any(check_against_model(desc, model, model_path))
 
 
-_ASSIGNED: "weakref.WeakKeyDictionary[Object, RobotDescription | None]" = weakref.WeakKeyDictionary()
-
-
 def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
-    """Give a robot object its description (the world loader does, for `description:` in a world file); a description
-    without `grasps:` gets the named grasps of its first arm's tool frame as the model has it. Each hand is read from
-    the model now (robots/tool.py `hand`), while it holds nothing."""
+    """Give a robot object its description, once (the world loader does, for `description:` in a world file): its
+    world keeps it (`BulletWorld.described_robot`)."""
+    obj.world.described_robot = (obj, _prepared(obj, desc))
+
+
+def _prepared(obj: "Object", desc: RobotDescription | None) -> RobotDescription | None:
+    """A description made ready for its robot object: a description without `grasps:` gets the named grasps of its
+    first arm's tool frame as the model has it. Each hand is read from the model now (robots/tool.py `hand`), while
+    it holds nothing."""
     if desc is not None:
         for arm in desc.arms.values():
             if arm.gripper.joints:
@@ -572,13 +574,17 @@ def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
                 f"{desc.where(f'grasps.{name}')}: grasps.{name}: the tool approaches {where}, not as '{name}' says, "
                 f"for the tool frame of {obj.path.name} (its approach axis is the wrist's roll axis); "
                 f"[{', '.join(f'{v:.4g}' for v in better)}] would, or leave grasps: out to have them computed"),
-                stacklevel=2)
-    _ASSIGNED[obj] = desc
+                stacklevel=3)
+    return desc
 
 
 def description_for(obj: "Object") -> RobotDescription | None:
-    """The description of a robot object: assigned by the loader, else found by `find_description`."""
-    if obj in _ASSIGNED:
-        return _ASSIGNED[obj]
-    assign_description(obj, find_description(obj.path))
-    return _ASSIGNED[obj]
+    """The description of a robot object: the one its world keeps (assigned by the loader), else found by
+    `find_description` (a world built in Python) — once for the world's robot, which the world then keeps."""
+    kept = obj.world.described_robot
+    if kept is not None and kept[0] is obj:
+        return kept[1]
+    desc = _prepared(obj, find_description(obj.path))
+    if obj is obj.world.robot:
+        obj.world.described_robot = (obj, desc)
+    return desc

@@ -20,7 +20,7 @@ SYMMETRIES = ("box", "revolution")
 
 @dataclass(frozen=True)
 class GraspPoint:
-    """Where the tool frame goes for a special grasp, in the grasp's object frame (see `grasping.py`):
+    """Where the tool frame goes for a special grasp, in the grasp's object frame (see `planning/grasps.py`):
     `at` a point of the object's box in half-extents from its centre (-1 .. 1 per axis: [0, -1, 1] is the
     middle of the box's top edge on its -y side), plus `offset` metres; `width`: how much of the object is then
     between the fingers."""

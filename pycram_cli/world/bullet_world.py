@@ -119,6 +119,10 @@ class BulletWorld:
         self.objects: list[Object] = []
         self._by_id: dict[int, Object] = {}
         self.robot: Object | None = None
+        #: the robot object's description as robots/ reads it (robots/description.py `description_for`): (the robot
+        #: object, its description or None), set once by the world loader or on the first ask, and forgotten with the
+        #: robot object; the world keeps it (not a table beside the world), so it lives and goes with the world
+        self.described_robot: tuple[Object, Any] | None = None
         self.attachment_event = Event("attachment")
         self.detachment_event = Event("detachment")
         self.manipulation_event = Event("manipulation")
@@ -567,6 +571,8 @@ class BulletWorld:
         self._by_id.pop(obj.id, None)
         if self.robot is obj:
             self.robot = None
+        if self.described_robot is not None and self.described_robot[0] is obj:
+            self.described_robot = None
         self.mark_changed()
 
     def get_objects_by_name(self, name: str) -> list["Object"]:

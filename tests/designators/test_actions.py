@@ -10,10 +10,9 @@ from pycram_cli.errors import InputError, InputErrors
 from pycram_cli.failures import Failure, LocationFailure, NavigationFailure
 from pycram_cli.kinds import Robots
 from pycram_cli.paths import worlds_dir
-from pycram_cli.process_modules import Robot
 from pycram_cli.process_modules.navigation import Navigation
 from pycram_cli.reasoning import stable, supporting
-from pycram_cli.robots import bundled_descriptions
+from pycram_cli.robots import Robot, bundled_descriptions
 from pycram_cli.worldfile.loader import load_world
 
 HANDLE = "sink_area_left_upper_drawer_handle"

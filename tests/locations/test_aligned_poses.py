@@ -14,7 +14,7 @@ from pycram_cli.failures import LocationFailure
 from pycram_cli.locations import LocationSpec, find_handle, locate
 from pycram_cli.locations.resolve import (STEP, ArmGeometry, aligned_reach_line, line_poses, pull_aligned_poses,
                                           straight_reach_line)
-from pycram_cli.process_modules import Robot
+from pycram_cli.robots import Robot
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world
 

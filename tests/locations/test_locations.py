@@ -13,7 +13,7 @@ from pycram_cli.kinds import KINDS, Robots
 from pycram_cli.locations import BasePose, Spot, floor, floor_map, locate, parse_location
 from pycram_cli.designators import perform
 from pycram_cli.paths import worlds_dir
-from pycram_cli.process_modules import Robot
+from pycram_cli.robots import Robot
 from pycram_cli.reasoning import blocking, reachable, stable, supporting, visible
 from pycram_cli.robots import description_for
 from pycram_cli.worldfile.loader import load_world

@@ -18,7 +18,7 @@ from pycram_cli.failures import LocationFailure
 from pycram_cli.locations import LocationSpec
 from pycram_cli.locations.spec import find_handle
 from pycram_cli.locations.resolve import BasePoseResolution, take_from_here
-from pycram_cli.process_modules import Robot
+from pycram_cli.robots import Robot
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from pycram_cli.process_modules.collisions import supports_from_below
+from pycram_cli.planning.contacts import supports_from_below
 from pycram_cli.scenario import golden, prepare
 
 PLANS = golden.bundled_plans()  # every shipped plan (those with a golden trace)

@@ -9,8 +9,9 @@ import pytest
 
 from pycram_cli.designators import perform
 from pycram_cli.failures import ManipulationFailure
-from pycram_cli.process_modules import Robot, motion
-from pycram_cli.process_modules.arms import arm_configuration
+from pycram_cli.planning import motion, paths
+from pycram_cli.planning.reach import arm_configuration
+from pycram_cli.robots import Robot
 from pycram_cli.world.pose import yaw_quaternion
 
 #: the robot beside the oven, turned 45° away from it, its left arm reaching down and out: the straight path to park
@@ -49,7 +50,7 @@ def test_the_straight_way_to_park_beside_the_oven_is_blocked(world):
     assert hits and hits[0].obstacle.name == "kitchen" and hits[0].link.startswith("oven_area")
     assert 0.3 < fraction < 0.6
     # the budget of a motion to a tool pose finds no way around
-    assert motion.search_path(robot, park) is None
+    assert paths.search_path(robot, park) is None
 
 
 def test_move_arm_joints_to_park_goes_around_the_oven(world, monkeypatch):
@@ -87,7 +88,7 @@ def test_a_target_inside_the_oven_fails_at_once_naming_it_and_nothing_moves(worl
 
 def test_when_no_way_is_found_the_failure_names_what_blocks_and_nothing_moves(world, monkeypatch):
     arm, joints = beside_the_oven(world)
-    monkeypatch.setattr(motion, "search_path", lambda *args, **kwargs: None)  # a world where the search finds none
+    monkeypatch.setattr(paths, "search_path", lambda *args, **kwargs: None)  # a world where the search finds none
     from pycram_cli.process_modules import arms
     calls: list[str] = []
     real_move_over = arms.move_over

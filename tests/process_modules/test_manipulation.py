@@ -10,10 +10,10 @@ import pytest
 from pycram_cli import Object
 from pycram_cli.designators import perform
 from pycram_cli.failures import ManipulationFailure, NavigationFailure
-from pycram_cli.process_modules import Robot
-from pycram_cli.process_modules.arms import reach
-from pycram_cli.process_modules.collisions import supports_from_below
-from pycram_cli.process_modules.motion import PENETRATION, hits_at
+from pycram_cli.planning.contacts import supports_from_below
+from pycram_cli.planning.motion import PENETRATION, hits_at
+from pycram_cli.planning.reach import reach
+from pycram_cli.robots import Robot
 from pycram_cli.reasoning import stable, supporting
 from pycram_cli.world.pose import quat_to_matrix, yaw_quaternion
 
@@ -195,8 +195,8 @@ def test_a_target_z_names_the_surface_at_that_height(world):
 
 
 def test_the_ways_to_hold_an_object_are_handed_over_in_order_each_as_reach_near_finds_it(world):
-    from pycram_cli.process_modules.arms import reach_near, reach_near_each
-    from pycram_cli.process_modules.manipulation import grasp_orientation
+    from pycram_cli.planning.pick_place import grasp_orientation
+    from pycram_cli.planning.reach import reach_near, reach_near_each
     perform(world, "moving", COUNTER)
     robot = Robot.of(world)
     top = grasp_orientation(robot, "top")
@@ -216,12 +216,12 @@ def test_the_ways_to_hold_an_object_are_handed_over_in_order_each_as_reach_near_
 
 
 def test_a_way_whose_straight_path_is_known_blocked_is_not_walked_again(world, monkeypatch):
-    from pycram_cli.process_modules import arms, motion
+    from pycram_cli.planning import motion, paths
     perform(world, "moving", COUNTER)
     robot = Robot.of(world)
     known = ManipulationFailure("the right arm's motion would collide: known", colliding=["kitchen"])
     walked = []
     monkeypatch.setattr(motion, "move", lambda *a, **k: walked.append(a[1]))
     with pytest.raises(ManipulationFailure) as raised:
-        arms.move_over(robot, "right", {"r_elbow_flex_joint": -1.0}, "the motion", around=False, straight=known)
+        paths.move_over(robot, "right", {"r_elbow_flex_joint": -1.0}, "the motion", around=False, straight=known)
     assert raised.value is known and walked == []

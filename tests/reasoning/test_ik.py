@@ -1,4 +1,5 @@
-"""ik.solve: the arm's joints that bring a tool frame to a position (and orientation), checked by PyBullet."""
+"""ik.solve_link: the arm's joints that bring a tool frame to a position (and orientation), checked by PyBullet;
+ik.solve: the same for a robot's arm, named as its description names it."""
 from __future__ import annotations
 
 import math
@@ -8,7 +9,8 @@ import pybullet as p
 import pytest
 from scenes import COUNTER_POSE, fingerprint
 
-from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each
+from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each, solve_link, solve_link_each
+from pycram_cli.robots import Robot
 from pycram_cli.reasoning.ik import _Problem as Problem
 from pycram_cli.world.pose import angle_between, quat_multiply
 
@@ -44,7 +46,7 @@ def test_the_kinematic_chain_agrees_with_pybullet(scene, tool):
 
 
 def test_a_position_in_front_of_the_robot_is_reached(at_counter):
-    solution = solve(at_counter.robot, LEFT, (1.2, 0.9, 1.0))
+    solution = solve_link(at_counter.robot, LEFT, (1.2, 0.9, 1.0))
     assert isinstance(solution, IKSolution) and solution
     assert solution.position_error < 1e-3 and solution.orientation_error is None
     assert sorted(solution.joint_positions) == sorted(LEFT_ARM)
@@ -53,7 +55,7 @@ def test_a_position_in_front_of_the_robot_is_reached(at_counter):
 def test_a_position_and_orientation_are_reached_together(at_counter):
     robot = at_counter.robot
     for grasp in (FRONT, TOP):
-        solution = solve(robot, RIGHT, (1.25, 0.6, 0.95), grasp)
+        solution = solve_link(robot, RIGHT, (1.25, 0.6, 0.95), grasp)
         assert solution and solution.position_error < 1e-3 and solution.orientation_error < 0.01
         pos, orn = forward_pose(robot, RIGHT, solution.joint_positions)
         assert math.dist(pos, (1.25, 0.6, 0.95)) == pytest.approx(solution.position_error)
@@ -65,14 +67,14 @@ def test_orientations_follow_the_robot_base(scene):
     yaw = (0.0, 0.0, 1.0, 0.0)  # turned around, facing -x
     robot.set_position_and_orientation((-0.3, 1.0, 0.0), yaw)
     grasp = quat_multiply(yaw, FRONT)
-    solution = solve(robot, LEFT, (-0.8, 1.0, 0.95), grasp)
+    solution = solve_link(robot, LEFT, (-0.8, 1.0, 0.95), grasp)
     assert solution and solution.orientation_error < 0.01
 
 
 def test_joint_limits_are_respected(at_counter):
     robot = at_counter.robot
     for target in [(1.2, 0.9, 1.0), (1.5, 0.2, 0.6), (0.9, 1.4, 1.4)]:
-        solution = solve(robot, LEFT, target)
+        solution = solve_link(robot, LEFT, target)
         for name, value in solution.joint_positions.items():
             joint = robot.joint(name)
             if joint.limited:
@@ -81,7 +83,7 @@ def test_joint_limits_are_respected(at_counter):
 
 def test_only_the_arm_moves_torso_and_base_stay(at_counter):
     robot = at_counter.robot
-    solution = solve(robot, LEFT, (1.2, 0.9, 1.0))
+    solution = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
     assert "torso_lift_joint" not in solution.joint_positions
     robot.set_joint_positions(solution.joint_positions)
     assert math.dist(robot.get_link_position(LEFT), (1.2, 0.9, 1.0)) < 1e-3
@@ -90,12 +92,12 @@ def test_only_the_arm_moves_torso_and_base_stay(at_counter):
 def test_the_joints_to_move_can_be_chosen(at_counter):
     robot = at_counter.robot
     joints = ["torso_lift_joint", *LEFT_ARM]
-    solution = solve(robot, LEFT, (1.1, 0.9, 1.35), joints=joints)
+    solution = solve_link(robot, LEFT, (1.1, 0.9, 1.35), joints=joints)
     assert solution and set(solution.joint_positions) == set(joints)
 
 
 def test_an_unreachable_target_gives_the_best_configuration_and_its_error(at_counter):
-    solution = solve(at_counter.robot, LEFT, (3.0, 0.7, 1.0))
+    solution = solve_link(at_counter.robot, LEFT, (3.0, 0.7, 1.0))
     assert not solution
     assert 1.0 < solution.position_error < 2.5
     assert sorted(solution.joint_positions) == sorted(LEFT_ARM)
@@ -103,35 +105,48 @@ def test_an_unreachable_target_gives_the_best_configuration_and_its_error(at_cou
 
 def test_the_threshold_decides_success(at_counter):
     far = (1.35, 0.7, 0.4)  # a little below what the arm reaches
-    best = solve(at_counter.robot, RIGHT, far)
+    best = solve_link(at_counter.robot, RIGHT, far)
     assert not best
-    assert solve(at_counter.robot, RIGHT, far, threshold=best.position_error + 0.01)
+    assert solve_link(at_counter.robot, RIGHT, far, threshold=best.position_error + 0.01)
 
 
 def test_solve_is_deterministic_bitwise(at_counter):
     robot = at_counter.robot
-    first = solve(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
-    second = solve(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
+    first = solve_link(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
+    second = solve_link(robot, RIGHT, (1.3, 0.5, 0.9), TOP)
     assert first == second
-    unreachable = [solve(robot, LEFT, (1.3, 0.6, 1.9)) for _ in range(2)]
+    unreachable = [solve_link(robot, LEFT, (1.3, 0.6, 1.9)) for _ in range(2)]
     assert unreachable[0] == unreachable[1]
 
 
 def test_solve_leaves_the_world_untouched(at_counter):
     before = fingerprint(at_counter)
-    solve(at_counter.robot, LEFT, (1.2, 0.9, 1.0), TOP)
-    solve(at_counter.robot, RIGHT, (3.0, 0.0, 1.0))
+    solve_link(at_counter.robot, LEFT, (1.2, 0.9, 1.0), TOP)
+    solve_link(at_counter.robot, RIGHT, (3.0, 0.0, 1.0))
     assert fingerprint(at_counter) == before
+
+
+def test_a_robots_arm_is_solved_for_its_tool_frame_and_its_joints(at_counter):
+    robot = Robot.of(at_counter)
+    solution = solve(robot, "left", (1.2, 0.9, 1.0), FRONT)
+    assert solution == solve_link(at_counter.robot, LEFT, (1.2, 0.9, 1.0), FRONT, joints=LEFT_ARM)  # bitwise
+    assert sorted(solution.joint_positions) == sorted(robot.arm("left").joints)
+    queries = [((1.2, 0.9, 1.0), FRONT, None), ((3.0, 0.7, 1.0), FRONT, None)]
+    assert solve_each(robot, "left", queries) == solve_link_each(at_counter.robot, LEFT, queries)
+    wrist = solve(robot, "left", (1.1, 0.9, 1.0), frame="l_wrist_roll_link")  # another link the arm moves
+    assert wrist == solve_link(at_counter.robot, "l_wrist_roll_link", (1.1, 0.9, 1.0), joints=LEFT_ARM)
+    with pytest.raises(KeyError, match="has no arm 'middle'"):
+        solve(robot, "middle", (1.2, 0.9, 1.0))
 
 
 def test_unknown_links_and_joints_are_reported(scene):
     with pytest.raises(KeyError, match="did you mean 'l_gripper_tool_frame'"):
-        solve(scene.robot, "l_gripper_tool_fram", (1, 1, 1))
+        solve_link(scene.robot, "l_gripper_tool_fram", (1, 1, 1))
     with pytest.raises(KeyError, match="no joint"):
-        solve(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
+        solve_link(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
 
 
-# -- several targets at once (solve_each) ------------------------------------------------------------------------
+# -- several targets at once (solve_link_each) -------------------------------------------------------------------
 
 
 def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_counter):
@@ -139,13 +154,13 @@ def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_
     middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
     queries = [((1.2, 0.9, 1.0), FRONT, None), ((1.25, 0.85, 0.95), TOP, middle),
                ((3.0, 0.7, 1.0), FRONT, None), ((1.3, 1.0, 1.05), TOP, None)]  # the third out of reach
-    together = solve_each(robot, LEFT, queries)
+    together = solve_link_each(robot, LEFT, queries)
     alone = []
     for position, orientation, start in queries:
         with robot.joints_kept(LEFT_ARM):
             if start is not None:
                 robot.reset_joints(start)
-            alone.append(solve(robot, LEFT, position, orientation))
+            alone.append(solve_link(robot, LEFT, position, orientation))
     assert together == alone  # bitwise: joint values, errors, verdicts
     assert [s.success for s in together] == [True, True, False, True]
 
@@ -154,15 +169,15 @@ def test_solving_from_several_starts_can_stop_at_the_first_answer_that_will_do(a
     robot = at_counter.robot
     middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
     seen = []
-    answers = solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), FRONT, middle)],
-                         enough=lambda k, s: seen.append(k) is None and k == 0 and s.success)
-    assert answers[0] == solve(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    answers = solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), FRONT, middle)],
+                              enough=lambda k, s: seen.append(k) is None and k == 0 and s.success)
+    assert answers[0] == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
     assert seen[-1] == 0 and (answers[1] is None) == (seen == [0])  # the other start's answer was not waited for
 
 
 def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_are_refused(at_counter):
     robot = at_counter.robot
     with pytest.raises(ValueError, match="orientation for every target or for none"):
-        solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
+        solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
     with pytest.raises(ValueError, match="got torso_lift_joint"):
-        solve_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])
+        solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])

@@ -15,7 +15,7 @@ import pytest
 from pycram_cli.designators import perform
 from pycram_cli.failures import Failure
 from pycram_cli.paths import worlds_dir
-from pycram_cli.process_modules.collisions import collisions
+from pycram_cli.planning.contacts import collisions
 from pycram_cli.reasoning import run_query
 from pycram_cli.world.pose import yaw_quaternion
 from pycram_cli.worldfile.loader import load_world

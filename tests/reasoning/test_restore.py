@@ -14,7 +14,7 @@ import pybullet as p
 import pytest
 from scenes import fingerprint, put_on
 
-from pycram_cli.reasoning import (blocking, contact, occluding, reachable, run_query, solve, stable, supporting,
+from pycram_cli.reasoning import (blocking, contact, occluding, reachable, run_query, solve_link, stable, supporting,
                                   visible)
 
 FREE = ["milk", "cereal", "bowl", "spoon", "bottle"]
@@ -78,7 +78,7 @@ def queries(world, rng):
         ("reachable position", lambda: reachable(position, robot, tool)),
         ("blocking", lambda: blocking(a, robot, tool, grasp=grasp)),
         ("blocking position", lambda: blocking(position, robot, tool, exclude_types=["environment"])),
-        ("solve", lambda: solve(robot, tool, position)),
+        ("solve", lambda: solve_link(robot, tool, position)),
         ("run_query stable", lambda: run_query(world, "stable", {"object": b.name})),
         ("run_query blocking", lambda: run_query(world, "blocking", {"target": position})),
         ("run_query reachable", lambda: run_query(world, "reachable", {"target": a.name, "grasp": "front"})),

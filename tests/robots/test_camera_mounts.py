@@ -15,8 +15,8 @@ from click.testing import CliRunner
 from pycram_cli.cli.main import cli
 from pycram_cli.designators import perform
 from pycram_cli.failures import ReachabilityFailure
-from pycram_cli.process_modules import Robot
-from pycram_cli.process_modules.head import Mount, camera_mount, in_view
+from pycram_cli.planning.head import Mount, camera_mount, in_view
+from pycram_cli.robots import Robot
 from pycram_cli.worldfile.loader import load_world
 
 from robot_variants import write_variant

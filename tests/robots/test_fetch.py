@@ -225,8 +225,8 @@ def test_performing_with_an_arm_the_fetch_lacks_says_which_arms_it_has(world):
 def test_failures_name_the_fetchs_arm_and_gripper_as_a_sentence_would(world):
     # its only arm is called `arm`: "the arm cannot take ...", never "the arm arm"
     from pycram_cli.failures import ManipulationFailure, ReachabilityFailure
-    from pycram_cli.process_modules import Robot
-    from pycram_cli.process_modules.manipulation import plan_grasp
+    from pycram_cli.planning.pick_place import plan_grasp
+    from pycram_cli.robots import Robot
     perform(world, "moving", COUNTER)
     robot = Robot.of(world)
     said = []

@@ -19,7 +19,7 @@ from typing import Any, Mapping
 
 from ...errors import InputError, Location, raise_if_any
 from ...kinds import Robots
-from ...process_modules import Robot
+from ...robots import Robot
 from . import moving, perceiving, handling  # noqa: F401,I001  (declares the actions, in this order)
 from .actor import Actor, DirectActor, Finder
 from .declaration import ACTIONS, Action, check_action, declare_action

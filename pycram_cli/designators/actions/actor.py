@@ -23,7 +23,7 @@ from ...failures import Failure, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
 from ...locations.plot import MAP_KEY, candidate_map
-from ...process_modules import Robot
+from ...robots import Robot
 from ...reasoning import QueryAnswer, run_query
 from ...world import BulletWorld, Object
 from ..performing import perform

@@ -7,8 +7,8 @@ from typing import Any, Callable, Mapping
 from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure
 from ...kinds import KINDS, Robots, location_goals
-from ...process_modules import Robot
-from ...process_modules.arms import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
+from ...planning.reach import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
+from ...robots import Robot
 from ...world import Object
 from ..declaration import SlotProblem
 from .actor import Actor, Finder, as_failure

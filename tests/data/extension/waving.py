@@ -8,8 +8,9 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from pycram_cli.designators import Designator, Slot, declare_designator, drives_arm
-from pycram_cli.process_modules import ProcessModule, Robot, process_module
+from pycram_cli.process_modules import ProcessModule, process_module
 from pycram_cli.reasoning import Call, QueryAnswer, QueryParam, QuerySpec, declare_query
+from pycram_cli.robots import Robot
 
 
 def _count(call: Call) -> QueryAnswer:

@@ -36,12 +36,12 @@ from typing import Sequence
 
 import numpy as np
 
+from ..robots import Robot
 from ..robots.objects import object_knowledge
 from ..robots.tool import hand
 from ..robots.tool import tool_axes as model_tool_axes
 from ..world import Object
 from ..world.pose import Quat, Vec3, invert, matrix_to_quat, quat_to_matrix, compose
-from .base import Robot
 
 #: a box axis within this of the wanted direction counts as equally good (ties keep the box's axis order)
 TIE = 1e-6

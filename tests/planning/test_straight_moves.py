@@ -9,8 +9,8 @@ import pytest
 
 from pycram_cli import load_world
 from pycram_cli.paths import worlds_dir
-from pycram_cli.process_modules import Robot
-from pycram_cli.process_modules.arms import LINE_SLACK, reach, reach_from, strays
+from pycram_cli.planning.reach import LINE_SLACK, reach, reach_from, strays
+from pycram_cli.robots import Robot
 
 #: the Fetch above the island with the cereal, as that sweep's scenario had it, and the place 5 cm below the tool
 BASE = ((-0.25, 0.9, 0.0), (0.0, 0.0, 0.9693533841011682, 0.24567054510383007))

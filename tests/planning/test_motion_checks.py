@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from pycram_cli import load_world
-from pycram_cli.process_modules import Robot, motion
-from pycram_cli.process_modules.arms import arm_configuration
+from pycram_cli.planning import motion, paths
+from pycram_cli.planning.reach import arm_configuration
+from pycram_cli.robots import Robot
 
 
 @pytest.fixture(scope="module")
@@ -42,14 +43,14 @@ def at_the_counter(world):
 
 def counting(monkeypatch, name):
     calls = []
-    original = getattr(motion.Motion, name) if name != "_search" else motion._search
+    original = getattr(motion.Motion, name) if name != "_search" else paths._search
 
     def counted(*args, **kwargs):
         calls.append(1)
         return original(*args, **kwargs)
 
     if name == "_search":
-        monkeypatch.setattr(motion, "_search", counted)
+        monkeypatch.setattr(paths, "_search", counted)
     else:
         monkeypatch.setattr(motion.Motion, name, counted)
     return calls
@@ -127,10 +128,10 @@ def test_a_world_that_does_not_track_its_changes_remembers_nothing(world, monkey
 def test_a_search_made_again_is_remembered_even_when_it_found_nothing(world, monkeypatch):
     robot, joints, out = at_the_counter(world)
     searches = counting(monkeypatch, "_search")
-    first = motion.search_path(robot, out, edges=3)
-    again = motion.search_path(robot, out, edges=3)
+    first = paths.search_path(robot, out, edges=3)
+    again = paths.search_path(robot, out, edges=3)
     assert again == first and len(searches) == 1
-    motion.search_path(robot, out, edges=4)  # another budget is another question
+    paths.search_path(robot, out, edges=4)  # another budget is another question
     assert len(searches) == 2
 
 

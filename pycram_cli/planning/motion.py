@@ -39,9 +39,9 @@ from typing import Any, Iterable, Mapping, Sequence
 import numpy as np
 
 from ..failures import ManipulationFailure
+from ..robots import Robot
 from ..world import Object
 from ..world.pose import quat_to_matrix, quats_to_matrices
-from .base import Robot
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
 PENETRATION = 0.001
@@ -137,7 +137,7 @@ class Motion:
         is held), every other object's version (an unchanged version is an unchanged object, see
         `BulletWorld.version`), the moving joints and what may be touched. Equal situations give equal walks and
         searches, bitwise, so each is made once (`remembered`): a way tried again — a departure re-tried for each
-        arrival in `arms.move_over`, the way a location test found, then moved along — costs a look-up. None where
+        arrival in `paths.move_over`, the way a location test found, then moved along — costs a look-up. None where
         versions do not see every change (a GUI, real time) or in a private copy: nothing is remembered there."""
         world = self.world
         if not world.tracks_changes or world.is_copy:
@@ -510,123 +510,3 @@ def collision_failure(what: str, hits: Sequence[Hit], fraction: float, at_goal: 
     return ManipulationFailure(f"{what} would collide: {hit}{also}, {where}",
                                colliding=[hit.obstacle.name, *others], link=hit.link, part=hit.mover,
                                depth=round(hit.depth, 4))
-
-
-# -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
-
-#: the longest step of the search (rad, or m for a prismatic joint, per joint), its budget of edges checked, its seed
-SEARCH_STEP = 0.4
-SEARCH_EDGES = 300
-SEARCH_SEED = 20191028
-
-
-def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = (),
-                edges: int = SEARCH_EDGES) -> list[dict[str, float]] | None:
-    """Joint values to pass through, from the current ones to `goal`, every leg between them free (checked as `move`
-    checks a path), or None when none is found within `edges` checks of a leg.
-
-    RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
-    configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
-    other; the way found is then shortened by joining its waypoints directly wherever that is free. The random
-    numbers come from a fixed seed, so the same world gives the same way; a search made again in the same situation
-    (`Motion.situation`) is answered from memory.
-    """
-    names = [name for name in goal]
-    motion = Motion(robot, names, ignore)
-    start_values, end_values = motion._endpoints(goal)
-    order = [j.name for j in motion.joints]
-    if not order:
-        return []
-    situation = motion.situation()
-    key = None if situation is None else (situation, "search", start_values.tobytes(), end_values.tobytes(), edges)
-    known = motion.remembered(key)
-    if known is not None:
-        motion._put(start_values)  # as a search leaves it
-        return None if known[0] is None else [dict(values) for values in known[0]]
-    way = _search(motion, start_values, end_values, order, edges)
-    motion.remember(key, (None if way is None else [dict(values) for values in way],))
-    return way
-
-
-def _search(motion: Motion, start_values: np.ndarray, end_values: np.ndarray, order: list[str],
-            edges: int) -> list[dict[str, float]] | None:
-    """The search of `search_path` (RRT-connect, then shortened), from `start_values` to `end_values`."""
-    lows, highs = [], []
-    for joint, value in zip(motion.joints, start_values):
-        if joint.limited:
-            lows.append(joint.lower)
-            highs.append(joint.upper)
-        else:
-            lows.append(value - math.pi)
-            highs.append(value + math.pi)
-    low, high = np.array(lows), np.array(highs)
-    rng = np.random.default_rng(SEARCH_SEED)
-    budget = [edges]
-
-    motion._prune(motion._levers())
-    motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else
-
-    def free(a: np.ndarray, b: np.ndarray) -> bool:
-        if budget[0] <= 0:
-            return False
-        budget[0] -= 1
-        fraction, hits = motion._follow(a, b)
-        return not hits and fraction >= 1.0
-
-    def toward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        step = np.max(np.abs(b - a))
-        return b if step <= SEARCH_STEP else a + (b - a) * (SEARCH_STEP / step)
-
-    trees: list[list[tuple[np.ndarray, int]]] = [[(start_values, -1)], [(end_values, -1)]]
-    meeting: tuple[int, int] | None = None
-    try:
-        while budget[0] > 0 and meeting is None:
-            grow, other = trees[0], trees[1]
-            # a random configuration, or (one time in five) the other tree's root
-            sample = other[0][0] if rng.random() < 0.2 else low + rng.random(len(low)) * (high - low)
-            near = min(range(len(grow)), key=lambda i: float(np.max(np.abs(grow[i][0] - sample))))
-            new = toward(grow[near][0], sample)
-            if not free(grow[near][0], new):
-                trees.reverse()
-                continue
-            grow.append((new, near))
-            # the other tree reaches for the new node, step by step
-            reach = min(range(len(other)), key=lambda i: float(np.max(np.abs(other[i][0] - new))))
-            while budget[0] > 0:
-                nxt = toward(other[reach][0], new)
-                if not free(other[reach][0], nxt):
-                    break
-                other.append((nxt, reach))
-                reach = len(other) - 1
-                if np.max(np.abs(nxt - new)) < 1e-9:
-                    meeting = (len(grow) - 1, reach) if grow is trees[0] else (reach, len(grow) - 1)
-                    break
-            if meeting is None:
-                trees.reverse()
-        if meeting is None:
-            return None
-        # the trees may have been swapped: the one holding the start comes first
-        if not np.array_equal(trees[0][0][0], start_values):
-            trees.reverse()
-            meeting = (meeting[1], meeting[0])
-
-        def chain(tree: list[tuple[np.ndarray, int]], index: int) -> list[np.ndarray]:
-            found = []
-            while index != -1:
-                found.append(tree[index][0])
-                index = tree[index][1]
-            return found
-
-        path = list(reversed(chain(trees[0], meeting[0]))) + chain(trees[1], meeting[1])[1:]
-        budget[0] = max(budget[0], len(path) * 2)  # shortening gets a few checks of its own
-        short = [path[0]]
-        i = 0
-        while i < len(path) - 1:
-            j = len(path) - 1
-            while j > i + 1 and not free(path[i], path[j]):
-                j -= 1
-            short.append(path[j])
-            i = j
-        return [{n: float(v) for n, v in zip(order, values)} for values in short[1:]]
-    finally:
-        motion._put(start_values)

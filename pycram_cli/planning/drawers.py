@@ -1,0 +1,137 @@
+"""Accessing, planned: grasp a drawer handle and pull the drawer open, the gripper following the handle.
+
+The handle is grasped like an object (`grasps.py`), from its link's box: the tool approaches
+the way the description's first grasp points (the one `accessing` pulls handles with), the
+fingers close across the handle's thin side (a bar along y is taken across its height). The
+tool comes in from `APPROACH` back until it touches, the fingers close until they touch the
+handle, and the drawer is pulled in steps, the arm following the handle; every arm motion is
+collision-checked (`motion.py`). What rests in the drawer rides along.
+"""
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+from ..failures import GripperFailure, ManipulationFailure
+from ..kinds import gripper_words
+from ..reasoning.ik import IKSolution
+from ..robots import Robot
+from ..world import Object
+from ..world.pose import Quat, Vec3, compose, invert
+from . import motion
+from .grasps import Grasp, grasps_of_box, holdable
+from .reach import reach, solve_tool
+
+#: how many steps the drawer is pulled in (the arm's path between two is checked)
+STEPS = 6
+#: the pre-grasp pose is this far back along the approach (m)
+APPROACH = 0.10
+
+
+def contents_of(part: Object, link: int) -> list[Object]:
+    """Free objects resting on (touching, above) a link of `part` — they ride along when it moves."""
+    link_top = part.get_aabb(link)[0][2]
+    inside = []
+    for obj in part.world.objects:
+        if obj is part or obj.fixed or obj.attachments:
+            continue
+        points = part.world.closest_points(part, obj, 0.005, link_a=link)
+        if points and obj.get_aabb()[0][2] >= link_top - 0.005:
+            inside.append(obj)
+    return inside
+
+
+def handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> Grasp | None:
+    """How the arm holds a handle (a link of `part`) with the description's first grasp, or None if it cannot."""
+    pull = next(iter(robot.description.grasps), None)
+    if pull is None:
+        return None
+    lo, hi = (np.asarray(v, dtype=float) for v in part.get_link_local_aabb(handle))
+    pose = part.get_link_position_and_orientation(handle)
+    return next((g for g in grasps_of_box(robot, arm, pose, lo, hi, pull) if holdable(robot, arm, g) is None), None)
+
+
+def handle_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, Quat] | None:
+    grasp = handle_grasp(robot, arm, part, handle)
+    return None if grasp is None else (grasp.position, grasp.orientation)
+
+
+def plan_handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Grasp, IKSolution, IKSolution]:
+    """How accessing takes the handle from where the robot stands: the grasp, and the arm's configurations at the
+    pre-grasp pose (APPROACH back, near the arm's configuration) and at the handle. GripperFailure when the gripper
+    cannot hold it, ReachabilityFailure when the arm reaches either pose not (the location test asks this too)."""
+    grasp = handle_grasp(robot, arm, part, handle)
+    if grasp is None:
+        raise GripperFailure(f"the {gripper_words(arm)} cannot hold the handle {handle}", arm=arm)
+    what = f"the handle {handle}"
+    pre = solve_tool(robot, arm, _offset(grasp.position, grasp.approach, -(grasp.depth + APPROACH)), grasp.orientation,
+                     f"the pre-grasp pose for {what}", near=True)
+    at = solve_tool(robot, arm, grasp.position, grasp.orientation, what, start=pre.joint_positions)
+    return grasp, pre, at
+
+
+def pull_values(start: float, goal: float) -> list[float]:
+    """The joint values accessing pulls (or pushes) the drawer through, one per step, the last one `goal`."""
+    return [start + (goal - start) * k / STEPS for k in range(1, STEPS + 1)]
+
+
+def held_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, Quat]:
+    """The arm's tool frame in the handle's frame, as the arm stands now: the hand keeps it as the drawer moves."""
+    tool_frame = robot.description.arm(arm).tool_frame
+    return compose(invert(part.get_link_position_and_orientation(handle)),
+                   robot.body.get_link_position_and_orientation(tool_frame))
+
+
+def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str, goal: float,
+                   at: IKSolution) -> bool:
+    """Whether the arm, holding the handle at `at` (from `plan_handle_grasp`), follows it to `goal` as accessing pulls
+    it: every step's tool pose (the hand keeping its hold, `held_pose`) reached from the step before, the arm's way
+    there free (the drawer's moving links not counted, as the pull counts them not), and the drawer then inside no
+    part of the robot but the hand. Accessing's own plan of the pull, tried without moving: the
+    location test asks this, so that a pose it finds is one the pull succeeds from. Joints are put back."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    index = part.joint(joint).index
+    moving = [(part, link) for link in range(len(part.joints)) if below_joint(part, link, index)]
+    hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links
+    with part.joints_kept([joint]), body.joints_kept(names):
+        body.reset_joints(at.joint_positions)
+        held = held_pose(robot, arm, part, handle)
+        for value in pull_values(part.get_joint_position(joint), goal):
+            part.reset_joints({joint: value})
+            tool = compose(part.get_link_position_and_orientation(handle), held)
+            solution = reach(robot, arm, tool[0], tool[1])
+            if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
+                return False
+            body.reset_joints(solution.joint_positions)
+            try:
+                drawer_pushes_into(robot, part, moving, hand)
+            except ManipulationFailure:
+                return False
+    return True
+
+
+def below_joint(part: Object, link: int, joint_index: int) -> bool:
+    """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
+    while link != -1:
+        if link == joint_index:
+            return True
+        link = part.joints[link].parent_index
+    return False
+
+
+def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:
+    p = np.asarray(position, dtype=float) + direction * distance
+    return (float(p[0]), float(p[1]), float(p[2]))
+
+
+def drawer_pushes_into(robot: Robot, part: Object, moving: list[tuple[Object, int]], hand: list[int]) -> None:
+    """The drawer's moving links may touch the hand that pulls them, nothing else of the robot: ManipulationFailure
+    naming the link the drawer would be inside (a robot standing too close opens the drawer into its own arm)."""
+    links = {link for _, link in moving}
+    for point in robot.world.closest_points(robot.body, part, 0.0):
+        if point.link_b in links and point.link_a not in hand and point.distance < -motion.PENETRATION:
+            raise ManipulationFailure(f"{part.get_link_name(point.link_b)} would be {-point.distance * 1000:.0f} mm "
+                                      f"inside {robot.body.get_link_name(point.link_a)}",
+                                      colliding=[part.name], link=part.get_link_name(point.link_b))
