@@ -16,6 +16,7 @@ import numpy as np
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution
+from ..signature import Param
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
@@ -25,6 +26,10 @@ from .grasping import Grasp, grasps_of_box, holdable
 from .registry import process_module
 
 #: how many steps the drawer is pulled in (the arm's path between two is checked)
+#: how far accessing opens a drawer or door: the `accessing` designator's `distance` slot (the `open` action's, with its
+#: own kind and wording); a location `{accessing: HANDLE}` names no distance and plans for this default
+DISTANCE = Param("distance", "number", doc="how far to open, in metres", default=0.3,
+                 default_doc="0.3, or the joint's upper limit if smaller")
 STEPS = 6
 #: the pre-grasp pose is this far back along the approach (m)
 APPROACH = 0.10

@@ -127,7 +127,7 @@ class Actor:
     def action(self, name: str, slots: Mapping[str, Any]) -> Any:
         spec = ACTIONS[name]
         given = {k: v for k, v in slots.items() if v is not None}
-        return self.group(f"action {name}", "action", lambda actor: spec.run(actor, given),
+        return self.group(f"action {name}", "action", lambda actor: spec.perform(actor, given),
                           {"action": {"type": name, "slots": jsonable(given)}})
 
     def attempt(self, number: int, run: Callable[["Actor"], Any]) -> Any:
