@@ -29,11 +29,15 @@ def _move_tcp(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "move-tcp", "Move an arm's tool centre point (tool frame) to a position.", Signature((
+    "move-tcp", "Move an arm's tool centre point (tool frame) to a position.",
+    Signature((
         Param("target", "position", True, "where the tool frame goes"),
-        Param("orientation", "grasp", False, "tool orientation: a grasp of the robot or a quaternion", default_doc="any orientation"),
-        Param("arm", "arm", False, "the arm to move", default_doc="an arm that can reach the target (in the description's order)"),
-    )), resolve=_move_tcp, module="tcp", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+        Param("orientation", "grasp", False, "tool orientation: a grasp of the robot or a quaternion",
+              default_doc="any orientation"),
+        Param("arm", "arm", False, "the arm to move",
+              default_doc="an arm that can reach the target (in the description's order)"),
+    )),
+    resolve=_move_tcp, module="tcp", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
 
 def _move_arm_joints(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -69,12 +73,13 @@ def _check_design_slots(slots: Mapping[str, Any], robots: Robots) -> list[Proble
 
 declare_designator(Designator(
     "move-arm-joints", "Set the joints of arms to a named pose (park) or to joint values, along a collision-free "
-    "path: straight in joint space, else around what is in the way.", Signature((
+    "path: straight in joint space, else around what is in the way.",
+    Signature((
         Param("arms", "arm-configs", False, "configuration by arm name, e.g. {left: park, right: [0, 0, ...]}"),
         Param("left-arm", "arm-config", False, "configuration of the left arm (the design's slot name)"),
         Param("right-arm", "arm-config", False, "configuration of the right arm (the design's slot name)"),
-    ), one_of=("arms", "left-arm", "right-arm"), across=_check_design_slots), resolve=_move_arm_joints, module="arm-joints", uses=_arms_moved,
-    needs=("arms",), resource="arms"))
+    ), one_of=("arms", "left-arm", "right-arm"), across=_check_design_slots),
+    resolve=_move_arm_joints, module="arm-joints", uses=_arms_moved, needs=("arms",), resource="arms"))
 
 
 def _gripper(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -83,5 +88,8 @@ def _gripper(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 for _name, _verb, _module in (("opening-gripper", "Open", "open-gripper"), ("closing-gripper", "Close", "close-gripper")):
     declare_designator(Designator(
-        _name, f"{_verb} a gripper.", Signature((Param("gripper", "arm", True, "which gripper: the arm it belongs to"),)),
+        _name, f"{_verb} a gripper.",
+        Signature((
+            Param("gripper", "arm", True, "which gripper: the arm it belongs to"),
+        )),
         resolve=_gripper, module=_module, uses=drives_arm("gripper"), needs=("arms",), resource="gripper"))

@@ -47,11 +47,15 @@ def _grasp_words(grasp: Any) -> str:
 
 
 declare_designator(Designator(
-    "pick-up", "Grasp an object with an arm and attach it to the gripper's tool frame.", Signature((
+    "pick-up", "Grasp an object with an arm and attach it to the gripper's tool frame.",
+    Signature((
         Param("object", "object", True, "the object to pick up"),
-        Param("arm", "arm", False, "the arm to use", default_doc="an arm that can reach the object (in the description's order)"),
-        Param("grasp", "grasp", False, "the side to grasp from", default_doc="the first of the robot's grasps that works"),
-    )), resolve=_pick_up, module="pick-up", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+        Param("arm", "arm", False, "the arm to use",
+              default_doc="an arm that can reach the object (in the description's order)"),
+        Param("grasp", "grasp", False, "the side to grasp from",
+              default_doc="the first of the robot's grasps that works"),
+    )),
+    resolve=_pick_up, module="pick-up", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
 
 def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -63,11 +67,13 @@ def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "place", "Stand a held object on the surface under a target position, let go, and let it settle.", Signature((
+    "place", "Stand a held object on the surface under a target position, let go, and let it settle.",
+    Signature((
         Param("object", "object", True, "the held object"),
         Param("target", "place-position", True, "where it stands: x, y (and z, optionally: the height of the surface)"),
         Param("arm", "arm", False, "the arm holding the object", default_doc="the arm that holds it"),
-    )), resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+    )),
+    resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
 
 def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -92,10 +98,13 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "accessing", "Open a drawer: grasp its handle and pull it open by a distance.", Signature((
+    "accessing", "Open a drawer: grasp its handle and pull it open by a distance.",
+    Signature((
         Param("drawer-handle", "link", True, "the handle link, as named in the URDF", of="part-of"),
         Param("drawer-joint", "joint", True, "the drawer's prismatic joint", of="part-of"),
         Param("part-of", "object", True, "the object the drawer belongs to (e.g. kitchen)"),
         DISTANCE,
-        Param("arm", "arm", False, "the arm that pulls", default_doc="an arm that can reach the handle (in the description's order)"),
-    )), resolve=_accessing, module="accessing", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+        Param("arm", "arm", False, "the arm that pulls",
+              default_doc="an arm that can reach the handle (in the description's order)"),
+    )),
+    resolve=_accessing, module="accessing", uses=drives_arm("arm"), needs=("arms",), resource="arm"))

@@ -14,7 +14,9 @@ def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "moving", "Drive (teleport) the robot base to a pose; fails if the robot then collides with anything but the floor.", Signature((
+    "moving", "Drive (teleport) the robot base to a pose; fails if the robot then collides with anything but the floor.",
+    Signature((
         Param("target", "position", True, "where the base goes (z is ignored: the base stays on the floor)"),
         Param("orientation", "quaternion", False, "base orientation", default_doc="the current orientation"),
-    )), resolve=_resolve, module="navigation", uses=drives("base"), needs=("mobile base",), resource="base"))
+    )),
+    resolve=_resolve, module="navigation", uses=drives("base"), needs=("mobile base",), resource="base"))

@@ -14,6 +14,9 @@ def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "moving-torso", "Raise or lower the torso to a joint position (metres along its prismatic joint).", Signature((
-        Param("position", "number", False, "the torso joint's position in metres", default_doc="the description's torso default"),
-    )), resolve=_resolve, module="torso", uses=drives("torso"), needs=("torso",), resource="torso"))
+    "moving-torso", "Raise or lower the torso to a joint position (metres along its prismatic joint).",
+    Signature((
+        Param("position", "number", False, "the torso joint's position in metres",
+              default_doc="the description's torso default"),
+    )),
+    resolve=_resolve, module="torso", uses=drives("torso"), needs=("torso",), resource="torso"))

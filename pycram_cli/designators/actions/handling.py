@@ -58,11 +58,14 @@ def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 
 declare_action(Action(
-    "pick-up", "Pick an object up: stand where an arm reaches it untouched, grasp it, lift it into the carry pose.", Signature((
+    "pick-up", "Pick an object up: stand where an arm reaches it untouched, grasp it, lift it into the carry pose.",
+    Signature((
         Param("object", "object", True, "the object to pick up"),
         Param("arm", "arm", False, "the arm to use", default_doc="found with where to stand: the arm that reaches"),
-        Param("grasp", "grasp", False, "the grasp", default_doc="found with where to stand: the first grasp that works"),
-    )), run=_pick_up, uses=EVERYTHING, needs=("arms",), returns="the object"))
+        Param("grasp", "grasp", False, "the grasp",
+              default_doc="found with where to stand: the first grasp that works"),
+    )),
+    run=_pick_up, uses=EVERYTHING, needs=("arms",), returns="the object"))
 
 
 # -- place -------------------------------------------------------------------------------------------------------
@@ -96,11 +99,13 @@ def _place(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 declare_action(Action(
     "place", "Put a held object down on a free spot of a surface: stand where the arm reaches the spot, place it, "
-             "park the arm.", Signature((
+             "park the arm.",
+    Signature((
         Param("object", "object", True, "the held object"),
         Param("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?} (for: the object, inferred)"),
         Param("arm", "arm", False, "the arm holding it", default_doc="the arm that holds it"),
-    ), across=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")), run=_place, uses=EVERYTHING, needs=("arms",), returns="the object"))
+    ), across=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")),
+    run=_place, uses=EVERYTHING, needs=("arms",), returns="the object"))
 
 
 # -- open and close ----------------------------------------------------------------------------------------------
@@ -177,20 +182,30 @@ def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
 _HANDLE = (Param("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)", of="part-of"),
            Param("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)",
                  of="part-of"),
-           Param("part-of", "object", False, "the object the joint belongs to", default_doc="the object that has the joint"))
-_ARM = Param("arm", "arm", False, "the arm that pulls", default_doc="found with where to stand: a free arm that reaches")
+           Param("part-of", "object", False, "the object the joint belongs to",
+                 default_doc="the object that has the joint"))
+_ARM = Param("arm", "arm", False, "the arm that pulls",
+             default_doc="found with where to stand: a free arm that reaches")
 
 declare_action(Action(
     "open", "Open a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
             "open, pull it open, park the arm.",
-    Signature((*_HANDLE, replace(DISTANCE, kind="distance", default_doc="0.3, or the joint's range if smaller"), _ARM),
-              one_of=("handle", "joint")), run=_open, uses=EVERYTHING, needs=("arms",)))
+    Signature((
+        *_HANDLE,
+        replace(DISTANCE, kind="distance", default_doc="0.3, or the joint's range if smaller"),
+        _ARM,
+    ), one_of=("handle", "joint")),
+    run=_open, uses=EVERYTHING, needs=("arms",)))
 
 declare_action(Action(
     "close", "Close a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
              "closed, push it shut, park the arm; when no pose reaches it so, push it shut in up to three strokes, "
              "each from a pose of its own.",
-    Signature((*_HANDLE, _ARM), one_of=("handle", "joint")), run=_close, uses=EVERYTHING, needs=("arms",)))
+    Signature((
+        *_HANDLE,
+        _ARM,
+    ), one_of=("handle", "joint")),
+    run=_close, uses=EVERYTHING, needs=("arms",)))
 
 
 # -- transport ---------------------------------------------------------------------------------------------------
@@ -261,11 +276,13 @@ def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None
 declare_action(Action(
     "transport", "Bring an object (or one of a type) to a location: find it, stand, pick it up, carry it, stand, "
                  "place it, park, check that it stands stably (ReasoningFailure if not), and close the drawer or "
-                 "door it was taken out of.", Signature((
+                 "door it was taken out of.",
+    Signature((
         Param("object", "object", False, "the object to bring"),
         Param("object-type", "object-type", False, "or the type of object to bring (found by search)"),
         Param("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),
         Param("arm", "arm", False, "the arm to carry it with", default_doc="found when picking it up"),
         Param("grasp", "grasp", False, "the grasp", default_doc="found when picking it up"),
-    ), one_of=("object", "object-type"), across=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")), run=_transport, uses=EVERYTHING, needs=("arms", "camera"),
-    returns="the object"))
+    ), one_of=("object", "object-type"),
+       across=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")),
+    run=_transport, uses=EVERYTHING, needs=("arms", "camera"), returns="the object"))

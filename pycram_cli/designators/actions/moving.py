@@ -26,9 +26,12 @@ def _navigate(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 
 declare_action(Action(
-    "navigate", "Drive to a base pose of a location (the best one that works; stays put when the robot stands at one).", Signature((
+    "navigate", "Drive to a base pose of a location (the best one that works; stays put when the robot stands at one).",
+    Signature((
         Param("target", "location", True, "where to stand: {reachable-for: ...}, {visible-for: ...} or {accessing: ...}"),
-    ), across=location_slot("target", BASE_POSE_GOALS, "navigate goes to a base pose: reachable-for, visible-for or accessing")), run=_navigate, uses=drives("base"), needs=("mobile base",), returns="the pose (position, orientation, ...)"))
+    ), across=location_slot("target", BASE_POSE_GOALS,
+                            "navigate goes to a base pose: reachable-for, visible-for or accessing")),
+    run=_navigate, uses=drives("base"), needs=("mobile base",), returns="the pose (position, orientation, ...)"))
 
 
 def _park_arms(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -49,9 +52,11 @@ def _park_uses(slots: Mapping[str, Any]) -> frozenset[str]:
 
 
 declare_action(Action(
-    "park-arms", "Put the arms in their park pose (an arm holding something in its carry pose, if it has one).", Signature((
+    "park-arms", "Put the arms in their park pose (an arm holding something in its carry pose, if it has one).",
+    Signature((
         Param("arm", "arm", False, "the arm to park", default_doc="every arm"),
-    )), run=_park_arms, uses=_park_uses, needs=("arms",)))
+    )),
+    run=_park_arms, uses=_park_uses, needs=("arms",)))
 
 
 def _move_torso(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -59,9 +64,12 @@ def _move_torso(actor: Actor, slots: Mapping[str, Any]) -> None:
 
 
 declare_action(Action(
-    "move-torso", "Raise or lower the torso.", Signature((
-        Param("position", "number", False, "the torso joint's position in metres", default_doc="the description's torso default"),
-    )), run=_move_torso, uses=drives("torso"), needs=("torso",)))
+    "move-torso", "Raise or lower the torso.",
+    Signature((
+        Param("position", "number", False, "the torso joint's position in metres",
+              default_doc="the description's torso default"),
+    )),
+    run=_move_torso, uses=drives("torso"), needs=("torso",)))
 
 
 def _look_at(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -73,6 +81,8 @@ def _look_at(actor: Actor, slots: Mapping[str, Any]) -> None:
 
 
 declare_action(Action(
-    "look-at", "Point the camera at an object or a position (turning the head, the arm or the base that carries it).", Signature((
+    "look-at", "Point the camera at an object or a position (turning the head, the arm or the base that carries it).",
+    Signature((
         Param("target", "target", True, "what to look at"),
-    )), run=_look_at, uses=drives("head"), needs=("camera",)))
+    )),
+    run=_look_at, uses=drives("head"), needs=("camera",)))
