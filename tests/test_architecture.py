@@ -186,7 +186,7 @@ LAYERS = ["world", "robots", "worldfile", "reasoning", "process_modules", "locat
           "scenario", "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
 SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet", "limits", "files",
-          "interrupts", "signature"}
+          "interrupts", "signature", "status"}
 
 
 def _layer_of(module: str) -> str | None:

@@ -26,6 +26,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterable
 
+from ..status import Status
 from .trace import DIGITS, TraceNode, canonical_quaternion
 
 if TYPE_CHECKING:
@@ -93,7 +94,7 @@ class Recorder:
     def finished(self, node: TraceNode) -> None:
         if not node.children:  # a leaf step (or an empty composite: recorded as a step that changed nothing)
             state = world_state(self.world)
-            self.steps.append({"path": node.path, "status": node.status, "changed": changes(self._last, state)})
+            self.steps.append({"path": node.path, "status": str(node.status), "changed": changes(self._last, state)})
             self._last = state
         if self.inner is not None:
             self.inner.finished(node)
@@ -177,7 +178,7 @@ def fold_steps(steps: list[dict[str, Any]], initial: State, summary_path: str, c
             missing.discard(key)
     for key in missing:  # changed back to where it started
         _put(changed, key, initial.get(key[0], {}))
-    entry = {"path": summary_path, "status": "failed", "folded": count, "changed": changed}
+    entry = {"path": summary_path, "status": Status.FAILED.value, "folded": count, "changed": changed}
     for index in found:  # from the last: indices before it stay valid
         del steps[index]
     steps.insert(last - (len(found) - 1), entry)

@@ -24,6 +24,7 @@ from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
 from ...process_modules import Robot
 from ...reasoning import QueryAnswer, run_query
+from ...status import Status
 from ...world import BulletWorld, Object
 from ..performing import perform
 from .declaration import ACTIONS
@@ -143,7 +144,7 @@ class DirectActor(Actor):
         self.record.setdefault("children", [])
 
     def _child(self, label: str, type: str) -> dict[str, Any]:
-        child = {"label": f"{len(self.record['children'])}:{label}", "type": type, "status": "running"}
+        child = {"label": f"{len(self.record['children'])}:{label}", "type": type, "status": Status.RUNNING.value}
         self.record["children"].append(child)
         return child
 
@@ -153,10 +154,10 @@ class DirectActor(Actor):
         try:
             with self.world.lock:
                 value = run(info)
-            child["status"] = "succeeded"
+            child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = "failed", {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
             raise
         finally:
             child.update(info)
@@ -166,8 +167,8 @@ class DirectActor(Actor):
         child.update(info or {})
         try:
             value = run(DirectActor(self.world, child))
-            child["status"] = "succeeded"
+            child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = "failed", {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
             raise
