@@ -29,6 +29,8 @@ from .query import Call, QueryAnswer, QuerySpec, declare_query, degrees, finite,
 
 #: the robot touches an object when their collision shapes are closer than this (m)
 TOUCH = 0.001
+#: how close (m) the tool frame must come to reach: the functions' default and the queries' declared one
+REACH = 0.01
 
 
 @dataclass(frozen=True)
@@ -112,7 +114,7 @@ def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshol
     return solve(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
 
 
-def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = 0.01,
+def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = REACH,
               angle_threshold: float = 0.1) -> ReachableAnswer:
     """Whether IK brings `gripper_link` within `threshold` m (and `angle_threshold` rad of the grasp) of `target`."""
     if not (threshold > 0 and math.isfinite(threshold)):
@@ -123,7 +125,7 @@ def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None
 
 
 def blocking(target: Any, robot: "Object", gripper_link: str, grasp: Any = None,
-             exclude_types: Iterable[str] = (), threshold: float = 0.01, angle_threshold: float = 0.1,
+             exclude_types: Iterable[str] = (), threshold: float = REACH, angle_threshold: float = 0.1,
              tolerance: float = TOUCH) -> list["Object"]:
     """The objects the robot touches at the IK solution for `target` (sorted by name).
 
@@ -174,7 +176,7 @@ _TARGET = "an object name or a position [x, y, z]"
 _ARM = Param("arm", "arm", doc="the arm to reach with", default_doc="every arm in the description's order: the first that reaches")
 _GRASP = Param("grasp", "grasp", doc="tool orientation: a grasp of the robot (front, top, ...) or a quaternion [x, y, z, w]",
                default_doc="any orientation")
-_REACH = Param("threshold", "distance", doc="how close (m) the tool frame must come", default=0.01)
+_REACH = Param("threshold", "distance", doc="how close (m) the tool frame must come", default=REACH)
 
 
 def _reach(call: Call, target: Any, grasp: Any, threshold: float) -> tuple[str, str, ReachableAnswer, dict[str, Any]]:

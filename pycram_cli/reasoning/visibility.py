@@ -56,6 +56,8 @@ WIDE = math.tan(math.radians(80.0))
 #: a link's collision box grown by this much (m) holds what is drawn of it (checked against full renders of the
 #: real PR2 and kitchen: their visual meshes lie within their collision boxes give or take a few millimetres)
 MARGIN = 0.02
+#: the fraction of an object's pixels that must be seen: the function's default and the query's declared one
+SEEN = 0.8
 
 
 @dataclass(frozen=True)
@@ -310,7 +312,7 @@ def _in_frustum(boxes: np.ndarray, cam: CameraPose, window: tuple[float, float, 
 
 
 def visible(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None,
-            threshold: float = 0.8) -> VisibleAnswer:
+            threshold: float = SEEN) -> VisibleAnswer:
     """Whether at least `threshold` (default 80 %) of `obj`'s pixels are seen from `camera`."""
     world = world_of(obj, world)
     if not 0.0 <= threshold <= 1.0:
@@ -366,7 +368,7 @@ def _say_visible(answer: QueryAnswer) -> str:
 declare_query(QuerySpec(
     "visible", "Are at least 80 % of the object's pixels seen from the camera?",
     parameters(Param("object", "object", True, AN_OBJECT, positional=True), _FROM,
-               Param("threshold", "fraction", doc="the fraction of pixels that must be seen", default=0.8)),
+               Param("threshold", "fraction", doc="the fraction of pixels that must be seen", default=SEEN)),
     _visible, _say_visible))
 
 
