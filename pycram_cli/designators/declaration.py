@@ -36,6 +36,7 @@ class HasSlots:
 
     name: str
     signature: Signature
+    needs: tuple[str, ...]  # what the robot must have: "mobile base", "head", "camera", "arms"
 
     @property
     def slots(self) -> tuple[Param, ...]:
@@ -140,7 +141,7 @@ def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Cal
                          robots, known)
 
 
-def slot_problems(spec: Designator | Any, what: str, slots: Mapping[str, Any], skip: Skip, robots: Robots,
+def slot_problems(spec: HasSlots, what: str, slots: Mapping[str, Any], skip: Skip, robots: Robots,
                   for_check: Mapping[str, Any]) -> list[Problem]:
     """The checks motion and action designators share: what the robot needs, then the signature's checks (values
     against their kinds unless `skip(slot, value)`, required slots, `one_of`, the check across slots given
