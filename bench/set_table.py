@@ -16,6 +16,7 @@ camera frame at 256×256 twice. Both must succeed; the script prints the medians
 from __future__ import annotations
 
 import argparse
+import importlib
 import math
 import os
 import statistics
@@ -39,7 +40,7 @@ def _baseline_run() -> int:
     from reasoning import Baseline  # bench/reasoning.py
 
     from pycram_cli.process_modules import perception
-    from pycram_cli.reasoning import queries
+    from pycram_cli.reasoning import visibility
     from pycram_cli.reasoning.stable import StableAnswer
     from pycram_cli.reasoning.visibility import VisibleAnswer
 
@@ -58,7 +59,8 @@ def _baseline_run() -> int:
         ids = set(np.unique(scene[alone == obj.id]).tolist()) - {obj.id, -1}
         return sorted((obj.world.get_object_by_id(i) for i in ids), key=lambda o: o.name)
 
-    queries.stable, queries.visible, queries.occluding = stable, visible, occluding
+    stable_module = importlib.import_module("pycram_cli.reasoning.stable")  # the package's `stable` is the function
+    stable_module.stable, visibility.visible, visibility.occluding = stable, visible, occluding  # what the queries call
     perception.visible, perception.occluding = visible, occluding
     from pycram_cli.cli.main import cli
 

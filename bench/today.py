@@ -171,7 +171,7 @@ def occluding(obj: Any, camera: Any = None, world: Any = None) -> list[Any]:
 def swap_in() -> None:
     """Make plans use today's stable, visible and occluding (for the plan-time baseline)."""
     from pycram_cli.process_modules import perception
-    from pycram_cli.reasoning import queries
 
-    queries.stable, queries.visible, queries.occluding = stable, visible, occluding
+    stable_module = importlib.import_module("pycram_cli.reasoning.stable")  # the package's `stable` is the function
+    stable_module.stable, V.visible, V.occluding = stable, visible, occluding  # what the queries call
     perception.visible, perception.occluding = visible, occluding

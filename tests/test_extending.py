@@ -1,4 +1,5 @@
-"""A query and a designator declared only in a module of their own appear everywhere once it is imported."""
+"""A query and a designator declared only in a module of their own (tests/data/extension/waving.py) appear everywhere
+once it is imported: validation, CLI help, editor schema, reference docs, and the run with their declared defaults."""
 from __future__ import annotations
 
 import importlib.util
@@ -10,6 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from pycram_cli.cli.main import cli
+from pycram_cli.cli.reference import render
 from pycram_cli.designators import DESIGNATORS
 from pycram_cli.process_modules import PROCESS_MODULES
 from pycram_cli.reasoning import QUERIES
@@ -81,3 +83,17 @@ def test_a_new_query_and_designator_are_in_the_editor_schema(extension):
     plan = json.loads(run("schema", "plan").stdout)
     assert set(plan["$defs"]["designator.waving"]["properties"]) == {"arm", "times"}
     assert "How many objects of a type are in the world?" in plan["$defs"]["query.count"]["description"]
+
+
+def test_a_new_query_and_designator_are_in_the_reference_docs(extension):
+    reference = render()
+    assert "### `count`" in reference and "    pycram query count TYPE" in reference
+    assert "### `waving`" in reference and "| `times` | optional |" in reference and "| 3 |" in reference
+
+
+def test_the_new_designator_resolves_with_its_declared_default(extension, tmp_path: Path):
+    plan = tmp_path / "wave.yaml"
+    plan.write_text("body:\n  - waving: {arm: left}\n    as: waved\n  - log: waved $waved times\n")
+    result = prepare(plan).run()
+    assert result.succeeded, result.failure
+    assert result.trace["root"]["children"][1]["message"] == "waved 3 times"

@@ -6,11 +6,12 @@ from __future__ import annotations
 import click
 from click.shell_completion import CompletionItem
 
-from ..designators import DESIGNATORS, Designator, Slot
+from ..designators import DESIGNATORS, Designator
 from ..designators.actions import ACTIONS, Action
 from ..errors import InputError, Location, did_you_mean
 from ..kinds import KINDS
 from ..robots import RobotDescription, bundled_descriptions
+from ..signature import Param
 from . import console
 from .options import json_option
 
@@ -38,7 +39,7 @@ def _as_dict(spec: Designator | Action, robots: list[RobotDescription]) -> dict[
     return {
         **head, "one_of": list(spec.one_of), "needs": list(spec.needs),
         "slots": [{"name": s.name, "required": s.required, "kind": s.kind, "kind_doc": KINDS[s.kind].doc,
-                   "default": s.default, "doc": s.doc, **({"values_per_robot": _per_robot(s.kind, robots)}
+                   "default": s.default_text or None, "doc": s.doc, **({"values_per_robot": _per_robot(s.kind, robots)}
                                                           if _per_robot(s.kind, robots) else {})}
                   for s in spec.slots],
     }
@@ -92,11 +93,11 @@ def designators(type_name: str | None, only: str | None, as_json: bool) -> None:
         console.plain("")
 
 
-def _slot_row(spec: Designator | Action, slot: Slot, robots: list[RobotDescription]) -> tuple[str, str, str, str, str]:
+def _slot_row(spec: Designator | Action, slot: Param, robots: list[RobotDescription]) -> tuple[str, str, str, str, str]:
     """(name, required/optional/one of, what value it takes, default, meaning) of one slot."""
     need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
     value = KINDS[slot.kind].doc
     per_robot = _per_robot(slot.kind, robots)
     if per_robot:
         value += "; " + "; ".join(f"{robot}: {', '.join(names) or 'none'}" for robot, names in per_robot.items())
-    return (slot.name, need, value, slot.default or "-", slot.doc)
+    return (slot.name, need, value, slot.default_text or "-", slot.doc)

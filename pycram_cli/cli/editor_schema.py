@@ -32,7 +32,6 @@ from typing import Any, Callable, Mapping
 
 from ..designators import DESIGNATORS
 from ..designators.actions import ACTIONS
-from ..designators.declaration import Slot
 from ..failures import ALIASES, FAILURES
 from ..kinds import KINDS
 from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_WAIT
@@ -43,6 +42,7 @@ from ..plan import projecting, scoring
 from ..plan.leaves import CONDITION_FORMS
 from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SCOPES, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
 from ..reasoning import QUERIES
+from ..signature import Param
 from ..scenario import variations as vary
 from ..worldfile import spec as world
 
@@ -339,16 +339,16 @@ class Schemas:
         return {"title": head, "type": "object", "description": doc, "properties": properties, "required": [head],
                 "additionalProperties": False}
 
-    def _slot(self, slot: Slot, whole_only: bool) -> Schema:
+    def _slot(self, slot: Param, whole_only: bool) -> Schema:
         """A slot's value: of its kind, or holding a $variable (a location only as a whole: validation checks it
         key by key)."""
         need = "required" if slot.required else "optional"
-        default = f"; default: {slot.default}" if slot.default else ""
+        default = f"; default: {slot.default_text}" if slot.default_text else ""
         dynamic = ref("variable") if whole_only and slot.kind == "location" else ref("dynamic")
         return {"description": f"{slot.doc} ({need}{default}) — {KINDS[slot.kind].doc}",
                 "anyOf": [ref(f"kind.{slot.kind}"), dynamic]}
 
-    def _slots(self, title: str, doc: str, slots: tuple[Slot, ...], one_of: tuple[str, ...],
+    def _slots(self, title: str, doc: str, slots: tuple[Param, ...], one_of: tuple[str, ...],
                whole_only: bool) -> Schema:
         required = [s.name for s in slots if s.required]
         schema: Schema = {"title": title, "type": "object" if required or one_of else ["object", "null"], "description": doc,
@@ -364,7 +364,7 @@ class Schemas:
         query = QUERIES[name]
         properties: Schema = {}
         for param in query.params:
-            default = param.default_doc or (param.default if param.default not in (None, []) else "")
+            default = param.default_text
             need = "required" if param.required else "optional"
             values = [ref(f"kind.{param.kind}"), ref("dynamic")] + ([] if param.required else [{"type": "null"}])
             properties[param.name] = {"description": f"{param.doc} ({need}{f'; default: {default}' if default else ''})"

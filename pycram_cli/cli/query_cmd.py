@@ -21,10 +21,10 @@ from ..jsonable import jsonable
 from .. import locations  # noqa: F401 - registers pick-up's planning, which reachable asks about objects
 from ..kinds import KINDS, POSITION_FORMS, looks_like_numbers, parse_vector
 from ..reasoning import QUERIES, QuerySpec, run_query
-from ..reasoning.query import QueryParam
 from ..reasoning.query import unknown_query
 from ..limits import MAX_MAGNITUDE
 from ..planning.contacts import collisions
+from ..signature import Param
 from ..world import BulletWorld
 from ..world.pose import yaw_quaternion
 from . import console
@@ -40,7 +40,7 @@ def _queries_help() -> str:
         lines.append(f"  {spec.usage()}")
         lines.append(f"      {spec.doc}")
         for param in spec.params:
-            default = f" (default: {param.default_doc or param.default})" if (param.default_doc or param.default not in (None, [])) else ""
+            default = f" (default: {param.default_text})" if param.default_text else ""
             name = param.name.upper() if param.positional else param.option
             lines.append(f"      {name}: {param.doc or KINDS[param.kind].doc}{default}")
     return "\n".join(lines)
@@ -71,7 +71,7 @@ class QueryCommand(click.Command):
 VECTOR_SIZES = {"position": 3, "target": 3, "camera": 3, "quaternion": 4, "grasp": 4}
 
 
-def _grouped(positional: list[str], params: list[QueryParam]) -> list[str]:
+def _grouped(positional: list[str], params: list[Param]) -> list[str]:
     """`x y z` (three arguments) as one position where that is the only way the arguments fit the parameters."""
     values: list[str] = []
     index = 0
@@ -88,7 +88,7 @@ def _grouped(positional: list[str], params: list[QueryParam]) -> list[str]:
     return values + positional[index:]
 
 
-def _value(param: QueryParam, text: str, where: Location, name: str) -> Any:
+def _value(param: Param, text: str, where: Location, name: str) -> Any:
     """A parameter's value from its text; text meant as numbers that is no vector of the kind says how one is written."""
     value = KINDS[param.kind].from_text(text)
     size = VECTOR_SIZES.get(param.kind)

@@ -32,7 +32,7 @@ def render() -> str:
                   "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
         for slot in spec.slots:
             need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
-            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default or '-')} | "
+            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default_text or '-')} | "
                          f"{_cell(slot.doc)} |")
         if spec.one_of:
             lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in spec.one_of)}."]
@@ -48,7 +48,7 @@ def render() -> str:
                   "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
         for slot in action.slots:
             need = "required" if slot.required else ("one of" if slot.name in action.one_of else "optional")
-            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default or '-')} | "
+            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default_text or '-')} | "
                          f"{_cell(slot.doc)} |")
         if action.one_of:
             lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in action.one_of)}."]
@@ -64,7 +64,7 @@ def render() -> str:
                   "| parameter | | value | default | meaning |", "|---|---|---|---|---|"]
         for param in query.params:
             where = "positional" if param.positional else f"`{param.option}`"
-            default = param.default_doc or (param.default if param.default not in (None, []) else "-")
+            default = param.default_text or "-"
             lines.append(f"| `{param.name}` | {where}{', required' if param.required else ''} | "
                          f"{_cell(KINDS[param.kind].doc)} | {_cell(default)} | {_cell(param.doc)} |")
         lines.append("")

@@ -2,21 +2,23 @@
 
     declare_designator(Designator(
         "moving", "Drive the robot base to a pose ...",
-        (Slot("target", "position", True, "where the base goes"), ...),
+        Signature((Param("target", "position", True, "where the base goes"), ...)),
         resolve=_resolve_moving, module="navigation", uses=drives("base"), needs=("mobile base",)))
 
 Everything else is generated from the declarations in `DESIGNATORS`: plan validation
-(`check_designator`), the scheduler's resources (`Designator.roles`), `pycram designators`,
+(`check_designator`), the scheduler's resources (`Designator.uses`), `pycram designators`,
 and which process module performs it (`module`, unless the robot description names another).
-Slot kinds are shared with query parameters (`pycram_cli.kinds`).
+Slots are `Param`s of a `Signature` (`pycram_cli.signature`), the shape queries and actions share;
+its defaults are filled in (`bind`) before `resolve` sees the slots.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Mapping
 
 from ..errors import InputError, did_you_mean
-from ..kinds import KINDS, NOTHING_KNOWN, Robots
+from ..kinds import NOTHING_KNOWN, Robots
+from ..signature import Param, Problem, Registry, Signature, Skip
 
 if TYPE_CHECKING:
     from ..robots import Robot
@@ -29,59 +31,50 @@ Uses = Callable[[Mapping[str, Any]], frozenset[str]]
 ANY_ARM = "arm:*"
 
 
-@dataclass(frozen=True)
-class Slot:
-    name: str
-    kind: str
-    required: bool
-    doc: str
-    default: str | None = None  # how the default is found, for people
-    of: str | None = None  # for a link or joint: the slot naming the object it belongs to
-
-
 class HasSlots:
-    """Looking slots up by name, for the declarations that have them (motion and action designators)."""
+    """A designator's slots by name (motion and action designators), from its signature."""
 
     name: str
-    slots: tuple[Slot, ...]
+    signature: Signature
+    needs: tuple[str, ...]  # what the robot must have: "mobile base", "head", "camera", "arms"
 
-    def slot(self, name: str) -> Slot | None:
-        return next((s for s in self.slots if s.name == name), None)
+    @property
+    def slots(self) -> tuple[Param, ...]:
+        return self.signature.params
+
+    def slot(self, name: str) -> Param | None:
+        return self.signature.param(name)
 
     @property
     def slot_names(self) -> list[str]:
-        return [s.name for s in self.slots]
+        return self.signature.names
+
+    @property
+    def one_of(self) -> tuple[str, ...]:
+        return self.signature.one_of
 
 
 @dataclass(frozen=True)
 class Designator(HasSlots):
-    """A motion designator type: the design's slots, its inference, its resources, its process module."""
+    """A motion designator type: the design's slots (its signature), its inference, its resources, its process module."""
 
     name: str
     doc: str
-    slots: tuple[Slot, ...]
-    resolve: Resolver  # fills in defaults and infers what is left open (design §4.6)
+    signature: Signature
+    resolve: Resolver  # infers what the bound slots leave open (design §4.6): declared defaults are filled in already
     module: str  # the process module that performs it, unless the robot description names another
     uses: Uses  # the roles it drives (base, head, arm:<name>), for the scheduler
-    one_of: tuple[str, ...] = ()  # at least one of these slots must be given
     needs: tuple[str, ...] = ()  # what the robot must have: "mobile base", "head", "camera", "arms"
     resource: str = ""  # what it drives, for people
-    check: "Callable[[Mapping[str, Any], Robots], list[SlotProblem]] | None" = None  # checks across slots
 
 
 #: every designator by name, filled by `declare_designator` (explicit imports in `designators/__init__.py`)
-DESIGNATORS: dict[str, Designator] = {}
+DESIGNATORS: Registry[Designator] = Registry("designator type", "known types")
 
 
 def declare_designator(spec: Designator) -> Designator:
     """Register a designator; its name must be new and every slot's kind known."""
-    if spec.name in DESIGNATORS:
-        raise ValueError(f"designator '{spec.name}' is declared twice")
-    for slot in spec.slots:
-        if slot.kind not in KINDS:
-            raise ValueError(f"designator '{spec.name}', slot '{slot.name}': unknown kind '{slot.kind}'")
-    DESIGNATORS[spec.name] = spec
-    return spec
+    return DESIGNATORS.declare(spec)
 
 
 # -- resources ------------------------------------------------------------------------------------
@@ -118,15 +111,6 @@ def robot_resources(roles: frozenset[str], description: "RobotDescription | None
 # -- static checks ---------------------------------------------------------------------------------
 
 
-@dataclass
-class SlotProblem:
-    """A problem with one slot (or the designator itself when slot is None)."""
-
-    message: str
-    slot: str | None = None
-    suggestion: str | None = None
-
-
 def lacks(need: str, desc: "RobotDescription") -> str | None:
     """Why a robot lacks what a designator needs (`mobile base`, `head`, `camera`, `arms`), or None."""
     if need == "mobile base" and not desc.mobile:
@@ -143,7 +127,7 @@ def lacks(need: str, desc: "RobotDescription") -> str | None:
 
 
 def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Callable[[Any], bool] | None = None,
-                     robots: Robots = NOTHING_KNOWN) -> list[SlotProblem]:
+                     robots: Robots = NOTHING_KNOWN) -> list[Problem]:
     """Static checks before anything runs: the type exists, slots are known, required ones present, values well-formed,
     and (when the robot is known) the robot has what the designator needs and the arms, grasps and poses named.
 
@@ -151,44 +135,24 @@ def check_designator(type_name: str, slots: Mapping[str, Any], is_reference: Cal
     """
     spec = DESIGNATORS.get(type_name)
     if spec is None:
-        return [SlotProblem(f"unknown designator type '{type_name}'", None,
-                            did_you_mean(type_name, DESIGNATORS) or f"known types: {', '.join(DESIGNATORS)}")]
+        return [DESIGNATORS.unknown(type_name)]
     known = {k: v for k, v in slots.items() if not (is_reference is not None and is_reference(v))}
     return slot_problems(spec, f"'{type_name}'", slots, lambda slot, value: is_reference is not None and is_reference(value),
                          robots, known)
 
 
-def slot_problems(spec: Any, what: str, slots: Mapping[str, Any], skip: Callable[[Slot, Any], bool],
-                  robots: Robots, for_check: Mapping[str, Any]) -> list[SlotProblem]:
-    """The checks motion and action designators share: what the robot needs, unknown slots (with the closest name),
-    values against their kinds (unless `skip(slot, value)`: only known at run time), required slots, `one_of`,
-    and the declaration's own check across slots (given `for_check`). `what` names the designator in messages."""
-    name = spec.name
-    problems: list[SlotProblem] = []
+def slot_problems(spec: HasSlots, what: str, slots: Mapping[str, Any], skip: Skip, robots: Robots,
+                  for_check: Mapping[str, Any]) -> list[Problem]:
+    """The checks motion and action designators share: what the robot needs, then the signature's checks (values
+    against their kinds unless `skip(slot, value)`, required slots, `one_of`, the check across slots given
+    `for_check`). `what` names the designator in messages."""
+    problems: list[Problem] = []
     if robots.known and len(robots.descriptions) == 1:
         for need in spec.needs:
             why = lacks(need, robots.descriptions[0])
             if why:
-                problems.append(SlotProblem(f"robot '{robots.descriptions[0].name}' cannot perform '{name}': {why}"))
-    for key, value in slots.items():
-        slot = spec.slot(key)
-        if slot is None:
-            problems.append(SlotProblem(f"{what} has no slot '{key}'", key,
-                                        did_you_mean(key, spec.slot_names) or f"slots: {', '.join(spec.slot_names)}"))
-            continue
-        if skip(slot, value):
-            continue
-        message = KINDS[slot.kind].check(value, robots)
-        if message:
-            problems.append(SlotProblem(f"slot '{key}': {message}", key))
-    for slot in spec.slots:
-        if slot.required and slot.name not in slots:
-            problems.append(SlotProblem(f"{what} needs slot '{slot.name}' ({slot.doc})", slot.name))
-    if spec.one_of and not any(key in slots for key in spec.one_of):
-        problems.append(SlotProblem(f"{what} needs one of the slots {', '.join(spec.one_of)}", None))
-    if spec.check is not None:
-        problems.extend(spec.check(for_check, robots))
-    return problems
+                problems.append(Problem(f"robot '{robots.descriptions[0].name}' cannot perform '{spec.name}': {why}"))
+    return problems + spec.signature.check(slots, robots, what, skip, for_check)
 
 
 def process_module_problems(desc: "RobotDescription") -> list[InputError]:

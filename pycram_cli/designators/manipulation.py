@@ -7,9 +7,10 @@ from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, gripper_words
 from ..locations import take_from_here
-from ..planning.drawers import handle_pose
+from ..planning.drawers import DISTANCE, handle_pose
 from ..robots import Robot
-from .declaration import Designator, Slot, declare_designator, drives_arm
+from ..signature import Param, Signature
+from .declaration import Designator, declare_designator, drives_arm
 from ..world import Object
 from .inference import choose_arm_and_grasp, free_arms, the_object
 
@@ -46,11 +47,15 @@ def _grasp_words(grasp: Any) -> str:
 
 
 declare_designator(Designator(
-    "pick-up", "Grasp an object with an arm and attach it to the gripper's tool frame.", (
-        Slot("object", "object", True, "the object to pick up"),
-        Slot("arm", "arm", False, "the arm to use", "an arm that can reach the object (in the description's order)"),
-        Slot("grasp", "grasp", False, "the side to grasp from", "the first of the robot's grasps that works"),
-    ), resolve=_pick_up, module="pick-up", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+    "pick-up", "Grasp an object with an arm and attach it to the gripper's tool frame.",
+    Signature((
+        Param("object", "object", True, "the object to pick up"),
+        Param("arm", "arm", False, "the arm to use",
+              default_doc="an arm that can reach the object (in the description's order)"),
+        Param("grasp", "grasp", False, "the side to grasp from",
+              default_doc="the first of the robot's grasps that works"),
+    )),
+    resolve=_pick_up, module="pick-up", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
 
 def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -62,11 +67,13 @@ def _place(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "place", "Stand a held object on the surface under a target position, let go, and let it settle.", (
-        Slot("object", "object", True, "the held object"),
-        Slot("target", "place-position", True, "where it stands: x, y (and z, optionally: the height of the surface)"),
-        Slot("arm", "arm", False, "the arm holding the object", "the arm that holds it"),
-    ), resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+    "place", "Stand a held object on the surface under a target position, let go, and let it settle.",
+    Signature((
+        Param("object", "object", True, "the held object"),
+        Param("target", "place-position", True, "where it stands: x, y (and z, optionally: the height of the surface)"),
+        Param("arm", "arm", False, "the arm holding the object", default_doc="the arm that holds it"),
+    )),
+    resolve=_place, module="place", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
 
 
 def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -79,9 +86,9 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
         raise InputError(f"'{part.name}' has no link '{handle}'", Location("slot drawer-handle"), key="drawer-handle",
                          suggestion=did_you_mean(handle, part.link_names))
     joint = part.joint(joint_name)
-    distance = slots.get("distance")
-    if distance is None:
-        distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
+    distance = float(slots["distance"])  # bound: the declared default when not given
+    if joint.limited:  # the drawer stops at its joint's upper limit: the distance it really opens
+        distance = min(distance, joint.upper - joint.lower)
     arm = slots.get("arm")
     if arm is None:
         pull = next(iter(robot.description.grasps), None)
@@ -91,10 +98,13 @@ def _accessing(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "accessing", "Open a drawer: grasp its handle and pull it open by a distance.", (
-        Slot("drawer-handle", "link", True, "the handle link, as named in the URDF", of="part-of"),
-        Slot("drawer-joint", "joint", True, "the drawer's prismatic joint", of="part-of"),
-        Slot("part-of", "object", True, "the object the drawer belongs to (e.g. kitchen)"),
-        Slot("distance", "number", False, "how far to open, in metres", "0.3, or the joint's upper limit if smaller"),
-        Slot("arm", "arm", False, "the arm that pulls", "an arm that can reach the handle (in the description's order)"),
-    ), resolve=_accessing, module="accessing", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
+    "accessing", "Open a drawer: grasp its handle and pull it open by a distance.",
+    Signature((
+        Param("drawer-handle", "link", True, "the handle link, as named in the URDF", of="part-of"),
+        Param("drawer-joint", "joint", True, "the drawer's prismatic joint", of="part-of"),
+        Param("part-of", "object", True, "the object the drawer belongs to (e.g. kitchen)"),
+        DISTANCE,
+        Param("arm", "arm", False, "the arm that pulls",
+              default_doc="an arm that can reach the handle (in the description's order)"),
+    )),
+    resolve=_accessing, module="accessing", uses=drives_arm("arm"), needs=("arms",), resource="arm"))

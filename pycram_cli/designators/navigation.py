@@ -4,7 +4,8 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..robots import Robot
-from .declaration import Designator, Slot, declare_designator, drives
+from ..signature import Param, Signature
+from .declaration import Designator, declare_designator, drives
 
 
 def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -13,7 +14,9 @@ def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "moving", "Drive (teleport) the robot base to a pose; fails if the robot then collides with anything but the floor.", (
-        Slot("target", "position", True, "where the base goes (z is ignored: the base stays on the floor)"),
-        Slot("orientation", "quaternion", False, "base orientation", "the current orientation"),
-    ), resolve=_resolve, module="navigation", uses=drives("base"), needs=("mobile base",), resource="base"))
+    "moving", "Drive (teleport) the robot base to a pose; fails if the robot then collides with anything but the floor.",
+    Signature((
+        Param("target", "position", True, "where the base goes (z is ignored: the base stays on the floor)"),
+        Param("orientation", "quaternion", False, "base orientation", default_doc="the current orientation"),
+    )),
+    resolve=_resolve, module="navigation", uses=drives("base"), needs=("mobile base",), resource="base"))

@@ -4,7 +4,8 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..robots import Robot
-from .declaration import Designator, Slot, declare_designator, drives
+from ..signature import Param, Signature
+from .declaration import Designator, declare_designator, drives
 from .inference import the_object
 
 
@@ -17,11 +18,12 @@ def _looking(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "looking", "Point the camera at a position or an object: the head turns (a camera on the wrist: the arm moves; fixed on the body: the base turns).", (
-        Slot("target", "position", False, "the point to look at"),
-        Slot("object", "object", False, "the object to look at", "looks at its position"),
-    ), resolve=_looking, module="head", uses=drives("head"), one_of=("target", "object"), needs=("camera",),
-    resource="head"))
+    "looking", "Point the camera at a position or an object: the head turns (a camera on the wrist: the arm moves; fixed on the body: the base turns).",
+    Signature((
+        Param("target", "position", False, "the point to look at"),
+        Param("object", "object", False, "the object to look at", default_doc="looks at its position"),
+    ), one_of=("target", "object")),
+    resolve=_looking, module="head", uses=drives("head"), needs=("camera",), resource="head"))
 
 
 def _object_type(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -29,11 +31,15 @@ def _object_type(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "detecting", "Find a visible object of a type with the robot's camera; fails with PerceptionFailure if none is seen.", (
-        Slot("object-type", "object-type", True, "the type of object to find"),
-    ), resolve=_object_type, module="perception", uses=drives("head"), needs=("camera",), resource="camera"))
+    "detecting", "Find a visible object of a type with the robot's camera; fails with PerceptionFailure if none is seen.",
+    Signature((
+        Param("object-type", "object-type", True, "the type of object to find"),
+    )),
+    resolve=_object_type, module="perception", uses=drives("head"), needs=("camera",), resource="camera"))
 
 declare_designator(Designator(
-    "world-state-detecting", "Find an object of a type from the world state, whether visible or not.", (
-        Slot("object-type", "object-type", True, "the type of object to find"),
-    ), resolve=_object_type, module="world-state", uses=drives(), resource="belief"))
+    "world-state-detecting", "Find an object of a type from the world state, whether visible or not.",
+    Signature((
+        Param("object-type", "object-type", True, "the type of object to find"),
+    )),
+    resolve=_object_type, module="world-state", uses=drives(), resource="belief"))

@@ -23,11 +23,11 @@ def perform(world: BulletWorld, designator: str, slots: Mapping[str, Any]) -> Pe
     robot = Robot.of(world)
     problems = check_designator(designator, slots, is_reference=lambda v: isinstance(v, Object),
                                 robots=Robots((robot.description,), True))
-    raise_if_any([InputError(p.message, Location(f"designator {designator}"), key=p.slot, suggestion=p.suggestion)
+    raise_if_any([InputError(p.message, Location(f"designator {designator}"), key=p.param, suggestion=p.suggestion)
                   for p in problems])
     spec = DESIGNATORS[designator]
     with world.lock:
-        resolved = spec.resolve(robot, slots)
+        resolved = spec.resolve(robot, spec.signature.bind(slots))
         module = choose(designator, spec.module, robot.description)
         result = module.execute(robot, resolved)
     return Performed(designator, jsonable(resolved, drop_none=True), result)

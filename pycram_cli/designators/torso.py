@@ -4,7 +4,8 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from ..robots import Robot
-from .declaration import Designator, Slot, declare_designator, drives
+from ..signature import Param, Signature
+from .declaration import Designator, declare_designator, drives
 
 
 def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
@@ -13,6 +14,9 @@ def _resolve(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "moving-torso", "Raise or lower the torso to a joint position (metres along its prismatic joint).", (
-        Slot("position", "number", False, "the torso joint's position in metres", "the description's torso default"),
-    ), resolve=_resolve, module="torso", uses=drives("torso"), needs=("torso",), resource="torso"))
+    "moving-torso", "Raise or lower the torso to a joint position (metres along its prismatic joint).",
+    Signature((
+        Param("position", "number", False, "the torso joint's position in metres",
+              default_doc="the description's torso default"),
+    )),
+    resolve=_resolve, module="torso", uses=drives("torso"), needs=("torso",), resource="torso"))

@@ -45,7 +45,7 @@ import numpy as np
 
 from ..failures import GripperFailure, LocationFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, arm_words
-from ..planning.drawers import follows_handle, plan_handle_grasp
+from ..planning.drawers import DISTANCE, follows_handle, plan_handle_grasp
 from ..planning.head import Mount, camera_mount, camera_pitch, camera_yaw, look_at
 from ..planning.paths import move_over
 from ..planning.pick_place import PLACE_TURNS, grasp_orientation, level, plan_grasp, plan_place, resting_on
@@ -703,13 +703,12 @@ class BasePoseResolution(_Resolution):
         return positions
 
     def _goal(self, start: float) -> float:
-        """Where the accessing process module takes the joint: `distance` above its lower limit."""
+        """Where the accessing process module takes the joint: `distance` above its lower limit (at most to its upper
+        limit); the designator's default distance when the location names none."""
         handle = self.spec.accessing
         assert handle is not None
         joint = handle.obj.joint(handle.joint)
-        distance = self.spec.distance
-        if distance is None:
-            distance = min(0.3, joint.upper - joint.lower) if joint.limited else 0.3
+        distance = DISTANCE.default if self.spec.distance is None else self.spec.distance
         return min(joint.upper, joint.lower + distance) if joint.limited else start + distance
 
     def _closing(self) -> bool:

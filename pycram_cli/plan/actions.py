@@ -94,8 +94,8 @@ class ActionStep(Node):
 
     def check(self, v: "Validator") -> None:
         for problem in check_action(self.name, plain(self.slots), is_reference, v.robots):
-            where = self.slots.loc(problem.slot, True) if problem.slot in self.slots else self.where
-            v.error(problem.message, where, key=problem.slot or self.head, suggestion=problem.suggestion)
+            where = self.slots.loc(problem.param, True) if problem.param in self.slots else self.where
+            v.error(problem.message, where, key=problem.param or self.head, suggestion=problem.suggestion)
         v.refs(self.slots, self.where)
         facts = v.facts
         if facts is None:
@@ -150,9 +150,8 @@ class ActionStep(Node):
         robots = Robots((description,), True) if description is not None else Robots()
         problems = check_action(self.name, values, None, robots)
         if problems:
-            raise Failure(f"action {self.name}: " + "; ".join(
-                p.message + (f" ({p.suggestion})" if p.suggestion else "") for p in problems))
-        return ACTIONS[self.name].run(PlanActor(ex, tn, self.where), values)
+            raise Failure(f"action {self.name}: " + "; ".join(str(p) for p in problems))
+        return ACTIONS[self.name].perform(PlanActor(ex, tn, self.where), values)
 
 
 def _slot_names(v: "Validator", slot_name: str, kind: Kind, value: Any) -> list[tuple[str, str, str, str]]:

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 
 from ..failures import Failure
 from ..limits import MAX_BRANCHES
+from ..status import Status
 from ..yamlsource import LMap
 from .runtime import Cancelled, Record, Runtime, close_pending
 from .syntax import Node, Parser, node_type
@@ -73,11 +74,11 @@ class Concurrent(Composite):
     def execute(self, ex: Runtime, tn: Record) -> Any:
         return ex.concurrent(self.steps, tn, self)
 
-    def decides(self, status: str) -> bool:
+    def decides(self, status: Status) -> bool:
         """Whether a branch that ended with `status` ("succeeded" or "failed") decides the node."""
         raise NotImplementedError
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+    def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         """The node's value (or raise its failure) from every branch's (status, value or failure), in order.
 
         `decided` is the index of the deciding branch, None when no branch decided.
@@ -89,10 +90,10 @@ class Concurrent(Composite):
 class Par(Concurrent):
     DOC = "run the steps at once; all must succeed; the first failure cancels the others"
 
-    def decides(self, status: str) -> bool:
-        return status == "failed"
+    def decides(self, status: Status) -> bool:
+        return status == Status.FAILED
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+    def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is not None:
             raise results[decided][1]
         return [value for _, value in results]
@@ -102,14 +103,14 @@ class Par(Concurrent):
 class Pursue(Concurrent):
     DOC = "run the steps at once; the first to end decides (success or failure), the others are cancelled"
 
-    def decides(self, status: str) -> bool:
-        return status in ("succeeded", "failed")
+    def decides(self, status: Status) -> bool:
+        return status in (Status.SUCCEEDED, Status.FAILED)
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+    def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is None:
             raise Cancelled("pursue: every branch was cancelled")
         status, value = results[decided]
-        if status == "failed":
+        if status == Status.FAILED:
             raise value
         return value
 
@@ -118,13 +119,13 @@ class Pursue(Concurrent):
 class TryAll(Concurrent):
     DOC = "run the steps at once; the first success wins and cancels the others; fails only when all failed"
 
-    def decides(self, status: str) -> bool:
-        return status == "succeeded"
+    def decides(self, status: Status) -> bool:
+        return status == Status.SUCCEEDED
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any:
+    def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any:
         if decided is not None:
             return results[decided][1]
-        failures = [value for status, value in results if status == "failed"]
+        failures = [value for status, value in results if status == Status.FAILED]
         raise combined_failure(failures, "try_all", children)
 
 
@@ -143,10 +144,10 @@ class TryInOrder(Composite):
                     failures.append(exc)
             raise combined_failure(failures, "try_in_order", children)
         except Cancelled:
-            close_pending(children, "cancelled")
+            close_pending(children, Status.CANCELLED)
             raise
         finally:
-            close_pending(children, "skipped")
+            close_pending(children, Status.SKIPPED)
 
 
 def combined_failure(failures: list[Failure], what: str, children: Sequence[Record]) -> Failure:

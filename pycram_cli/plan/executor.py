@@ -19,6 +19,7 @@ from .. import interrupts
 from ..failures import Failure
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
+from ..status import Status
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable, size_problem
 from .params import bind_params
@@ -47,7 +48,7 @@ class InternalError(Exception):
 
 @dataclass
 class RunResult:
-    status: str                       # succeeded, failed, interrupted (by a signal) or cancelled
+    status: Status                    # succeeded, failed, interrupted (by a signal) or cancelled
     failure: dict[str, Any] | None
     trace: dict[str, Any]
     duration: float
@@ -57,7 +58,7 @@ class RunResult:
 
     @property
     def succeeded(self) -> bool:
-        return self.status == "succeeded"
+        return self.status == Status.SUCCEEDED
 
 
 class Run:
@@ -122,38 +123,38 @@ class Run:
 
     def execute(self) -> RunResult:
         ex = Exec(self, Frame(parent=self.globals), self.token, ())
-        status, failure, value, error = "succeeded", None, None, None
+        status, failure, value, error = Status.SUCCEEDED, None, None, None
         try:
             with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
                 value = ex.run_body(self.plan.body, self.root, self.plan.where)
         except Failure as exc:
-            status, failure = "failed", failure_record(exc, self.root.path)
+            status, failure = Status.FAILED, failure_record(exc, self.root.path)
         except Cancelled as exc:
             status, failure = "cancelled", {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
             error = exc
         except LimitExceeded as exc:
             self.stop_for(exc)
         if self.limit_error is not None:  # the run was stopped by a limit (whatever it then unwound with)
-            status, failure, error = "failed", failure_record(self.limit_error, self.limit_error.path), None
-            self.root.status = "failed"
-            _mark(self.root, "cancelled")
-        elif self.interrupted is not None and status != "succeeded":
-            status = "interrupted"
+            status, failure, error = Status.FAILED, failure_record(self.limit_error, self.limit_error.path), None
+            self.root.status = Status.FAILED
+            _mark(self.root, Status.CANCELLED)
+        elif self.interrupted is not None and status != Status.SUCCEEDED:
+            status = Status.INTERRUPTED
             failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
-            _mark(self.root, "cancelled")
+            _mark(self.root, Status.CANCELLED)
         duration = self.now()
         trace = {
             "format": FORMAT, "version": VERSION,
             "plan": self.plan.path.name, "world": self.world_name,
             "params": jsonable(self.params),
-            "status": status, "failure": failure,
+            "status": str(status), "failure": failure,
             "root": self.root.to_dict(timing=True),
             "final_state": final_state(self.world),
             "timing": {"duration": duration},
         }
-        if status == "interrupted":
+        if status == Status.INTERRUPTED:
             trace["interrupted"] = {"signal": self.interrupted}
-        steps = sum(1 for n in self.root.walk() if not n.children and n.status in ("succeeded", "failed"))
+        steps = sum(1 for n in self.root.walk() if not n.children and n.status in (Status.SUCCEEDED, Status.FAILED))
         return RunResult(status, failure, trace, duration, value, steps, error)
 
 
@@ -220,38 +221,38 @@ class Exec:
         self.token.check()
         if node.LEAF:  # the turn passes between leaves (see scheduler.py)
             self.run.scheduler.before_leaf(self.key, self.token)
-        tn.status, tn.started = "running", self.run.now()
+        tn.status, tn.started = Status.RUNNING, self.run.now()
         self.run.notify("started", tn)
         try:
             value = node.execute(self, tn)
             if node.bind:
                 self.frame.binder(node.scope).bind(node.bind, value)
                 tn.info["bound"] = {node.bind: jsonable(value)}
-            tn.status = "succeeded"
+            tn.status = Status.SUCCEEDED
             if node.LEAF:
                 self.run.scheduler.leaf_done(self.key)
             return value
         except Failure as exc:
             if getattr(exc, "plan_path", None) is None:
                 exc.plan_path = tn.path  # type: ignore[attr-defined]
-            tn.status, tn.failure = "failed", failure_record(exc, tn.path)
+            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
             raise
         except Cancelled:
-            tn.status = "cancelled"
-            _mark(tn, "cancelled")
+            tn.status = Status.CANCELLED
+            _mark(tn, Status.CANCELLED)
             raise
         except LimitExceeded as exc:
-            tn.status = "failed"
+            tn.status = Status.FAILED
             exc.path = exc.path or tn.path  # a value too large is found where it is evaluated, not knowing the step
             if tn.failure is None:
                 tn.failure = failure_record(exc, exc.path)
             self.run.stop_for(exc)
             raise
         except InternalError:
-            tn.status = "failed"
+            tn.status = Status.FAILED
             raise
         except Exception as exc:  # a bug in a node: never leave the trace half written
-            tn.status = "failed"
+            tn.status = Status.FAILED
             tn.failure = {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": tn.path}
             raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}") from exc
         finally:
@@ -270,31 +271,31 @@ class Exec:
             for node, child in zip(nodes, children):
                 value = self.step(node, child)
         except Cancelled:
-            close_pending(children, "cancelled")
+            close_pending(children, Status.CANCELLED)
             raise
         finally:
-            close_pending(children, "skipped")
+            close_pending(children, Status.SKIPPED)
         return value
 
     def run_group(self, nodes: list[Node], tn: Record) -> Any:
         """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
         tn = _own(tn)
         self.token.check()
-        tn.status, tn.started = "running", self.run.now()
+        tn.status, tn.started = Status.RUNNING, self.run.now()
         self.run.notify("started", tn)
         try:
             value = self.seq(nodes, tn)
-            tn.status = "succeeded"
+            tn.status = Status.SUCCEEDED
             return value
         except Failure as exc:
-            tn.status, tn.failure = "failed", failure_record(exc, tn.path)
+            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
             raise
         except Cancelled:
-            tn.status = "cancelled"
-            close_pending(tn.children, "cancelled")
+            tn.status = Status.CANCELLED
+            close_pending(tn.children, Status.CANCELLED)
             raise
         except BaseException:
-            tn.status = "failed"
+            tn.status = Status.FAILED
             raise
         finally:
             tn.duration = self.run.now() - (tn.started or 0.0)
@@ -326,7 +327,7 @@ class Exec:
             i = waiting[0]
             if tokens[i].cancelled:
                 waiting.pop(0)
-                outcome.report(i, ("cancelled", None))
+                outcome.report(i, (Status.CANCELLED, None))
                 scheduler.finish(keys[i])
                 return False
             self.run.thread_started(children[i].path)
@@ -357,29 +358,29 @@ class Exec:
             for token in tokens:
                 token.cancel("interrupted")
             for i in waiting:
-                outcome.report(i, ("cancelled", None))
+                outcome.report(i, (Status.CANCELLED, None))
                 scheduler.finish(keys[i])
             for thread in started:
                 thread.join()
             raise
         for child in children:
-            if child.status in ("pending", "running"):
-                child.status = "cancelled"
+            if child.status in (Status.PENDING, Status.RUNNING):
+                child.status = Status.CANCELLED
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
     def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome",
                 ended: threading.Semaphore | None = None) -> None:
-        result: tuple[str, Any] = ("cancelled", None)
+        result: tuple[Status, Any] = (Status.CANCELLED, None)
         try:
             self.run.scheduler.acquire(self.key, self.token)
-            result = ("succeeded", self.step(node, tn))
+            result = (Status.SUCCEEDED, self.step(node, tn))
         except Failure as exc:
-            result = ("failed", exc)
+            result = (Status.FAILED, exc)
         except Cancelled:
-            if tn.status == "pending":
-                tn.status = "cancelled"
-            result = ("cancelled", None)
+            if tn.status == Status.PENDING:
+                tn.status = Status.CANCELLED
+            result = (Status.CANCELLED, None)
         except BaseException as exc:  # noqa: BLE001 - carried to the parent thread
             result = ("error", exc)
         finally:
@@ -395,10 +396,10 @@ def _own(tn: Record) -> TraceNode:
     return cast(TraceNode, tn)
 
 
-def _mark(tn: TraceNode, status: str) -> None:
+def _mark(tn: TraceNode, status: Status) -> None:
     """Children still pending or running when their parent was cancelled are cancelled too."""
     for child in tn.children:
-        if child.status in ("pending", "running"):
+        if child.status in (Status.PENDING, Status.RUNNING):
             child.status = status
             _mark(child, status)
 
@@ -410,11 +411,11 @@ class Outcome:
     def __init__(self, composite: Decider, tokens: list[CancelToken]) -> None:
         self.composite = composite
         self.tokens = tokens
-        self.results: dict[int, tuple[str, Any]] = {}
+        self.results: dict[int, tuple[Status, Any]] = {}
         self.decided: int | None = None
         self._lock = threading.Lock()
 
-    def report(self, index: int, result: tuple[str, Any]) -> None:
+    def report(self, index: int, result: tuple[Status, Any]) -> None:
         cancel = False
         with self._lock:
             self.results[index] = result
@@ -434,7 +435,7 @@ class Outcome:
             if isinstance(error, (InternalError, LimitExceeded)):
                 raise error
             raise InternalError(f"{type(error).__name__}: {error}")
-        ordered = [self.results.get(i, ("cancelled", None)) for i in range(len(self.tokens))]
+        ordered = [self.results.get(i, (Status.CANCELLED, None)) for i in range(len(self.tokens))]
         return self.composite.outcome(ordered, self.decided, children)
 
 

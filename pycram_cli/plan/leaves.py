@@ -22,7 +22,6 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 from __future__ import annotations
 
 import math
-import re
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
@@ -79,8 +78,8 @@ class DesignatorStep(Node):
 
     def check(self, v: "Validator") -> None:
         for problem in check_designator(self.head, plain(self.slots), is_reference, v.robots):
-            v.error(problem.message, _problems_where(self.slots, problem.slot, self.where),
-                    key=problem.slot or self.head, suggestion=problem.suggestion)
+            v.error(problem.message, _problems_where(self.slots, problem.param, self.where),
+                    key=problem.param or self.head, suggestion=problem.suggestion)
         v.refs(self.slots, self.slots.where)
         v.objects(self.head, self.slots)
 
@@ -100,16 +99,14 @@ class DesignatorStep(Node):
 
 
 # -- reasoning queries --------------------------------------------------------------------------------------
-def query_problems(name: str, args: Any, v: "Validator") -> list[str]:
-    return list(check_query_args(name, plain(args), is_reference, v.robots))
-
-
-def query_problem_where(message: str, args: LMap) -> Location:
-    """Point at the argument a query problem names (`... parameter 'arm' ...`), else at the arguments."""
-    match = re.search(r"parameter '([^']+)'", message)
-    if match and match.group(1) in args:
-        return args.loc(match.group(1), value="has no parameter" not in message)
-    return args.where
+def check_query(name: str, args: LMap, v: "Validator") -> None:
+    """Report a query call's problems, each at the argument it names (its key for an unknown one), else at the call."""
+    spec = QUERIES.get(name)
+    for problem in check_query_args(name, plain(args), is_reference, v.robots):
+        where = args.where
+        if problem.param is not None and problem.param in args:
+            where = args.loc(problem.param, value=spec is not None and spec.param(problem.param) is not None)
+        v.error(problem.message, where, key=name, suggestion=problem.suggestion)
 
 
 def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
@@ -143,8 +140,7 @@ class QueryStep(Node):
         return None if args is None else cls(head, step.loc(head), args)
 
     def check(self, v: "Validator") -> None:
-        for message in query_problems(self.head, self.args, v):
-            v.error(message, query_problem_where(message, self.args), key=self.head)
+        check_query(self.head, self.args, v)
         v.refs(self.args, self.args.where)
         v.query_objects(self.head, self.args)
 
@@ -203,8 +199,7 @@ class Condition:
         if self.kind == "variable":
             v.refs(self.value, self.where)
         elif self.kind == "query":
-            for message in query_problems(self.name, self.value, v):
-                v.error(message, query_problem_where(message, self.value), key=self.name)
+            check_query(self.name, self.value, v)
             v.refs(self.value, self.value.where)
             v.query_objects(self.name, self.value)
         elif self.kind == "not" and self.inner is not None:

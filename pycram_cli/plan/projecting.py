@@ -38,6 +38,7 @@ from ..errors import Location, did_you_mean
 from ..failures import Failure, ProjectionFailure
 from ..limits import MAX_PROJECTED
 from ..schema import describe, is_number
+from ..status import Status
 from ..world.pose import quat_multiply, yaw_quaternion
 from ..worldfile.starts import start_problems
 from ..yamlsource import LList, LMap
@@ -322,7 +323,7 @@ def _variations(parser: Parser, body: LMap) -> list[Variation]:
 
 def _steps(record: Record) -> int:
     """How many steps ran under `record` (itself not counted)."""
-    return sum(1 for node in record.walk() if node is not record and node.status not in ("pending", "skipped"))
+    return sum(1 for node in record.walk() if node is not record and node.status not in (Status.PENDING, Status.SKIPPED))
 
 
 def _row(rows: list[dict[str, Any]]) -> dict[str, Any]:

@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterable
 
 from ..limits import MAX_PHYSICS_FRAMES
 from ..locations.plot import MAP_KEY
+from ..status import Status
 from .trace import DIGITS, TraceNode, canonical_quaternion
 from ..world.bullet_world import STEP_HZ
 
@@ -134,7 +135,7 @@ class Recorder:
     def finished(self, node: TraceNode) -> None:
         if not node.children:  # a leaf step (or an empty composite: recorded as a step that changed nothing)
             state = world_state(self.world)
-            entry: dict[str, Any] = {"path": node.path, "status": node.status, "changed": changes(self._last, state)}
+            entry: dict[str, Any] = {"path": node.path, "status": str(node.status), "changed": changes(self._last, state)}
             physics = self._physics.take(state)
             if physics:
                 entry["physics"] = physics
@@ -312,7 +313,7 @@ def fold_steps(steps: list[dict[str, Any]], initial: State, summary_path: str, c
             missing.discard(key)
     for key in missing:  # changed back to where it started
         _put(changed, key, initial.get(key[0], {}))
-    entry = {"path": summary_path, "status": "failed", "folded": count, "changed": changed}
+    entry = {"path": summary_path, "status": Status.FAILED.value, "folded": count, "changed": changed}
     for index in found:  # from the last: indices before it stay valid
         del steps[index]
     steps.insert(last - (len(found) - 1), entry)

@@ -18,6 +18,7 @@ from contextlib import AbstractContextManager
 from typing import TYPE_CHECKING, Any, Iterable, Iterator, Protocol, Sequence
 
 from ..errors import Location
+from ..status import Status
 from ..world import BulletWorld
 from .context import Frame
 
@@ -50,7 +51,7 @@ class Record(Protocol):
     """`tn`: a node's entry in the trace of the run."""
 
     path: str    # `body/1:for_each/item 0/0:call fetch`
-    status: str  # pending, running, succeeded, failed, cancelled, skipped
+    status: Status  # pending, running, succeeded, failed, cancelled, skipped
     info: dict[str, Any]  # what the node records (its designator, query answer, bound values...)
 
     def child(self, label: str, type: str, source: Location | None = None) -> Record:
@@ -82,9 +83,9 @@ class Decider(Protocol):
 
     head: str
 
-    def decides(self, status: str) -> bool: ...
+    def decides(self, status: Status) -> bool: ...
 
-    def outcome(self, results: list[tuple[str, Any]], decided: int | None, children: Sequence[Record]) -> Any: ...
+    def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any: ...
 
 
 class Runtime(Protocol):
@@ -160,8 +161,8 @@ class Runtime(Protocol):
         ...
 
 
-def close_pending(children: Iterable[Record], status: str) -> None:
+def close_pending(children: Iterable[Record], status: Status) -> None:
     """Steps that never started: `skipped` after a failure or success, `cancelled` after a cancellation."""
     for child in children:
-        if child.status == "pending":
+        if child.status == Status.PENDING:
             child.status = status

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING, Any, Iterator
 from ..errors import InputError, Location
 from ..files import read_text, write_atomic
 from ..limits import MAX_STEP_DEPTH, MAX_TRACE_BYTES, MAX_TRACE_NODES
+from ..status import Status
 from . import trace_schema
 from .context import jsonable
 from .runtime import LimitExceeded
@@ -34,7 +35,6 @@ FORMAT = "pycram-trace"
 VERSION = 1
 IGNORED_KEYS = frozenset({"timing", "source"})
 REPLAY_KEY = "replay"  # the world's state after every step (replay.py); a top-level key comparable() drops
-STATUSES = ("pending", "running", "succeeded", "failed", "cancelled", "skipped")
 DIGITS = 6
 
 
@@ -72,7 +72,7 @@ class TraceNode:
                  depth: int = 0) -> None:
         self.path = path
         self.type = type
-        self.status = "pending"
+        self.status = Status.PENDING
         self.info: dict[str, Any] = {}
         self.failure: dict[str, Any] | None = None
         self.children: list[TraceNode] = []
@@ -103,7 +103,7 @@ class TraceNode:
             summary = next((c for c in self.children if c.type == "folded" and c.label == label), None)
             if summary is None:
                 summary = TraceNode(f"{self.path}/{label}", "folded", None, self._budget, self.depth + 1)
-                summary.status = "succeeded"  # until a failed step is folded in (a retry folds only failed attempts)
+                summary.status = Status.SUCCEEDED  # until a failed step is folded in (a retry folds only failed attempts)
                 summary.info["folded"] = {"steps": 0, "failures": {}}
                 self._budget.used += 1  # cannot fail: the child it replaces is given back below
                 self.children.insert(index, summary)
@@ -112,8 +112,8 @@ class TraceNode:
         self._budget.give_back(sum(1 for _ in child.walk()))
         folded = summary.info["folded"]
         folded["steps"] += 1
-        if child.status != "succeeded":
-            summary.status = "failed"
+        if child.status != Status.SUCCEEDED:
+            summary.status = Status.FAILED
         if child.failure is not None:
             text = f"{child.failure.get('type')}: {child.failure.get('message')}"
             failures = folded["failures"]
@@ -132,7 +132,7 @@ class TraceNode:
             yield from child.walk()
 
     def to_dict(self, timing: bool = True) -> dict[str, Any]:
-        data: dict[str, Any] = {"path": self.path, "type": self.type, "status": self.status}
+        data: dict[str, Any] = {"path": self.path, "type": self.type, "status": str(self.status)}  # plain data
         data.update(self.info)
         if self.failure is not None:
             data["failure"] = self.failure

@@ -18,13 +18,12 @@ from typing import Any, Callable
 
 from ..errors import InputError, InputErrors, Location
 from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_PHYSICS_FRAMES, MAX_STEP_DEPTH, MAX_TRACE_NODES
+from ..status import NODE_STATUSES, RUN_STATUSES
 
 #: candidate positions one locate step's map may hold in a trace's replay record
 MAX_CANDIDATES = 200_000
 
 Path = tuple[Any, ...]  # keys and indices from the top of the trace
-RUN_STATUSES = ("succeeded", "failed", "cancelled", "interrupted")
-NODE_STATUSES = ("pending", "running", "succeeded", "failed", "cancelled", "skipped")
 #: JSON nesting a trace may have: the deepest run's step tree (two levels per step) and values inside its steps
 MAX_JSON_DEPTH = 2 * MAX_STEP_DEPTH + MAX_NESTING + 10
 MAX_PROBLEMS = 20

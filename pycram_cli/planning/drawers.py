@@ -17,12 +17,17 @@ from ..failures import GripperFailure, ManipulationFailure
 from ..kinds import gripper_words
 from ..reasoning.ik import IKSolution
 from ..robots import Robot
+from ..signature import Param
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
 from .grasps import Grasp, grasps_of_box, holdable
 from .reach import reach, solve_tool
 
+#: how far accessing opens a drawer or door: the `accessing` designator's `distance` slot (the `open` action's, with its
+#: own kind and wording); a location `{accessing: HANDLE}` names no distance and plans for this default
+DISTANCE = Param("distance", "number", doc="how far to open, in metres", default=0.3,
+                 default_doc="0.3, or the joint's upper limit if smaller")
 #: how many steps the drawer is pulled in (the arm's path between two is checked)
 STEPS = 6
 #: the pre-grasp pose is this far back along the approach (m)

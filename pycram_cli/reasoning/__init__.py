@@ -8,21 +8,22 @@ attachments, bitwise). Answers are dataclasses that are truthy when the answer i
     visible(bottle).fraction          # seen from the robot's camera
     reachable(milk, robot, "r_gripper_tool_frame", grasp="front")
 
-Each query is declared once (`query.QuerySpec`: parameters, runner, answer sentence) in
-`queries.py`; `QUERIES` and `run_query` answer them by name with JSON-friendly results, for
-plans and `pycram query`. A new query is a module with its `declare_query(...)`, imported here.
+Each query is declared once (`query.QuerySpec`: its parameters as a `Signature`, runner, answer
+sentence) at the end of the module that computes it (`stable.py` declares `stable`);
+`QUERIES` and `run_query` answer them by name with JSON-friendly results, for plans and
+`pycram query`. A new query is a module ending with its `declare_query(...)`, imported here.
 """
-from . import queries  # noqa: F401  (declares the design's seven queries)
-from .contact import ContactAnswer, contact
-from .ik import IKSolution, solve, solve_link
-from .query import QUERIES, Call, QueryAnswer, QueryParam, QuerySpec, check_query_args, declare_query, run_query
-from .reachability import ReachableAnswer, blocking, reachable
+# the design's seven queries, declared in this order (`pycram query` and the docs list them so)
 from .stable import StableAnswer, stable
-from .supporting import supporting
+from .contact import ContactAnswer, contact
 from .visibility import VisibleAnswer, occluding, visible
+from .reachability import ReachableAnswer, blocking, reachable
+from .supporting import supporting
+from .ik import IKSolution, solve, solve_link
+from .query import QUERIES, Call, QueryAnswer, QuerySpec, check_query_args, declare_query, parameters, run_query
 
 __all__ = [
     "stable", "contact", "visible", "occluding", "reachable", "blocking", "supporting",
     "StableAnswer", "ContactAnswer", "VisibleAnswer", "ReachableAnswer", "IKSolution", "solve", "solve_link",
-    "QUERIES", "QuerySpec", "QueryParam", "QueryAnswer", "Call", "run_query", "check_query_args", "declare_query",
+    "QUERIES", "QuerySpec", "QueryAnswer", "Call", "run_query", "check_query_args", "declare_query", "parameters",
 ]

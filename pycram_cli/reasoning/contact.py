@@ -10,7 +10,9 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..signature import Param
 from ._common import same_world
+from .query import AN_OBJECT, Call, QueryAnswer, QuerySpec, declare_query, finite, mm, parameters
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -53,3 +55,31 @@ def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = Fa
                 return ContactAnswer(True, float(distance), [])
         distance = world.distance(a, b, max(SEARCH_DISTANCE, tolerance))
         return ContactAnswer(False, float(distance), [])
+
+
+# -- the query, by name (plans, `pycram query`, docs) --------------------------------------------------
+
+
+def _contact(call: Call) -> QueryAnswer:
+    a, b = call.object("a"), call.object("b")
+    if a is b:
+        raise call.error("b", f"contact needs two different objects, got '{a.name}' twice")
+    answer = contact(a, b, links=True)
+    return QueryAnswer("contact", call.resolved, answer.in_contact,
+                       {"distance": finite(answer.distance), "links": [list(pair) for pair in answer.links]},
+                       answer.in_contact)
+
+
+def _say_contact(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    if answer.result:
+        links = ", ".join(f"{x}–{y}" for x, y in d["links"])
+        return f"{a['a']} and {a['b']} are in contact (distance {mm(d['distance'])}; touching: {links})"
+    far = "more than 0.5 m" if d["distance"] is None else mm(d["distance"])
+    return f"{a['a']} and {a['b']} are not in contact (distance {far})"
+
+
+declare_query(QuerySpec(
+    "contact", "Are the two objects touching (within 5 mm)?",
+    parameters(Param("a", "object", True, AN_OBJECT, positional=True), Param("b", "object", True, AN_OBJECT, positional=True)),
+    _contact, _say_contact))

@@ -1,12 +1,13 @@
 """Declaring a reasoning query once: its parameters, how it runs, and the sentence that says its answer.
 
     declare_query(QuerySpec("stable", "Does the object stay put ...?",
-                            (QueryParam("object", "object", required=True, positional=True, doc="an object name"),),
+                            parameters(Param("object", "object", required=True, positional=True, doc="an object name")),
                             run=_stable, describe=_say_stable))
 
 Plans (`stable: {object: milk}`), plan validation, `pycram query` (its arguments, options and
-help) and the docs are all generated from the declarations in `QUERIES`. Parameter kinds are
-the ones designator slots use (`pycram_cli.kinds`). Object arguments may be `Object`s or
+help) and the docs are all generated from the declarations in `QUERIES`. Parameters are the
+`Param`s of a `Signature` (`pycram_cli.signature`), the shape designator slots have; their
+defaults are filled in before a query's runner sees them (`Call.args`). Object arguments may be `Object`s or
 names; names are looked up in the world (a typo gets a suggestion). The answer carries
 JSON-friendly `args`, `result` and `details`, and the Python `value` (a bool, or objects).
 """
@@ -20,29 +21,17 @@ from ..errors import InputError, Location, did_you_mean
 from ..kinds import KINDS, NOTHING_KNOWN, Robots, parse_vector
 from ..robots import RobotDescription, description_for
 from ..schema import is_vector
+from ..signature import Param, Problem, Registry, Signature
 from ..world import Object
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
 
 
-@dataclass(frozen=True)
-class QueryParam:
-    """One parameter: its kind (`pycram_cli.kinds`), whether it is positional on the command line, its option."""
-
-    name: str
-    kind: str
-    required: bool = False
-    doc: str = ""
-    default: Any = None  # the value used when it is not given
-    default_doc: str = ""  # how the default is found, for people
-    positional: bool = False
-    multiple: bool = False  # a repeatable option collecting a list
-    of: str | None = None  # for a link or joint: the parameter naming the object it belongs to
-
-    @property
-    def option(self) -> str:
-        return f"--{self.name}"
+def parameters(*params: Param) -> Signature:
+    """A query's signature: its parameters, called so in messages, which name the query and the value given (a
+    query's problems also show inside conditions, away from its arguments)."""
+    return Signature(params, noun="parameter", names_value=True)
 
 
 @dataclass(frozen=True)
@@ -64,27 +53,31 @@ class QueryAnswer:
 
 @dataclass(frozen=True)
 class QuerySpec:
-    """A query: name, what it asks, its parameters, how it runs and how its answer reads."""
+    """A query: name, what it asks, its parameters (its signature), how it runs and how its answer reads."""
 
     name: str
     doc: str
-    params: tuple[QueryParam, ...]
+    signature: Signature
     run: Callable[["Call"], QueryAnswer]
     describe: Callable[[QueryAnswer], str]
 
-    def param(self, name: str) -> QueryParam | None:
-        return next((q for q in self.params if q.name == name), None)
+    @property
+    def params(self) -> tuple[Param, ...]:
+        return self.signature.params
+
+    def param(self, name: str) -> Param | None:
+        return self.signature.param(name)
 
     @property
     def param_names(self) -> list[str]:
-        return [q.name for q in self.params]
+        return self.signature.names
 
     @property
-    def positional(self) -> list[QueryParam]:
+    def positional(self) -> list[Param]:
         return [q for q in self.params if q.positional]
 
     @property
-    def options(self) -> list[QueryParam]:
+    def options(self) -> list[Param]:
         return [q for q in self.params if not q.positional]
 
     def usage(self) -> str:
@@ -94,58 +87,37 @@ class QuerySpec:
 
 
 #: every query by name, filled by `declare_query` (explicit imports in `reasoning/__init__.py`)
-QUERIES: dict[str, QuerySpec] = {}
+QUERIES: Registry[QuerySpec] = Registry("query", "queries")
 
 
 def declare_query(spec: QuerySpec) -> QuerySpec:
     """Register a query; its name must be new and every parameter's kind known."""
-    if spec.name in QUERIES:
-        raise ValueError(f"query '{spec.name}' is declared twice")
-    for param in spec.params:
-        if param.kind not in KINDS:
-            raise ValueError(f"query '{spec.name}', parameter '{param.name}': unknown kind '{param.kind}'")
-    QUERIES[spec.name] = spec
-    return spec
+    return QUERIES.declare(spec)
 
 
 def unknown_query(name: str) -> InputError:
-    hint = did_you_mean(name, QUERIES)
-    return InputError(f"unknown query '{name}'", Location("query"), suggestion=hint or f"queries: {', '.join(QUERIES)}")
+    problem = QUERIES.unknown(name)
+    return InputError(problem.message, Location("query"), suggestion=problem.suggestion)
 
 
 # -- static checks ---------------------------------------------------------------------------------
 
 
 def check_query_args(name: str, args: Mapping[str, Any], is_reference: Callable[[Any], bool] | None = None,
-                     robots: Robots = NOTHING_KNOWN) -> list[str]:
+                     robots: Robots = NOTHING_KNOWN) -> list[Problem]:
     """Problems with a query call found without a world: unknown query or parameter, missing or malformed values.
 
-    Values for which `is_reference(value)` is true (plan variables) are not checked; `robots`
-    says what is known of the robot (its arms and grasps) when checking robot-dependent values.
+    Values for which `is_reference(value)` is true (plan variables) are not checked, nor an optional one given as
+    None (not given); `robots` says what is known of the robot (its arms and grasps) for robot-dependent values.
     """
     spec = QUERIES.get(name)
     if spec is None:
-        hint = did_you_mean(name, QUERIES)
-        return [f"unknown query '{name}'" + (f" ({hint})" if hint else f" (queries: {', '.join(QUERIES)})")]
-    problems = []
-    for key, value in args.items():
-        param = spec.param(key)
-        if param is None:
-            hint = did_you_mean(key, spec.param_names)
-            problems.append(f"query '{name}' has no parameter '{key}'"
-                            + (f" ({hint})" if hint else f" (parameters: {', '.join(spec.param_names)})"))
-            continue
-        if is_reference is not None and is_reference(value):
-            continue
-        if value is None and not param.required:
-            continue  # not given
-        problem = KINDS[param.kind].check(value, robots)
-        if problem:
-            problems.append(f"query '{name}', parameter '{key}': {problem}, got {value!r}")
-    for param in spec.params:
-        if param.required and param.name not in args:
-            problems.append(f"query '{name}' needs parameter '{param.name}' ({param.doc})")
-    return problems
+        return [QUERIES.unknown(name)]
+
+    def skip(param: Param, value: Any) -> bool:
+        return (is_reference is not None and is_reference(value)) or (value is None and not param.required)
+
+    return spec.signature.check(args, robots, f"query '{name}'", skip)
 
 
 # -- running -----------------------------------------------------------------------------------------
@@ -158,32 +130,54 @@ def finite(value: float | None) -> float | None:
     return float(value)
 
 
+#: how an object parameter is documented
+AN_OBJECT = "an object name"
+
+
+def mm(value: float | None) -> str:
+    """A distance in an answer's sentence: millimetres, "-" when unknown."""
+    if value is None:
+        return "-"
+    millimetres = value * 1000
+    return f"{millimetres:.2f} mm" if abs(millimetres) < 10 else f"{millimetres:.1f} mm"
+
+
+def degrees(value: float | None) -> str:
+    """An angle (radians) in an answer's sentence."""
+    return "-" if value is None else f"{math.degrees(value):.2f}°"
+
+
+def place(value: Any) -> str:
+    """A position `(x, y, z)` or a name, in an answer's sentence."""
+    if isinstance(value, list) and value and isinstance(value[0], (int, float)):
+        return "(" + ", ".join(f"{v:g}" for v in value) + ")"
+    return str(value)
+
+
 class Call:
     """One call of a query: resolves its arguments against a world and records the resolved values."""
 
     def __init__(self, world: "BulletWorld", spec: QuerySpec, args: Mapping[str, Any]) -> None:
         self.world = world
         self.spec = spec
-        self.args = dict(args)
         self.resolved: dict[str, Any] = {}
-        for key in self.args:
+        for key in args:
             if spec.param(key) is None:
-                hint = did_you_mean(key, spec.param_names)
-                raise self.error(key, f"query '{spec.name}' has no parameter '{key}'",
-                                 hint or f"parameters: {', '.join(spec.param_names)}")
+                unknown = spec.signature.unknown(f"query '{spec.name}'", key)
+                raise self.error(key, unknown.message, unknown.suggestion)
         for param in spec.params:
-            if param.required and param.name not in self.args:
+            if param.required and param.name not in args:
                 raise self.error(param.name, f"missing parameter '{param.name}' ({param.doc})")
+        self.args = spec.signature.bind(args)  # the declared defaults filled in
 
     def error(self, key: str | None, message: str, suggestion: str | None = None) -> InputError:
         return InputError(message, Location(f"query {self.spec.name}"), key=key, suggestion=suggestion)
 
     def get(self, key: str) -> Any:
-        param = self.spec.param(key)
-        if param is None:
+        """The value given for `key`, or its declared default."""
+        if self.spec.param(key) is None:
             raise KeyError(f"query '{self.spec.name}' declares no parameter '{key}'")
-        value = self.args.get(key)
-        return param.default if value is None else value
+        return self.args.get(key)
 
     def checked(self, key: str) -> Any:
         """The value of `key` (or its default), checked against its kind; recorded as resolved."""

@@ -18,16 +18,22 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Iterable
 
+from ..kinds import arm_phrase
 from ..robots import description_for
+from ..signature import Param
+from ..world import Object
 from ..world.pose import check_position, check_quaternion, quat_multiply
 from ._common import attached_descendants
 from .ik import solve_link
+from .query import Call, QueryAnswer, QuerySpec, declare_query, degrees, finite, mm, parameters, place
 
 if TYPE_CHECKING:
     from ..world import Object
 
 #: the robot touches an object when their collision shapes are closer than this (m)
 TOUCH = 0.001
+#: how close (m) the tool frame must come to reach: the functions' default and the queries' declared one
+REACH = 0.01
 
 
 @dataclass(frozen=True)
@@ -111,7 +117,7 @@ def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshol
     return solve_link(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
 
 
-def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = 0.01,
+def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = REACH,
               angle_threshold: float = 0.1) -> ReachableAnswer:
     """Whether IK brings `gripper_link` within `threshold` m (and `angle_threshold` rad of the grasp) of `target`."""
     if not (threshold > 0 and math.isfinite(threshold)):
@@ -122,7 +128,7 @@ def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None
 
 
 def blocking(target: Any, robot: "Object", gripper_link: str, grasp: Any = None,
-             exclude_types: Iterable[str] = (), threshold: float = 0.01, angle_threshold: float = 0.1,
+             exclude_types: Iterable[str] = (), threshold: float = REACH, angle_threshold: float = 0.1,
              tolerance: float = TOUCH) -> list["Object"]:
     """The objects the robot touches at the IK solution for `target` (sorted by name).
 
@@ -164,3 +170,113 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
 def _touches(body: "Object", links: frozenset[int], other: "Object", tolerance: float) -> bool:
     """Whether any of the body's `links` comes within `tolerance` of `other`."""
     return any(point.link_a in links for point in body.world.closest_points(body, other, tolerance))
+
+
+# -- the query, by name (plans, `pycram query`, docs) --------------------------------------------------
+
+
+_TARGET = "an object name or a position [x, y, z]"
+_ARM = Param("arm", "arm", doc="the arm to reach with", default_doc="every arm in the description's order: the first that reaches")
+_GRASP = Param("grasp", "grasp", doc="tool orientation: a grasp of the robot (front, top, ...) or a quaternion [x, y, z, w]",
+               default_doc="any orientation")
+_REACH = Param("threshold", "distance", doc="how close (m) the tool frame must come", default=REACH)
+
+
+def _reach(call: Call, target: Any, grasp: Any, threshold: float) -> tuple[str, str, ReachableAnswer, dict[str, Any]]:
+    """Try the arms in order; the first that reaches wins, else the one that came closest."""
+    robot = call.robot()
+    desc = call.description("arms", "arm")
+    tried: dict[str, Any] = {}
+    best: tuple[str, str, ReachableAnswer] | None = None
+    for arm in call.arms():
+        tool = desc.arm(arm).tool_frame
+        answer = reachable(target, robot, tool, grasp=grasp, threshold=threshold)
+        tried[arm] = finite(answer.position_error)
+        if answer.reachable:
+            return arm, tool, answer, tried
+        if best is None or answer.position_error < best[2].position_error:
+            best = (arm, tool, answer)
+    assert best is not None  # call.arms() is never empty
+    return (*best, tried)
+
+
+def _reachable(call: Call) -> QueryAnswer:
+    target = call.target()
+    grasp = call.grasp()
+    threshold = call.number("threshold")
+    if isinstance(target, Object):  # an object: can pick-up take it from here (its own grasps and ways)?
+        arms = call.arms()
+        taken = can_take(call.robot(), target, arms[0] if call.args.get("arm") is not None else None, grasp)
+        if taken is not None:
+            call.resolved["arm"] = taken.arm
+            desc = call.description("arms", "arm")
+            details = {"arm": taken.arm, "gripper_link": desc.arm(taken.arm).tool_frame if taken.arm else None,
+                       "grasp": taken.grasp, "as": "pick-up", "position_error": finite(taken.position_error),
+                       "orientation_error": finite(taken.orientation_error), "joint_positions": taken.joint_positions,
+                       "reason": taken.reason, "detail": taken.detail, "arms_tried": arms,
+                       "tried": [[a, g, why] for a, g, why in taken.tried]}
+            return QueryAnswer("reachable", call.resolved, taken.takes, details, taken.takes)
+    arm, tool, answer, tried = _reach(call, target, grasp, threshold)
+    call.resolved["arm"] = arm
+    details = {"arm": arm, "gripper_link": tool, "position_error": finite(answer.position_error),
+               "orientation_error": finite(answer.orientation_error), "joint_positions": answer.joint_positions,
+               "arms_tried": tried}
+    return QueryAnswer("reachable", call.resolved, answer.reachable, details, answer.reachable)
+
+
+def _say_reachable(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    if d.get("as") == "pick-up":
+        target = place(a["target"])
+        if answer.result:
+            return f"{target} is reachable: pick-up takes it with {arm_phrase(d['arm'])} and a {place(d['grasp'])} grasp"
+        why = {"blocked": f"blocked by {d['detail']}", "cannot hold": "no gripper can hold it"}.get(d["reason"],
+                                                                                                  d["reason"])
+        if d["reason"] == "out of reach" and d.get("position_error") is not None:
+            why += f": the nearest grasp stays {mm(d['position_error'])} away"
+        arms = ", ".join(arm_phrase(arm) for arm in d["arms_tried"])
+        return f"{target} is NOT reachable from here: pick-up with {arms} finds no grasp ({why})"
+    grasp = f", {place(a['grasp'])} grasp" if a.get("grasp") is not None else ""
+    errors = f"{mm(d['position_error'])} from the target" + (f", {degrees(d['orientation_error'])} off" if grasp else "")
+    if not answer.result:
+        errors = f"{mm(d['position_error'])} short of the target" + (f", {degrees(d['orientation_error'])} off" if grasp else "")
+    target = place(a["target"])
+    if answer.result:
+        return f"{target} is reachable with {arm_phrase(d['arm'])}{grasp} ({errors})"
+    return f"{target} is NOT reachable (best: {arm_phrase(d['arm'])}{grasp}, {errors})"
+
+
+declare_query(QuerySpec(
+    "reachable", "Can the robot bring its tool frame to the target (within 1 cm, and the grasp orientation)? For an object: "
+    "can pick-up take it from where the robot stands (its grasps, the ways there and back)?",
+    parameters(Param("target", "target", True, _TARGET, positional=True), _ARM, _GRASP, _REACH), _reachable,
+    _say_reachable))
+
+
+def _blocking(call: Call) -> QueryAnswer:
+    target = call.target()
+    grasp = call.grasp()
+    threshold = call.number("threshold")
+    excluded = call.types("exclude-type")
+    arm, tool, answer, _ = _reach(call, target, grasp, threshold)
+    call.resolved["arm"] = arm
+    found = touching_at(call.robot(), answer.joint_positions, target, excluded)
+    details = {"arm": arm, "gripper_link": tool, "reachable": answer.reachable,
+               "position_error": finite(answer.position_error), "excluded_types": excluded}
+    return QueryAnswer("blocking", call.resolved, [o.name for o in found], details, found)
+
+
+def _say_blocking(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    target = place(a["target"])
+    reach = "" if d["reachable"] else f" (out of reach: the best solution stops {mm(d['position_error'])} short of the target)"
+    if answer.result:
+        return f"reaching {target} with {arm_phrase(d['arm'])} touches: {', '.join(answer.result)}{reach}"
+    return f"nothing blocks {arm_phrase(d['arm'])} reaching {target}{reach}"
+
+
+declare_query(QuerySpec(
+    "blocking", "Which objects would the robot touch when reaching for the target?",
+    parameters(Param("target", "target", True, _TARGET, positional=True), _ARM, _GRASP,
+               Param("exclude-type", "types", doc="object types to leave out (e.g. environment)", default=[],
+                     multiple=True), _REACH), _blocking, _say_blocking))

@@ -44,14 +44,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..world.parking import Parking
+from ..signature import Param
 from ..world.pose import angle_between
 from . import neighbourhood
 from ._common import world_of
+from .query import AN_OBJECT, Call, QueryAnswer, QuerySpec, declare_query, degrees, mm, parameters
 
 if TYPE_CHECKING:
     from ..world import BulletWorld, Object
@@ -284,3 +286,41 @@ def _turns(series: list[float], swing: float) -> int:
 def _loose(obj: "Object") -> bool:
     """A free object that nothing holds (what is attached to a parent just follows it)."""
     return not obj.fixed and not any(a.child is obj for a in obj.attachments.values())
+
+
+# -- the query, by name (plans, `pycram query`, docs) --------------------------------------------------
+
+
+def _stable(call: Call) -> QueryAnswer:
+    answer = stable(call.object("object"))
+    details: dict[str, Any] = {"displacement": answer.displacement, "rotation": answer.rotation,
+                               "simulated": answer.simulated}
+    if not answer.stable:  # what it does once past the limits (a stable answer's is "at rest")
+        details.update(motion=answer.motion, observed=answer.observed)
+        if answer.amplitude is not None:
+            details["amplitude"] = {"displacement": answer.amplitude[0], "rotation": answer.amplitude[1]}
+    return QueryAnswer("stable", call.resolved, answer.stable, details, answer.stable)
+
+
+def _say_stable(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    moved = f"moved {mm(d['displacement'])} and {degrees(d['rotation'])}"
+    if answer.result:
+        return f"{a['object']} is stable ({moved} in {d['simulated']:.2f} s simulated)"
+    total = f"{d['simulated'] + d.get('observed', 0.0):.2f} s simulated"
+    motion = d.get("motion")
+    if motion == "rocks":
+        swing = d["amplitude"]
+        return (f"{a['object']} is NOT stable: it is not at rest, it rocks back and forth by {degrees(swing['rotation'])} "
+                f"and {mm(swing['displacement'])} and is still moving ({total})")
+    if motion == "settled":
+        return f"{a['object']} is NOT stable: it {moved}, then came to rest ({total})"
+    if motion == "moving":
+        return f"{a['object']} is NOT stable: it {moved} and is still moving ({total})"
+    return f"{a['object']} is NOT stable: it {moved} in {total}"
+
+
+declare_query(QuerySpec(
+    "stable", "Does the object stay put (within 1 mm and 1°) while the world is simulated for 2 s? When not, it is "
+              f"watched {OBSERVE:g} s longer: it came to rest elsewhere, is still moving, or rocks (and by how much).",
+    parameters(Param("object", "object", True, AN_OBJECT, positional=True)), _stable, _say_stable))

@@ -15,7 +15,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ..errors import did_you_mean
+from ..signature import Param
 from ._common import same_world
+from .query import Call, QueryAnswer, QuerySpec, declare_query, parameters
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -52,3 +55,36 @@ def supporting(a: "Object", b: "Object", link: str | None = None) -> bool:
     if link is not None:
         a.get_link_id(link)  # an unknown link is an error, not a "no"
     return any(link is None or on == link for on, _ in support_points(a, b))
+
+
+# -- the query, by name (plans, `pycram query`, docs) --------------------------------------------------
+
+
+def _supporting(call: Call) -> QueryAnswer:
+    a, b = call.object("a"), call.object("b")
+    if a is b:
+        raise call.error("b", f"supporting needs two different objects, got '{a.name}' twice")
+    link = call.args.get("link")
+    if link is not None:
+        if link not in a.link_names:
+            raise call.error("link", f"'{a.name}' has no link '{link}'", did_you_mean(str(link), a.link_names))
+        call.resolved["link"] = link
+    points = [(on, point) for on, point in support_points(a, b) if link is None or on == link]
+    details = {"contacts": [{"link": on, "point": list(point)} for on, point in points]}
+    return QueryAnswer("supporting", call.resolved, bool(points), details, bool(points))
+
+
+def _say_supporting(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    if answer.result:
+        links = sorted({c["link"] for c in d["contacts"]})
+        return f"{a['a']} supports {a['b']} (at {', '.join(links)})"
+    return f"{a['a']} does NOT support {a['b']}"
+
+
+declare_query(QuerySpec(
+    "supporting", "Does object a carry object b (b on top of a, touching)?",
+    parameters(Param("a", "object", True, "the supporting object's name", positional=True),
+               Param("b", "object", True, "the supported object's name", positional=True),
+               Param("link", "link", doc="only count support by this link of a (e.g. kitchen_island_surface)", of="a")),
+    _supporting, _say_supporting))

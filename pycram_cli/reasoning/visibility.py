@@ -36,7 +36,9 @@ import numpy as np
 from ..robots import description_for
 from ..world.camera import projection_matrix, view_matrix
 from ..world.pose import check_position, check_quaternion, quat_to_matrix
+from ..signature import Param
 from ._common import world_of
+from .query import AN_OBJECT, Call, QueryAnswer, QuerySpec, declare_query, parameters, place
 
 if TYPE_CHECKING:
     from ..world import BulletWorld, Object
@@ -54,6 +56,8 @@ WIDE = math.tan(math.radians(80.0))
 #: a link's collision box grown by this much (m) holds what is drawn of it (checked against full renders of the
 #: real PR2 and kitchen: their visual meshes lie within their collision boxes give or take a few millimetres)
 MARGIN = 0.02
+#: the fraction of an object's pixels that must be seen: the function's default and the query's declared one
+SEEN = 0.8
 
 
 @dataclass(frozen=True)
@@ -308,7 +312,7 @@ def _in_frustum(boxes: np.ndarray, cam: CameraPose, window: tuple[float, float, 
 
 
 def visible(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None,
-            threshold: float = 0.8) -> VisibleAnswer:
+            threshold: float = SEEN) -> VisibleAnswer:
     """Whether at least `threshold` (default 80 %) of `obj`'s pixels are seen from `camera`."""
     world = world_of(obj, world)
     if not 0.0 <= threshold <= 1.0:
@@ -336,3 +340,53 @@ def occluding(obj: "Object", camera: Any = None, world: "BulletWorld | None" = N
     ids = {int(i) for i in np.unique(covered)} - {obj.id, -1}
     found = [o for o in (world.get_object_by_id(i) for i in ids) if o is not None]
     return sorted(found, key=lambda o: (o.name, o.id))
+
+
+# -- the query, by name (plans, `pycram query`, docs) --------------------------------------------------
+
+
+_FROM = Param("from", "camera", doc="camera: a link of the robot or a position [x, y, z] looking at the object",
+             default_doc="the robot's camera frame")
+
+
+def _visible(call: Call) -> QueryAnswer:
+    obj = call.object("object")
+    camera = call.camera()
+    threshold = call.number("threshold")
+    answer = visible(obj, camera, threshold=threshold)
+    return QueryAnswer("visible", call.resolved, answer.visible,
+                       {"fraction": answer.fraction, "pixels": answer.pixels, "total": answer.total,
+                        "camera": call.resolved["from"]}, answer.visible)
+
+
+def _say_visible(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    seen = f"{d['fraction']:.0%} of its pixels seen from {place(d['camera'])} (threshold {a['threshold']:.0%})"
+    return f"{a['object']} is visible: {seen}" if answer.result else f"{a['object']} is NOT visible: {seen}"
+
+
+declare_query(QuerySpec(
+    "visible", "Are at least 80 % of the object's pixels seen from the camera?",
+    parameters(Param("object", "object", True, AN_OBJECT, positional=True), _FROM,
+               Param("threshold", "fraction", doc="the fraction of pixels that must be seen", default=SEEN)),
+    _visible, _say_visible))
+
+
+def _occluding(call: Call) -> QueryAnswer:
+    obj = call.object("object")
+    camera = call.camera()
+    found = occluding(obj, camera)
+    return QueryAnswer("occluding", call.resolved, [o.name for o in found],
+                       {"count": len(found), "camera": call.resolved["from"]}, found)
+
+
+def _say_occluding(answer: QueryAnswer) -> str:
+    a, d = answer.args, answer.details
+    if answer.result:
+        return f"{a['object']} is occluded by: {', '.join(answer.result)} (seen from {place(d['camera'])})"
+    return f"nothing occludes {a['object']} (seen from {place(d['camera'])})"
+
+
+declare_query(QuerySpec(
+    "occluding", "Which objects cover the object's pixels, seen from the camera?",
+    parameters(Param("object", "object", True, AN_OBJECT, positional=True), _FROM), _occluding, _say_occluding))

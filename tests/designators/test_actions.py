@@ -189,13 +189,15 @@ def test_pycram_designators_lists_the_actions_with_their_slots():
 
 def test_transport_says_what_the_placed_object_does_when_it_is_not_stable(world, monkeypatch):
     """The failure names the motion `stable` saw (here made to rock: the query's answer is replaced)."""
+    import importlib
     import math
 
     from pycram_cli.failures import ReasoningFailure
-    from pycram_cli.reasoning import StableAnswer, queries
+    from pycram_cli.reasoning import StableAnswer
 
     rocking = StableAnswer(False, 0.003, 0.17, 0.06, "rocks", (0.003, math.radians(9.5)), 1.0)
-    monkeypatch.setattr(queries, "stable", lambda obj: rocking)
+    stable_module = importlib.import_module("pycram_cli.reasoning.stable")  # the package's `stable` is the function
+    monkeypatch.setattr(stable_module, "stable", lambda obj: rocking)
     with pytest.raises(ReasoningFailure, match=r"milk is not stable where it was placed: it is not at rest, it rocks "
                                                r"back and forth by 9\.50° and 3\.00 mm") as failure:
         perform_action(world, "transport", {"object-type": "milk", "target": ISLAND})

@@ -31,7 +31,7 @@ def test_the_eleven_designators_of_the_design_with_their_slots():
 
 
 def messages(type_name, slots, robots=Robots()):
-    return [(p.message, p.slot, p.suggestion) for p in check_designator(type_name, slots, robots=robots)]
+    return [(p.message, p.param, p.suggestion) for p in check_designator(type_name, slots, robots=robots)]
 
 
 def pr2() -> Robots:

@@ -175,3 +175,16 @@ def test_designators_need_a_robot_in_the_world(tmp_path):
     assert result.exit_code == 2
     assert result.output.count("the world has no robot to perform 'moving'") == 1
     assert f"{plan}:4:13: moving:" in result.output
+
+
+def test_a_query_problem_points_at_the_argument_it_names(tmp_path):
+    """Query problems carry their parameter: a bad value is shown at the value, an unknown name at the key, a missing
+    one at the arguments, in a step and in a condition alike."""
+    path = tmp_path / "p.yaml"
+    path.write_text("body:\n"
+                    "  - visible: {object: milk, threshold: 2}\n"
+                    "  - assert: {contact: {a: milk, bb: bowl}}\n")
+    got = {p.message: (p.location.line, p.location.column, p.suggestion) for p in problems(path)}
+    assert got["query 'visible', parameter 'threshold': expected a fraction between 0 and 1, got 2"] == (2, 40, None)
+    assert got["query 'contact' has no parameter 'bb'"] == (3, 33, "did you mean 'b'?")
+    assert got["query 'contact' needs parameter 'b' (an object name)"][:2] == (3, 23)

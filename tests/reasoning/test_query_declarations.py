@@ -7,7 +7,8 @@ import pytest
 from scenes import COUNTER_POSE
 
 from pycram_cli.errors import InputError
-from pycram_cli.reasoning import QUERIES, QueryAnswer, QueryParam, QuerySpec, check_query_args, run_query
+from pycram_cli.reasoning import QUERIES, QueryAnswer, QuerySpec, check_query_args, run_query
+from pycram_cli.signature import Param, Problem
 
 PARAMETERS = {
     "stable": ["object"],
@@ -24,7 +25,7 @@ def test_every_query_is_registered_with_the_parameter_names_plans_use():
     assert {name: spec.param_names for name, spec in QUERIES.items()} == PARAMETERS
     for spec in QUERIES.values():
         assert isinstance(spec, QuerySpec) and spec.doc
-        assert all(isinstance(param, QueryParam) and param.doc for param in spec.params)
+        assert all(isinstance(param, Param) and param.doc for param in spec.params)
 
 
 @pytest.mark.parametrize("name, args, result", [
@@ -110,20 +111,24 @@ def test_bad_input_is_an_input_error_with_a_suggestion(scene, name, args, messag
     assert message in str(caught.value)
 
 
+def texts(problems: list[Problem]) -> list[str]:
+    return [str(problem) for problem in problems]
+
+
 def test_static_checks_need_no_world():
     assert check_query_args("visible", {"object": "bottle"}) == []
     assert check_query_args("blocking", {"target": [1, 2, 3], "exclude-type": ["environment"], "arm": "left"}) == []
-    assert check_query_args("visble", {}) == ["unknown query 'visble' (did you mean 'visible'?)"]
+    assert texts(check_query_args("visble", {})) == ["unknown query 'visble' (did you mean 'visible'?)"]
     assert check_query_args("visible", {"object": "bottle", "frm": "x"}) == [
-        "query 'visible' has no parameter 'frm' (did you mean 'from'?)"]
+        Problem("query 'visible' has no parameter 'frm'", "frm", "did you mean 'from'?")]
     problems = check_query_args("contact", {"a": "kitchen"})
-    assert len(problems) == 1 and "needs parameter 'b'" in problems[0]
+    assert len(problems) == 1 and "needs parameter 'b'" in problems[0].message and problems[0].param == "b"
     problems = check_query_args("reachable", {"target": [1, 2], "grasp": 5, "threshold": "near"})
-    assert len(problems) == 3
+    assert [problem.param for problem in problems] == ["target", "grasp", "threshold"]
 
 
 def test_static_checks_skip_plan_references():
     is_reference = lambda value: isinstance(value, str) and value.startswith("$")  # noqa: E731
     assert check_query_args("reachable", {"target": "$obj", "threshold": "$t"}, is_reference) == []
-    assert check_query_args("reachable", {"target": "$obj", "threshold": "$t"}) == [
+    assert texts(check_query_args("reachable", {"target": "$obj", "threshold": "$t"})) == [
         "query 'reachable', parameter 'threshold': expected a positive distance in metres, got '$t'"]

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from scenes import put_on, tilt_about_x
 
-from pycram_cli.reasoning import run_query, stable
+from pycram_cli.reasoning import QUERIES, run_query, stable
 from pycram_cli.reasoning.stable import MOVED, MOVING, ROCKS, SETTLED
 
 BENCH = Path(__file__).resolve().parents[2] / "bench" / "stable_tolerance.py"
@@ -49,14 +49,13 @@ def test_a_rocker_is_said_to_rock_with_how_far_it_swings(scene, rocker):
 
 
 def test_the_query_says_rocks_in_words_and_in_its_json(scene, rocker):
-    from pycram_cli.reasoning.queries import _say_stable
     answer = run_query(scene, "stable", {"object": "rocker"})
     details = json.loads(json.dumps(answer.to_json()))["details"]  # as `pycram query stable rocker --json` prints it
     assert details["motion"] == "rocks"
     assert math.radians(5) < details["amplitude"]["rotation"] < math.radians(15)
     assert 0.001 < details["amplitude"]["displacement"] < 0.01
     assert details["observed"] == pytest.approx(1.0)
-    sentence = _say_stable(answer)
+    sentence = QUERIES["stable"].describe(answer)
     assert sentence.startswith("rocker is NOT stable: it is not at rest, it rocks back and forth by ")
     assert "moved" not in sentence and "still moving" in sentence
 

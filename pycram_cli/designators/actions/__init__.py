@@ -29,7 +29,7 @@ def perform_action(world: Any, name: str, slots: Mapping[str, Any], record: dict
     """Perform an action with the world's robot; `record` (a dict) receives its expansion. Failures raise."""
     robot = Robot.of(world)
     problems = check_action(name, slots, robots=Robots((robot.description,), True))
-    raise_if_any([InputError(p.message, Location(f"action {name}"), key=p.slot, suggestion=p.suggestion)
+    raise_if_any([InputError(p.message, Location(f"action {name}"), key=p.param, suggestion=p.suggestion)
                   for p in problems])
     actor = DirectActor(world, record)
     return actor.action(name, slots)

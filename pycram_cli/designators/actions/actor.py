@@ -25,6 +25,7 @@ from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse
 from ...locations.plot import MAP_KEY, candidate_map
 from ...robots import Robot
 from ...reasoning import QueryAnswer, run_query
+from ...status import Status
 from ...world import BulletWorld, Object
 from ..performing import perform
 from .declaration import ACTIONS
@@ -131,7 +132,7 @@ class Actor:
     def action(self, name: str, slots: Mapping[str, Any]) -> Any:
         spec = ACTIONS[name]
         given = {k: v for k, v in slots.items() if v is not None}
-        return self.group(f"action {name}", "action", lambda actor: spec.run(actor, given),
+        return self.group(f"action {name}", "action", lambda actor: spec.perform(actor, given),
                           {"action": {"type": name, "slots": jsonable(given)}})
 
     def attempt(self, number: int, run: Callable[["Actor"], Any]) -> Any:
@@ -147,7 +148,7 @@ class DirectActor(Actor):
         self.record.setdefault("children", [])
 
     def _child(self, label: str, type: str) -> dict[str, Any]:
-        child = {"label": f"{len(self.record['children'])}:{label}", "type": type, "status": "running"}
+        child = {"label": f"{len(self.record['children'])}:{label}", "type": type, "status": Status.RUNNING.value}
         self.record["children"].append(child)
         return child
 
@@ -157,10 +158,10 @@ class DirectActor(Actor):
         try:
             with self.world.lock:
                 value = run(info)
-            child["status"] = "succeeded"
+            child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = "failed", {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
             raise
         finally:
             child.update(info)
@@ -170,8 +171,8 @@ class DirectActor(Actor):
         child.update(info or {})
         try:
             value = run(DirectActor(self.world, child))
-            child["status"] = "succeeded"
+            child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = "failed", {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
             raise

@@ -10,7 +10,7 @@ from ...kinds import KINDS, Robots, location_goals
 from ...planning.reach import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...robots import Robot
 from ...world import Object
-from ..declaration import SlotProblem
+from ...signature import Problem
 from .actor import Actor, Finder, as_failure
 
 #: how many poses (or spots) an action tries before it gives up
@@ -119,14 +119,14 @@ def _gave_up(what: str, failures: list[Failure], last: LocationFailure | None) -
 # -- static checks of location slots ---------------------------------------------------------------------
 
 
-def location_slot(slot: str, goals: tuple[str, ...], what: str) -> Callable[[Mapping[str, Any], Robots], list[SlotProblem]]:
+def location_slot(slot: str, goals: tuple[str, ...], what: str) -> Callable[[Mapping[str, Any], Robots], list[Problem]]:
     """A check that a location slot asks for one of `goals` (e.g. a spot `on` a surface, not a base pose)."""
-    def check(slots: Mapping[str, Any], robots: Robots) -> list[SlotProblem]:
+    def check(slots: Mapping[str, Any], robots: Robots) -> list[Problem]:
         value = slots.get(slot)
         if not isinstance(value, Mapping) or KINDS["location"].check(value, Robots()):
             return []
         if not any(goal in goals for goal in location_goals(value)):
-            return [SlotProblem(f"slot '{slot}': {what} (got {', '.join(location_goals(value))})", slot)]
+            return [Problem(f"slot '{slot}': {what} (got {', '.join(location_goals(value))})", slot)]
         return []
 
     return check

@@ -6,14 +6,17 @@ followed by the next candidate before the action fails.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any, Mapping
 
 from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
 from ...locations.spec import find_object
+from ...planning.drawers import DISTANCE
 from ...reasoning import QUERIES
-from ..declaration import ANY_ARM, Slot, drives
+from ...signature import Param, Signature
+from ..declaration import ANY_ARM, drives
 from .actor import Actor, Finder, as_failure
 from .common import PARK, go, location_slot, object_of, rest_of, rest_pose, resting, try_choices
 from .declaration import Action, declare_action
@@ -55,11 +58,14 @@ def _pick_up(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 
 declare_action(Action(
-    "pick-up", "Pick an object up: stand where an arm reaches it untouched, grasp it, lift it into the carry pose.", (
-        Slot("object", "object", True, "the object to pick up"),
-        Slot("arm", "arm", False, "the arm to use", "found with where to stand: the arm that reaches"),
-        Slot("grasp", "grasp", False, "the grasp", "found with where to stand: the first grasp that works"),
-    ), run=_pick_up, uses=EVERYTHING, needs=("arms",), returns="the object"))
+    "pick-up", "Pick an object up: stand where an arm reaches it untouched, grasp it, lift it into the carry pose.",
+    Signature((
+        Param("object", "object", True, "the object to pick up"),
+        Param("arm", "arm", False, "the arm to use", default_doc="found with where to stand: the arm that reaches"),
+        Param("grasp", "grasp", False, "the grasp",
+              default_doc="found with where to stand: the first grasp that works"),
+    )),
+    run=_pick_up, uses=EVERYTHING, needs=("arms",), returns="the object"))
 
 
 # -- place -------------------------------------------------------------------------------------------------------
@@ -93,12 +99,13 @@ def _place(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 declare_action(Action(
     "place", "Put a held object down on a free spot of a surface: stand where the arm reaches the spot, place it, "
-             "park the arm.", (
-        Slot("object", "object", True, "the held object"),
-        Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?} (for: the object, inferred)"),
-        Slot("arm", "arm", False, "the arm holding it", "the arm that holds it"),
-    ), run=_place, uses=EVERYTHING, needs=("arms",), returns="the object",
-    check=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")))
+             "park the arm.",
+    Signature((
+        Param("object", "object", True, "the held object"),
+        Param("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?} (for: the object, inferred)"),
+        Param("arm", "arm", False, "the arm holding it", default_doc="the arm that holds it"),
+    ), across=location_slot("target", ("on",), "place puts an object on a surface: {on: SURFACE}")),
+    run=_place, uses=EVERYTHING, needs=("arms",), returns="the object"))
 
 
 # -- open and close ----------------------------------------------------------------------------------------------
@@ -132,7 +139,7 @@ def _handle_of_joint(actor: Actor, joint: str, part_of: Any) -> Handle:
     return Handle(owners[0], name, joint)
 
 
-def _access(actor: Actor, slots: Mapping[str, Any], distance: float | None, verb: str) -> None:
+def _access(actor: Actor, slots: Mapping[str, Any], distance: float, verb: str) -> None:
     handle = handle_from(actor, slots)
     _rest_first(actor)
     spec = LocationSpec(accessing=handle, distance=distance, arm=slots.get("arm"))
@@ -140,7 +147,7 @@ def _access(actor: Actor, slots: Mapping[str, Any], distance: float | None, verb
     def pull(a: Actor, pose: Any) -> None:
         go(a, pose)
         a.motion("accessing", {"drawer-handle": handle.link, "drawer-joint": handle.joint, "part-of": handle.obj,
-                               "distance": distance if distance is not None else slots.get("distance"), "arm": pose.arm})
+                               "distance": distance, "arm": pose.arm})
         lift = rest_of(a.robot, pose.arm)
         if lift is not None:
             a.motion("move-arm-joints", {"arms": {pose.arm: lift}})
@@ -149,7 +156,7 @@ def _access(actor: Actor, slots: Mapping[str, Any], distance: float | None, verb
 
 
 def _open(actor: Actor, slots: Mapping[str, Any]) -> None:
-    _access(actor, slots, slots.get("distance"), "open")
+    _access(actor, slots, slots["distance"], "open")  # bound: the declared default when not given
 
 
 #: a drawer or door no pose pushes shut in one stroke is pushed shut in up to this many equal strokes, each from a
@@ -172,23 +179,33 @@ def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
                 raise
 
 
-_HANDLE = (Slot("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)", of="part-of"),
-           Slot("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)",
-                of="part-of"),
-           Slot("part-of", "object", False, "the object the joint belongs to", "the object that has the joint"))
-_ARM = Slot("arm", "arm", False, "the arm that pulls", "found with where to stand: a free arm that reaches")
+_HANDLE = (Param("handle", "link", False, "the handle link (e.g. sink_area_left_upper_drawer_handle)", of="part-of"),
+           Param("joint", "joint", False, "the drawer's or door's joint (its handle is the link named *handle* on it)",
+                 of="part-of"),
+           Param("part-of", "object", False, "the object the joint belongs to",
+                 default_doc="the object that has the joint"))
+_ARM = Param("arm", "arm", False, "the arm that pulls",
+             default_doc="found with where to stand: a free arm that reaches")
 
 declare_action(Action(
     "open", "Open a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
             "open, pull it open, park the arm.",
-    (*_HANDLE, Slot("distance", "distance", False, "how far to open, in metres", "0.3, or the joint's range if smaller"),
-     _ARM), run=_open, uses=EVERYTHING, one_of=("handle", "joint"), needs=("arms",)))
+    Signature((
+        *_HANDLE,
+        replace(DISTANCE, kind="distance", default_doc="0.3, or the joint's range if smaller"),
+        _ARM,
+    ), one_of=("handle", "joint")),
+    run=_open, uses=EVERYTHING, needs=("arms",)))
 
 declare_action(Action(
     "close", "Close a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
              "closed, push it shut, park the arm; when no pose reaches it so, push it shut in up to three strokes, "
              "each from a pose of its own.",
-    (*_HANDLE, _ARM), run=_close, uses=EVERYTHING, one_of=("handle", "joint"), needs=("arms",)))
+    Signature((
+        *_HANDLE,
+        _ARM,
+    ), one_of=("handle", "joint")),
+    run=_close, uses=EVERYTHING, needs=("arms",)))
 
 
 # -- transport ---------------------------------------------------------------------------------------------------
@@ -259,11 +276,13 @@ def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None
 declare_action(Action(
     "transport", "Bring an object (or one of a type) to a location: find it, stand, pick it up, carry it, stand, "
                  "place it, park, check that it stands stably (ReasoningFailure if not), and close the drawer or "
-                 "door it was taken out of.", (
-        Slot("object", "object", False, "the object to bring"),
-        Slot("object-type", "object-type", False, "or the type of object to bring (found by search)"),
-        Slot("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),
-        Slot("arm", "arm", False, "the arm to carry it with", "found when picking it up"),
-        Slot("grasp", "grasp", False, "the grasp", "found when picking it up"),
-    ), run=_transport, uses=EVERYTHING, one_of=("object", "object-type"), needs=("arms", "camera"),
-    returns="the object", check=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")))
+                 "door it was taken out of.",
+    Signature((
+        Param("object", "object", False, "the object to bring"),
+        Param("object-type", "object-type", False, "or the type of object to bring (found by search)"),
+        Param("target", "location", True, "where: {on: SURFACE, near: [x, y, z]?}"),
+        Param("arm", "arm", False, "the arm to carry it with", default_doc="found when picking it up"),
+        Param("grasp", "grasp", False, "the grasp", default_doc="found when picking it up"),
+    ), one_of=("object", "object-type"),
+       across=location_slot("target", ("on",), "transport brings an object onto a surface: {on: SURFACE}")),
+    run=_transport, uses=EVERYTHING, needs=("arms", "camera"), returns="the object"))

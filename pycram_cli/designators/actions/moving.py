@@ -6,7 +6,8 @@ from typing import Any, Mapping
 from ...failures import ManipulationFailure, NavigationFailure
 from ...kinds import arm_words
 from ...schema import is_vector
-from ..declaration import ANY_ARM, Slot, drives
+from ...signature import Param, Signature
+from ..declaration import ANY_ARM, drives
 from .actor import Actor, Finder
 from .common import go, location_slot, object_of, rest_pose, resting, try_choices
 from .declaration import Action, declare_action
@@ -25,10 +26,12 @@ def _navigate(actor: Actor, slots: Mapping[str, Any]) -> Any:
 
 
 declare_action(Action(
-    "navigate", "Drive to a base pose of a location (the best one that works; stays put when the robot stands at one).", (
-        Slot("target", "location", True, "where to stand: {reachable-for: ...}, {visible-for: ...} or {accessing: ...}"),
-    ), run=_navigate, uses=drives("base"), needs=("mobile base",), returns="the pose (position, orientation, ...)",
-    check=location_slot("target", BASE_POSE_GOALS, "navigate goes to a base pose: reachable-for, visible-for or accessing")))
+    "navigate", "Drive to a base pose of a location (the best one that works; stays put when the robot stands at one).",
+    Signature((
+        Param("target", "location", True, "where to stand: {reachable-for: ...}, {visible-for: ...} or {accessing: ...}"),
+    ), across=location_slot("target", BASE_POSE_GOALS,
+                            "navigate goes to a base pose: reachable-for, visible-for or accessing")),
+    run=_navigate, uses=drives("base"), needs=("mobile base",), returns="the pose (position, orientation, ...)"))
 
 
 def _park_arms(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -49,9 +52,11 @@ def _park_uses(slots: Mapping[str, Any]) -> frozenset[str]:
 
 
 declare_action(Action(
-    "park-arms", "Put the arms in their park pose (an arm holding something in its carry pose, if it has one).", (
-        Slot("arm", "arm", False, "the arm to park", "every arm"),
-    ), run=_park_arms, uses=_park_uses, needs=("arms",)))
+    "park-arms", "Put the arms in their park pose (an arm holding something in its carry pose, if it has one).",
+    Signature((
+        Param("arm", "arm", False, "the arm to park", default_doc="every arm"),
+    )),
+    run=_park_arms, uses=_park_uses, needs=("arms",)))
 
 
 def _move_torso(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -59,9 +64,12 @@ def _move_torso(actor: Actor, slots: Mapping[str, Any]) -> None:
 
 
 declare_action(Action(
-    "move-torso", "Raise or lower the torso.", (
-        Slot("position", "number", False, "the torso joint's position in metres", "the description's torso default"),
-    ), run=_move_torso, uses=drives("torso"), needs=("torso",)))
+    "move-torso", "Raise or lower the torso.",
+    Signature((
+        Param("position", "number", False, "the torso joint's position in metres",
+              default_doc="the description's torso default"),
+    )),
+    run=_move_torso, uses=drives("torso"), needs=("torso",)))
 
 
 def _look_at(actor: Actor, slots: Mapping[str, Any]) -> None:
@@ -73,6 +81,8 @@ def _look_at(actor: Actor, slots: Mapping[str, Any]) -> None:
 
 
 declare_action(Action(
-    "look-at", "Point the camera at an object or a position (turning the head, the arm or the base that carries it).", (
-        Slot("target", "target", True, "what to look at"),
-    ), run=_look_at, uses=drives("head"), needs=("camera",)))
+    "look-at", "Point the camera at an object or a position (turning the head, the arm or the base that carries it).",
+    Signature((
+        Param("target", "target", True, "what to look at"),
+    )),
+    run=_look_at, uses=drives("head"), needs=("camera",)))

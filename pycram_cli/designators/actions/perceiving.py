@@ -7,7 +7,8 @@ from ...failures import Failure, LocationFailure, NavigationFailure, PerceptionF
 from ...locations import handle_of, opening_joint
 from ...reasoning.supporting import support_points
 from ...world import Object
-from ..declaration import ANY_ARM, Slot, drives
+from ...signature import Param, Signature
+from ..declaration import ANY_ARM, drives
 from .actor import Actor, Finder
 from .common import go, object_of, try_choices
 from .declaration import Action, declare_action
@@ -31,10 +32,12 @@ def _detect(actor: Actor, slots: Mapping[str, Any]) -> Object:
 
 
 declare_action(Action(
-    "detect", "Detect an object (looking at it first) or any object of a type in sight; PerceptionFailure if not seen.", (
-        Slot("object-type", "object-type", False, "the type to find in sight"),
-        Slot("object", "object", False, "the object to look at and detect"),
-    ), run=_detect, uses=drives("head"), one_of=("object-type", "object"), needs=("camera",), returns="the object seen"))
+    "detect", "Detect an object (looking at it first) or any object of a type in sight; PerceptionFailure if not seen.",
+    Signature((
+        Param("object-type", "object-type", False, "the type to find in sight"),
+        Param("object", "object", False, "the object to look at and detect"),
+    ), one_of=("object-type", "object")),
+    run=_detect, uses=drives("head"), needs=("camera",), returns="the object seen"))
 
 
 def is_closed(obj: Object, joint: str) -> bool:
@@ -107,8 +110,9 @@ def _search(actor: Actor, slots: Mapping[str, Any]) -> Object:
 
 declare_action(Action(
     "search", "Look for an object (or one of a type) where the robot believes it is — opening the drawer or door "
-              "it is in — until it is detected; stands where it could pick it up too, when there is such a place.", (
-        Slot("object-type", "object-type", False, "the type to look for"),
-        Slot("object", "object", False, "the object to look for"),
-    ), run=_search, uses=drives("base", "head", ANY_ARM), one_of=("object-type", "object"),
-    needs=("camera",), returns="the object detected"))
+              "it is in — until it is detected; stands where it could pick it up too, when there is such a place.",
+    Signature((
+        Param("object-type", "object-type", False, "the type to look for"),
+        Param("object", "object", False, "the object to look for"),
+    ), one_of=("object-type", "object")),
+    run=_search, uses=drives("base", "head", ANY_ARM), needs=("camera",), returns="the object detected"))

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 import time
 
-from pycram_cli.reasoning import Call, QueryAnswer, QuerySpec, declare_query
+from pycram_cli.reasoning import Call, QueryAnswer, QuerySpec, declare_query, parameters
 
 
 def _explode(call: Call) -> QueryAnswer:
@@ -28,4 +28,4 @@ def _block(call: Call) -> QueryAnswer:
 
 
 for _name, _runner in (("explode", _explode), ("crash", _crash), ("spin", _spin), ("block", _block)):
-    declare_query(QuerySpec(_name, f"A query that goes wrong: {_name}.", (), _runner, lambda answer: "never"))
+    declare_query(QuerySpec(_name, f"A query that goes wrong: {_name}.", parameters(), _runner, lambda answer: "never"))

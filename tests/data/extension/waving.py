@@ -7,10 +7,11 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from pycram_cli.designators import Designator, Slot, declare_designator, drives_arm
+from pycram_cli.designators import Designator, declare_designator, drives_arm
 from pycram_cli.process_modules import ProcessModule, process_module
-from pycram_cli.reasoning import Call, QueryAnswer, QueryParam, QuerySpec, declare_query
+from pycram_cli.reasoning import Call, QueryAnswer, QuerySpec, declare_query, parameters
 from pycram_cli.robots import Robot
+from pycram_cli.signature import Param, Signature
 
 
 def _count(call: Call) -> QueryAnswer:
@@ -21,7 +22,7 @@ def _count(call: Call) -> QueryAnswer:
 
 declare_query(QuerySpec(
     "count", "How many objects of a type are in the world?",
-    (QueryParam("type", "object-type", True, "an object type", positional=True),),
+    parameters(Param("type", "object-type", True, "an object type", positional=True)),
     _count, lambda answer: f"{answer.result} object(s) of type {answer.args['type']}"))
 
 
@@ -40,6 +41,6 @@ class Wave(ProcessModule):
 
 declare_designator(Designator(
     "waving", "Wave an arm a number of times.",
-    (Slot("arm", "arm", True, "the arm that waves"), Slot("times", "number", False, "how often", "3")),
-    resolve=lambda robot, slots: {"arm": slots["arm"], "times": slots.get("times", 3)},
+    Signature((Param("arm", "arm", True, "the arm that waves"), Param("times", "number", False, "how often", default=3))),
+    resolve=lambda robot, slots: {"arm": slots["arm"], "times": slots["times"]},  # `times` bound to its default
     module="wave", uses=drives_arm("arm"), needs=("arms",), resource="arm"))
