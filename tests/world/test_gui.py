@@ -34,10 +34,14 @@ SCRIPT = textwrap.dedent("""
     print("ok")
 """)
 
+#: xvfb-run on a display of its own: `-a` alone starts looking at :99 in every process, and two tests started
+#: at once (pytest-xdist) can both take it
+XVFB_RUN = ("xvfb-run", "-a", "-n", str(100 + os.getpid() % 5000))
+
 
 @pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed")
 def test_gui_world_opens_a_window_and_a_second_one_is_refused(data_dir):
-    done = subprocess.run(["xvfb-run", "-a", sys.executable, "-c", SCRIPT.format(arm=str(data_dir / "arm.urdf"))],
+    done = subprocess.run([*XVFB_RUN, sys.executable, "-c", SCRIPT.format(arm=str(data_dir / "arm.urdf"))],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     assert "refused: a GUI world is already open" in done.stdout
@@ -147,7 +151,7 @@ def test_a_gui_world_is_framed_on_the_robot_before_its_first_picture():
     """Loading a world into the window points its camera at the robot (PyBullet's default view looks at a kitchen
     wall): the camera the window reports after its first picture sees the PR2's blue grippers (rendered headless
     from that camera, so the check does not depend on when the window draws)."""
-    done = subprocess.run(["xvfb-run", "-a", sys.executable, "-c", FIRST_PICTURE], capture_output=True, text=True,
+    done = subprocess.run([*XVFB_RUN, sys.executable, "-c", FIRST_PICTURE], capture_output=True, text=True,
                           timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
     pixels = int(done.stdout.split("robot pixels")[1])
