@@ -34,6 +34,10 @@ SCRIPT = textwrap.dedent("""
     print("ok")
 """)
 
+#: the window tests run one after another on one pytest-xdist worker (`--dist loadgroup`): two PyBullet windows
+#: opening at once under load have failed (one run exited without its window)
+pytestmark = pytest.mark.xdist_group("gui")
+
 #: xvfb-run on a display of its own: `-a` alone starts looking at :99 in every process, and two tests started
 #: at once (pytest-xdist) can both take it
 XVFB_RUN = ("xvfb-run", "-a", "-n", str(100 + os.getpid() % 5000))
@@ -43,7 +47,7 @@ XVFB_RUN = ("xvfb-run", "-a", "-n", str(100 + os.getpid() % 5000))
 def test_gui_world_opens_a_window_and_a_second_one_is_refused(data_dir):
     done = subprocess.run([*XVFB_RUN, sys.executable, "-c", SCRIPT.format(arm=str(data_dir / "arm.urdf"))],
                           capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.returncode == 0, f"stdout: {done.stdout[-2000:]}\nstderr: {done.stderr[-2000:]}"
     assert "refused: a GUI world is already open" in done.stdout
     assert done.stdout.strip().endswith("ok")
     assert "ven = " not in done.stdout + done.stderr  # the OpenGL driver chatter stays off the terminal
