@@ -381,26 +381,51 @@ class _Scene:
         dot = abs(sum(a * b for a, b in zip(state[5], orientation)))
         return math.dist(state[4], target) <= REACH_TOLERANCE and 2 * math.acos(min(1.0, dot)) <= ANGLE_TOLERANCE
 
+    def _base_box(self, x: float, y: float, yaw: float) -> dict[int, tuple[float, float]]:
+        """How far the IK may move the base's virtual joints from a start at (x, y, yaw)."""
+        return {self.base[0]: (x - BASE_SLACK, x + BASE_SLACK), self.base[1]: (y - BASE_SLACK, y + BASE_SLACK),
+                self.base[2]: (yaw - TURN_SLACK, yaw + TURN_SLACK)}
+
+    def _torso_levels(self) -> list[float | None]:
+        """The torso heights tried: TORSO_LEVELS evenly over its range (None: no torso)."""
+        if self.torso is None:
+            return [None]
+        lo, hi = self.limits[self.torso]
+        return [lo + (hi - lo) * k / (TORSO_LEVELS - 1) for k in range(TORSO_LEVELS)]
+
+    def _start(self, base: Sequence[float], height: float | None, attempt: int) -> None:
+        """The robot at rest with its base at `base`, the torso at `height` (None: where it rests), the arm at restart
+        `attempt`."""
+        self._rest(base)
+        if height is not None:
+            self.p.resetJointState(self.robot, self.torso, height, physicsClientId=self.cid)
+        self._restart(attempt)
+
+    def _parks_clear(self, solved: dict[int, float]) -> bool:
+        """Whether the robot, parked (its arm as at the start) at the base pose and torso height of `solved`, touches
+        no part of the kitchen."""
+        self._set({j: self.start.get(j, 0.0) for j in self.arm})
+        self._set({j: solved[j] for j in self.base})
+        return not self._touches(None, 0.0)
+
+    def _restart(self, attempt: int) -> None:
+        """Restart `attempt` (0: the arm where it is) spreads the arm's joints over their ranges: a Halton sequence,
+        no randomness."""
+        if not attempt:
+            return
+        for k, j in enumerate(self.arm):
+            lo, hi = self.limits[j]
+            self.p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
+                                   physicsClientId=self.cid)
+
     def _takes_from(self, x: float, y: float, yaw: float, grasp: Grasp) -> bool:
         """Whether the robot, its base starting at (x, y, yaw), takes the grasp (see the module's docstring)."""
-        p, cid = self.p, self.cid
-        box = {self.base[0]: (x - BASE_SLACK, x + BASE_SLACK), self.base[1]: (y - BASE_SLACK, y + BASE_SLACK),
-               self.base[2]: (yaw - TURN_SLACK, yaw + TURN_SLACK)}
+        box = self._base_box(x, y, yaw)
         free = [*self.base, *self.arm]
-        torso: list[float | None] = [None]
-        if self.torso is not None:
-            lo, hi = self.limits[self.torso]
-            torso = [lo + (hi - lo) * k / (TORSO_LEVELS - 1) for k in range(TORSO_LEVELS)]
         # at each torso height and start, the arm alone from the base's start, then the base moving too
-        for height, attempt, moving in ((h, a, m) for h in torso for a in range(RESTARTS) for m in (False, True)):
-            self._rest((x, y, yaw))
-            if height is not None:
-                p.resetJointState(self.robot, self.torso, height, physicsClientId=cid)
-            if attempt:  # spread over the arm's joint ranges: a Halton sequence, no randomness
-                for k, j in enumerate(self.arm):
-                    lo, hi = self.limits[j]
-                    p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
-                                      physicsClientId=cid)
+        starts = ((h, a, m) for h in self._torso_levels() for a in range(RESTARTS) for m in (False, True))
+        for height, attempt, moving in starts:
+            self._start((x, y, yaw), height, attempt)
             if not self._solve(grasp.position, grasp.orientation, free if moving else self.arm,
                                box if moving else {}):
                 continue
@@ -412,9 +437,7 @@ class _Scene:
                     self._touches(self.arm_links, PENETRATION):
                 continue
             # the robot parked at that base pose and torso height, clear of the kitchen
-            self._set({j: self.start.get(j, 0.0) for j in self.arm})
-            self._set({j: solved[j] for j in self.base})
-            if not self._touches(None, 0.0):
+            if self._parks_clear(solved):
                 return True
         return False
 
@@ -503,11 +526,7 @@ class _Scene:
         here = {j: p.getJointState(self.robot, j, physicsClientId=cid)[0] for j in self.arm}
         for attempt in range(RESTARTS):
             self._set(here)
-            if attempt:
-                for k, j in enumerate(self.arm):
-                    lo, hi = self.limits[j]
-                    p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
-                                      physicsClientId=cid)
+            self._restart(attempt)
             if self._solve(target, orientation, self.arm, {}) and \
                     not self._touches(self.arm_links, PENETRATION, ignore) and not self._touches(body, 0.0):
                 return True
@@ -520,23 +539,12 @@ class _Scene:
         base pose and torso height: the arm inside nothing (but the handle and the drawer's front) at either, the
         rest of the robot touching nothing with the drawer open, and the pre-grasp before the closed end reached."""
         p, cid = self.p, self.cid
-        box = {self.base[0]: (x - BASE_SLACK, x + BASE_SLACK), self.base[1]: (y - BASE_SLACK, y + BASE_SLACK),
-               self.base[2]: (yaw - TURN_SLACK, yaw + TURN_SLACK)}
+        box = self._base_box(x, y, yaw)
         free = [*self.base, *self.arm]
-        torso: list[float | None] = [None]
-        if self.torso is not None:
-            lo, hi = self.limits[self.torso]
-            torso = [lo + (hi - lo) * k / (TORSO_LEVELS - 1) for k in range(TORSO_LEVELS)]
         body = {j for j in range(p.getNumJoints(self.robot, physicsClientId=cid))} - self.arm_links
-        for height, attempt, first in ((h, a, f) for h in torso for a in range(RESTARTS) for f in (0, 1)):
-            self._rest((x, y, yaw))
-            if height is not None:
-                p.resetJointState(self.robot, self.torso, height, physicsClientId=cid)
-            if attempt:
-                for k, j in enumerate(self.arm):
-                    lo, hi = self.limits[j]
-                    p.resetJointState(self.robot, j, lo + (hi - lo) * _halton(attempt, PRIMES[k % len(PRIMES)]),
-                                      physicsClientId=cid)
+        starts = ((h, a, f) for h in self._torso_levels() for a in range(RESTARTS) for f in (0, 1))
+        for height, attempt, first in starts:
+            self._start((x, y, yaw), height, attempt)
             # one end with the base moving, then the other from the same base pose with the arm alone (from where
             # the first left it, else from the restarts)
             p.resetJointState(self.kitchen, drawer, values[first], physicsClientId=cid)
@@ -549,9 +557,7 @@ class _Scene:
             pre = [c - APPROACH * a for c, a in zip(ends[0], into)]  # the pre-grasp, touching not even the handle
             if not self._reaches_too(pre, orientation, drawer, values[0], frozenset(), set()):
                 continue
-            self._set({j: self.start.get(j, 0.0) for j in self.arm})
-            self._set({j: solved[j] for j in self.base})
-            if not self._touches(None, 0.0):
+            if self._parks_clear(solved):
                 return True
         return False
 
