@@ -169,9 +169,11 @@ def _stack(world, folder, offset):
 
 
 def _tip_next_to_milk(world, folder):
-    """The cereal centred right on the island's edge (it tips over it, away from the island) 12 cm from the milk."""
+    """The cereal's centre 5 mm past the island's edge (it tips over it, away from the island) 12 cm from the milk.
+    (Centred right on the edge, an unstable balance, a plain simulation's verdict flipped with what the shared world
+    simulated before: a test order of pytest-xdist's made it say stable.)"""
     cereal, milk, kitchen = (world.get_object_by_name(n) for n in ("cereal", "milk", "kitchen"))
-    put_on(cereal, kitchen, -0.67, 1.5)
+    put_on(cereal, kitchen, -0.67 + 0.005, 1.5)
     put_on(milk, kitchen, -0.75, 1.5 + 0.095 + 0.04 + 0.12)
     return milk, cereal
 
