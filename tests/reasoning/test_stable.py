@@ -44,7 +44,8 @@ def test_an_object_in_the_air_is_unstable(scene):
 
 def test_an_object_half_over_the_counter_edge_tips_and_is_unstable(scene):
     cereal, kitchen = scene.get_object_by_name("cereal"), scene.get_object_by_name("kitchen")
-    put_on(cereal, kitchen, -0.67, 1.5)  # centre right on the island's edge: half of it overhangs
+    put_on(cereal, kitchen, -0.67 + 0.003, 1.5)  # centre just past the island's edge: half of it overhangs (centred
+    # right on the edge it balances, and a plain simulation's verdict depends on what the world simulated before)
     assert not stable(cereal)
     assert not plain_stable(scene, cereal)[0]
 
@@ -196,8 +197,10 @@ def _dropped_onto_milk(world, folder):
 CASES = {
     "the milk as loaded": (lambda w, f: w.get_object_by_name("milk"), True),
     "the milk in the air": (lambda w, f: _moved_to(w, "milk", [1.5, 0.5, 1.3]), False),
+    # its centre 3 mm past the edge: centred right on it (a balance), a plain simulation's verdict flipped with what
+    # the shared world had simulated before (a test order of pytest-xdist's made it say stable)
     "the cereal half over the island's edge": (
-        lambda w, f: _put(w, "cereal", -0.67, 1.5), False),
+        lambda w, f: _put(w, "cereal", -0.67 + 0.003, 1.5), False),
     "the cereal 2 cm inside the island's edge": (lambda w, f: _put(w, "cereal", -0.69, 1.5), True),
     "the cereal on one edge at 20°": (lambda w, f: _put(w, "cereal", -1.0, 1.5, tilt_about_x(math.radians(20))), False),
     "the cereal slowly tipping over the edge": (lambda w, f: _put(w, "cereal", -0.67 + 0.0005, 1.5), False),
