@@ -2,6 +2,7 @@
 says so and exits 2."""
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 import signal
@@ -43,11 +44,29 @@ pytestmark = pytest.mark.xdist_group("gui")
 XVFB_RUN = ("xvfb-run", "-a", "-n", str(100 + os.getpid() % 5000))
 
 
+class NoWindow(AssertionError):
+    """A windowed run ended before its plan did (its log says how far it came)."""
+
+
+def once_more(test):
+    """Run a window test again, once, when its run ended without its window: on a loaded machine PyBullet's window
+    has failed to open now and then (a run that fails twice fails the test, with its log)."""
+    @functools.wraps(test)
+    def run(*args, **kwargs):
+        try:
+            return test(*args, **kwargs)
+        except NoWindow:
+            return test(*args, **kwargs)
+    return run
+
+
 @pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed")
+@once_more
 def test_gui_world_opens_a_window_and_a_second_one_is_refused(data_dir):
     done = subprocess.run([*XVFB_RUN, sys.executable, "-c", SCRIPT.format(arm=str(data_dir / "arm.urdf"))],
                           capture_output=True, text=True, timeout=120)
-    assert done.returncode == 0, f"stdout: {done.stdout[-2000:]}\nstderr: {done.stderr[-2000:]}"
+    if done.returncode != 0:
+        raise NoWindow(f"the window script failed; stdout: {done.stdout[-2000:]}\nstderr: {done.stderr[-2000:]}")
     assert "refused: a GUI world is already open" in done.stdout
     assert done.stdout.strip().endswith("ok")
     assert "ven = " not in done.stdout + done.stderr  # the OpenGL driver chatter stays off the terminal
@@ -96,6 +115,7 @@ def _caption_pixels(image) -> int:
 
 
 @pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed")
+@once_more
 def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path):
     """A real window under Xvfb, real screenshots of the X display: the camera frames the robot."""
     from PIL import ImageGrab
@@ -107,7 +127,9 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
     shots: dict[str, list] = {"start": [], "end": []}
     try:
         assert run.stderr is not None
+        log: list[str] = []
         for line in run.stderr:
+            log.append(line)
             if line.lstrip().startswith("ok ") and not shots["start"]:  # the first step done (the log is indented)
                 for _ in range(4):  # during the pause after the first step
                     time.sleep(0.15)
@@ -117,7 +139,7 @@ def test_the_gui_shows_the_robot_at_the_start_and_the_end_of_set_table(tmp_path)
                 shots["end"].append(ImageGrab.grab(xdisplay=display))
                 break
         else:
-            pytest.fail("the run ended without keeping its window open")
+            raise NoWindow("the run ended without keeping its window open; its log:\n" + "".join(log)[-3000:])
     finally:
         run.send_signal(signal.SIGINT)
         try:
@@ -151,13 +173,15 @@ FIRST_PICTURE = textwrap.dedent("""
 
 
 @pytest.mark.skipif(shutil.which("xvfb-run") is None, reason="xvfb-run is not installed")
+@once_more
 def test_a_gui_world_is_framed_on_the_robot_before_its_first_picture():
     """Loading a world into the window points its camera at the robot (PyBullet's default view looks at a kitchen
     wall): the camera the window reports after its first picture sees the PR2's blue grippers (rendered headless
     from that camera, so the check does not depend on when the window draws)."""
     done = subprocess.run([*XVFB_RUN, sys.executable, "-c", FIRST_PICTURE], capture_output=True, text=True,
                           timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
+    if done.returncode != 0:
+        raise NoWindow(f"the window script failed; stdout: {done.stdout[-2000:]}\nstderr: {done.stderr[-2000:]}")
     pixels = int(done.stdout.split("robot pixels")[1])
     assert pixels > 100, f"the window's first view does not show the robot ({pixels} gripper pixels)"
 
@@ -169,6 +193,7 @@ def _red_text_pixels(image) -> int:
 
 
 @pytest.mark.skipif(shutil.which("Xvfb") is None, reason="Xvfb is not installed")
+@once_more
 def test_the_gui_writes_the_failure_in_red_when_the_plan_fails(tmp_path):
     """The README's failing example in a real window: at the end the failure is written under the step's caption."""
     from PIL import ImageGrab
@@ -181,13 +206,15 @@ def test_the_gui_writes_the_failure_in_red_when_the_plan_fails(tmp_path):
     end = None
     try:
         assert run.stderr is not None
+        log: list[str] = []
         for line in run.stderr:
+            log.append(line)
             if "close the window" in line:  # the plan has ended; the window stays open
                 time.sleep(0.8)
                 end = ImageGrab.grab(xdisplay=display)
                 break
         else:
-            pytest.fail("the run ended without keeping its window open")
+            raise NoWindow("the run ended without keeping its window open; its log:\n" + "".join(log)[-3000:])
     finally:
         run.send_signal(signal.SIGINT)
         try:
