@@ -496,6 +496,13 @@ class BasePoseResolution(_Resolution):
         self._handle_path: list[np.ndarray] = []
         #: candidates tried only once all the others failed (with their arm orders): see `_prepare`
         self._deferred: tuple[Candidates, np.ndarray] | None = None
+        #: whether the tests may search the arm's joint space for a way (`move_over`'s last resort, about 0.4 s when
+        #: no way exists): not at first, so that a pose from which the ways need no search is found without paying
+        #: for the searches at the poses before it; the candidates whose test failed only for want of a search
+        #: (`_search_wanted`, marked by `_no_search`) are tried again with it once no other is left (`_search`)
+        self.searching = False
+        self._wanting: list[int] = []
+        self._search_wanted = False
         #: whether the robot's current pose is the first candidate (an action asks: no need to drive when it will do)
         self.here = False
         self.here_index: int | None = None
@@ -518,6 +525,7 @@ class BasePoseResolution(_Resolution):
             self._prepared_inside()
             i = self.here_index
             assert i is not None
+            self.searching = True  # the only pose there is
             found = self._reach(i)
         if found is not None:
             solution = self.taken
@@ -779,6 +787,9 @@ class BasePoseResolution(_Resolution):
                 if self.expensive >= self._patience():
                     break
             if self.cursor >= len(order) or self.expensive >= self._patience():
+                pose = self._search_again()
+                if pose is not None:
+                    return pose
                 if not self._take_deferred():
                     break
                 order = self.candidates.order
@@ -835,6 +846,23 @@ class BasePoseResolution(_Resolution):
         self.cursor, self.expensive = 0, 0
         return True
 
+    def _search_again(self) -> BasePose | None:
+        """The next of the candidates whose test failed only for want of a search (in the order they were tried) that
+        passes with one, or None when none does. The pose found is the one the tests would have found with searches
+        from the start, unless a later candidate passed without one (then that one was found first)."""
+        while self._wanting:
+            i = self._wanting.pop(0)
+            self.searching = True
+            try:
+                pose = self._test(i)
+            finally:
+                self.searching = False
+            if pose is not None:
+                self.candidates.outcome[i] = CODE["ok"]
+                self.found.append(pose)
+                return pose
+        return None
+
     def _take_deferred(self) -> bool:
         """Add the deferred candidates when all the others failed (tried anew, with patience anew): whether there were."""
         if self._deferred is None or not len(self._deferred[0]):
@@ -869,8 +897,11 @@ class BasePoseResolution(_Resolution):
         self.expensive += 1
         arm, grasp = None, None
         if spec.reachable_for is not None or spec.accessing is not None:
+            self._search_wanted = False
             found = self._reach(i)
             if found is None:
+                if self._search_wanted and not self.searching:
+                    self._wanting.append(i)
                 return None
             arm, grasp = found
         look = None
@@ -973,11 +1004,12 @@ class BasePoseResolution(_Resolution):
                     self.taken = solution
                     return arm, grasp
                 viable.append((arm, grasp, pre, solution, legs))  # its ways may go around what is in the way
-        for tier in (AROUND, SEARCH):
+        for tier in ((AROUND, SEARCH) if self.searching else (AROUND,)):
             for arm, grasp, pre, solution, legs in viable:
                 if self._ways_free(obj, arm, pre, solution, tier, blocked, legs):
                     self.taken = solution
                     return arm, grasp
+        self._search_wanted |= bool(viable) and not self.searching
         for arm, grasp, _, _, legs in viable:
             failure = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
             attempts[arm, grasp] = str(failure) if failure is not None else "its ways are blocked"
@@ -1060,8 +1092,10 @@ class BasePoseResolution(_Resolution):
             free = True
             with body.joints_kept(list(above.joint_positions)):
                 try:
-                    move_over(robot, arm, above.joint_positions, f"the {arm_words(arm)}'s motion above the place")
+                    move_over(robot, arm, above.joint_positions, f"the {arm_words(arm)}'s motion above the place",
+                              search=self.searching)
                 except ManipulationFailure as failure:
+                    self._search_wanted = True
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                     free = False
             body.move_attached()  # what it holds back with the arm (joints_kept puts only the joints back)
@@ -1086,8 +1120,9 @@ class BasePoseResolution(_Resolution):
             body.reset_joints(placed)
             try:
                 move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the place", down_onto_goal=False,
-                          ignore=[obj])
+                          ignore=[obj], search=self.searching)
             except ManipulationFailure as failure:
+                self._search_wanted = True
                 blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                 return False
         return True
@@ -1127,8 +1162,13 @@ class BasePoseResolution(_Resolution):
                 if not follows_handle(robot, arm, obj, handle.link, handle.joint, goal, at):
                     return False
                 robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
-                move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
             except (GripperFailure, ReachabilityFailure, ManipulationFailure):
+                return False
+            try:
+                move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle",
+                          search=self.searching)
+            except ManipulationFailure:
+                self._search_wanted = True
                 return False
         return True
 
