@@ -101,8 +101,13 @@ def quat_inverse(q: Sequence[float]) -> Quat:
 
 
 def rotate(q: Sequence[float], v: Sequence[float]) -> Vec3:
-    r = quat_to_matrix(q) @ np.asarray(v, dtype=float)
-    return (float(r[0]), float(r[1]), float(r[2]))
+    """`v` turned by the quaternion `q`: `quat_to_matrix(q) @ v`, in plain floats (a hot path: every held object
+    follows its hand at every step of a checked motion, and numpy's overhead on three numbers is most of the cost)."""
+    x, y, z, w = (float(c) for c in q)
+    vx, vy, vz = (float(c) for c in v)
+    return ((1 - 2 * (y * y + z * z)) * vx + 2 * (x * y - z * w) * vy + 2 * (x * z + y * w) * vz,
+            2 * (x * y + z * w) * vx + (1 - 2 * (x * x + z * z)) * vy + 2 * (y * z - x * w) * vz,
+            2 * (x * z - y * w) * vx + 2 * (y * z + x * w) * vy + (1 - 2 * (x * x + y * y)) * vz)
 
 
 def compose(a: tuple[Sequence[float], Sequence[float]], b: tuple[Sequence[float], Sequence[float]]) -> tuple[Vec3, Quat]:
