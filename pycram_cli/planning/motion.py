@@ -208,17 +208,25 @@ class Motion:
     def scan(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[float, list[Hit]]:
         """At the current configuration: a lower bound of the gap between the moving part and the obstacles (exact
         above SPACING; at or below it, some value at or below SPACING: all a path's checks need), and what the
-        moving part is inside of (beyond PENETRATION and the allowed).
+        moving part is inside of (beyond PENETRATION and the allowed). `clearances` for each mover."""
+        clear, hits = self.clearances(boxes)
+        return (float(clear.min()) if len(clear) else math.inf), hits
+
+    def clearances(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, list[Hit]]:
+        """`scan` for each mover (the links, then the held objects): a lower bound of its gap to the obstacles (exact
+        above SPACING, at or below SPACING otherwise), and what the moving part is inside of.
 
         Only boxes that overlap can hold parts inside each other (PyBullet's boxes enclose the shapes), so only
         their pairs are measured for hits; a pair whose boxes are apart (but nearer than NEAR) is measured only
-        while it can still lower the clearance: nearest boxes first, until the clearance is at SPACING or the next
-        box gap is beyond it (the distance between two parts is never below the gap between their boxes)."""
-        if not self.links and not self.held:
-            return math.inf, []
+        while it can still lower its mover's clearance: nearest boxes first, until the mover's clearance is at
+        SPACING or the pair's box gap is beyond it (the distance between two parts is never below the gap between
+        their boxes)."""
+        count = len(self.links) + len(self.held)
+        if not count:
+            return np.zeros(0), []
         m_lo, m_hi = boxes if boxes is not None else self._mover_boxes()
         if not len(self._o_lo):
-            return math.inf, []
+            return np.full(count, math.inf), []
         # the gaps between the boxes, (movers, obstacle links), computed in place (a check's hot path)
         gap = np.subtract(self._o_lo[None, :, :], m_hi[:, None, :])
         np.maximum(gap, np.subtract(m_lo[:, None, :], self._o_hi[None, :, :]), out=gap)
@@ -226,13 +234,14 @@ class Motion:
         np.multiply(gap, gap, out=gap)
         gaps = np.sqrt(np.sum(gap, axis=2))
         near = gaps < NEAR
-        clearance = float(np.min(gaps, where=~near, initial=math.inf))
-        hits: dict[tuple[int, int, int], Hit] = {}
+        clear = np.min(gaps, axis=1, where=~near, initial=math.inf)
         if not near.any():
-            return clearance, []
-        for k, o in np.argwhere(gaps == 0.0):
+            return clear, []
+        hits: dict[tuple[int, int, int], Hit] = {}
+        lows = clear.tolist()  # plain floats for the loops below (numpy's scalars are slow one by one)
+        for k, o in np.argwhere(gaps == 0.0).tolist():
             distance = self._distance(k, o, NEAR)
-            clearance = min(clearance, max(distance, 0.0) if distance < NEAR else NEAR)
+            lows[k] = min(lows[k], max(distance, 0.0) if distance < NEAR else NEAR)
             if distance >= 0.0:
                 continue
             depth = -distance
@@ -241,14 +250,15 @@ class Motion:
             if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
                 hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
         apart_k, apart_o = np.nonzero(near & (gaps > 0.0))
-        if len(apart_k) and clearance > SPACING:
+        if len(apart_k):
             apart = gaps[apart_k, apart_o]
-            for i in np.argsort(apart, kind="stable"):
-                if clearance <= SPACING or apart[i] > clearance:
-                    break  # nothing further can change the clearance where it matters
-                distance = self._distance(apart_k[i], apart_o[i], NEAR)
-                clearance = min(clearance, max(distance, 0.0) if distance < NEAR else NEAR)
-        return clearance, sorted(hits.values(), key=lambda h: -h.depth)
+            order = np.argsort(apart, kind="stable")
+            for k, o, box_gap in zip(apart_k[order].tolist(), apart_o[order].tolist(), apart[order].tolist()):
+                if lows[k] <= SPACING or box_gap > lows[k]:
+                    continue  # nothing further can change this mover's clearance where it matters
+                distance = self._distance(k, o, NEAR)
+                lows[k] = min(lows[k], max(distance, 0.0) if distance < NEAR else NEAR)
+        return np.array(lows), sorted(hits.values(), key=lambda h: -h.depth)
 
     def allow_current(self) -> None:
         """Contacts as they are now may stay (no deeper) along the motion."""
@@ -284,10 +294,10 @@ class Motion:
         return found
 
     def _local_levers(self, m_lo: np.ndarray, m_hi: np.ndarray, below: np.ndarray) -> np.ndarray:
-        """rᵢ now: the farthest corner of the boxes of the movers below joint i from its axis (1 for a prismatic joint).
+        """rᵢₖ now, (joints, movers): the farthest corner of mover k's box from joint i's axis where k hangs below
+        joint i (`below[i, k]`), else 0; 1 for a prismatic joint above it.
 
-        The farthest point of a box from a line is one of its corners, so this bounds every point of the moving part;
-        `below[i, k]` says whether mover k hangs below joint i.
+        The farthest point of a box from a line is one of its corners, so this bounds every point of the mover.
         """
         corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
         poses = self.body.link_poses(self._indices)  # read at once (the same numbers as one by one)
@@ -298,8 +308,8 @@ class Motion:
         rel = corners[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
         along = np.einsum("nmcd,nd->nmc", rel, axes)
         perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
-        levers = np.where(below, perpendicular, 0.0).max(axis=1)
-        return np.where(self._prismatic, 1.0, levers)
+        levers = np.where(self._prismatic[:, None], 1.0, perpendicular)
+        return np.where(below, levers, 0.0)
 
     def _levers(self) -> np.ndarray:
         """rᵢ for each moving joint: how far a point of the moving part can be from joint i (1 for a prismatic joint)."""
@@ -383,29 +393,37 @@ class Motion:
         parts = self._parts()
         below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
         delta = np.abs(end - start)
+        # how much of each mover's lever bound each joint's change adds per unit of travel of the mover (see below)
+        weights = (below * delta[:, None]).sum(axis=0)
         t, last_free, hits = 0.0, 0.0, []
         total = 0.0
-        levers, since = None, 0.0
+        levers, since = None, np.zeros(len(parts))
         try:
             while True:
                 self._put(start + t * (end - start))
                 boxes = self._mover_boxes()
-                clearance, hits = self.scan(boxes)
+                clear, hits = self.clearances(boxes)
                 if hits:
                     break
                 last_free = t
                 if t >= 1.0:
                     break
-                # no point moves farther than `travel` before the next check. A point's distance from joint i's
-                # axis changes only as the joints below i move it, so by no more than the travel since the levers
-                # were measured (`since`) plus this step's: they are measured afresh every LEVER_REFRESH of travel
-                if levers is None or since > LEVER_REFRESH:
-                    levers, since = self._local_levers(*boxes, below), 0.0
-                travel = max(min(clearance, 1.0), SPACING)
-                rate = float(np.sum((levers + since + travel) * delta))
-                total = max(total, rate)
-                t = min(1.0, t + (travel / rate if rate > 0 else 1.0))
-                since += travel
+                # no point of mover k moves farther than `travel[k]` before the next check. Along the path, a point
+                # of k moves at most Σᵢ rᵢₖ·|Δqᵢ| per unit of t; its distance from joint i's axis changes only as
+                # the joints below i move it, so by no more than its travel since the levers were measured
+                # (`since`) plus this step's: they are measured afresh every LEVER_REFRESH of travel
+                if levers is None or since.max() > LEVER_REFRESH:
+                    levers, since = self._local_levers(*boxes, below), np.zeros(len(parts))
+                travel = np.maximum(np.minimum(clear, 1.0), SPACING)
+                rates = delta @ levers + (since + travel) * weights
+                moving = rates > 0
+                if not moving.any():
+                    t = 1.0
+                    continue
+                total = max(total, float(rates.max()))
+                step = float(np.min(travel[moving] / rates[moving]))
+                since += rates * min(step, 1.0 - t)
+                t = min(1.0, t + step)
             if hits and stop_at_contact:
                 low, high = last_free, t
                 while (high - low) * total > PRECISION:
