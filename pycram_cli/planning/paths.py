@@ -29,13 +29,17 @@ SEARCH_SEED = 20191028
 def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = (),
                 edges: int = SEARCH_EDGES) -> list[dict[str, float]] | None:
     """Joint values to pass through, from the current ones to `goal`, every leg between them free (checked as `move`
-    checks a path), or None when none is found within `edges` checks of a leg.
+    checks a path), or None when none is found within a budget of `edges` legs checked (a configuration checked where
+    it is counts as POINT_COST of a leg).
 
-    RRT-connect (Kuffner and LaValle, 2000): two trees, grown from the start and from the goal towards random
-    configurations within the joints' limits (continuous joints within half a turn either way), each reaching for the
-    other; the way found is then shortened by joining its waypoints directly wherever that is free. The random
-    numbers come from a fixed seed, so the same world gives the same way; a search made again in the same situation
-    (`Motion.situation`) is answered from memory.
+    RRT-connect (Kuffner and LaValle, 2000), checked lazily: two trees, grown from the start and from the goal towards
+    random configurations within the joints' limits (continuous joints within half a turn either way), each reaching
+    for the other. A new configuration is checked only where it is (one check, a few hundredths of a leg's); the legs
+    between configurations only once the trees meet, along the way they make, and a leg found blocked cuts the
+    configurations beyond it from their tree (Bohlin and Kavraki's lazy checking, 2000): most configurations the
+    trees grow never end up on a way, and their legs are never checked. The way found is then shortened by joining
+    its waypoints directly wherever that is free. The random numbers come from a fixed seed, so the same world gives
+    the same way; a search made again in the same situation (`Motion.situation`) is answered from memory.
     """
     names = [name for name in goal]
     motion = Motion(robot, names, ignore)
@@ -49,93 +53,165 @@ def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object
     if known is not None:
         motion._put(start_values)  # as a search leaves it
         return None if known[0] is None else [dict(values) for values in known[0]]
-    way = _search(motion, start_values, end_values, order, edges)
-    motion.remember(key, (None if way is None else [dict(values) for values in way],))
-    return way
+    way = _Search(motion, start_values, edges).run(end_values)
+    motion.remember(key, (None if way is None else [{n: float(v) for n, v in zip(order, values)} for values in way],))
+    return None if way is None else [{n: float(v) for n, v in zip(order, values)} for values in way]
 
 
-def _search(motion: Motion, start_values: np.ndarray, end_values: np.ndarray, order: list[str],
-            edges: int) -> list[dict[str, float]] | None:
-    """The search of `search_path` (RRT-connect, then shortened), from `start_values` to `end_values`."""
-    lows, highs = [], []
-    for joint, value in zip(motion.joints, start_values):
-        if joint.limited:
-            lows.append(joint.lower)
-            highs.append(joint.upper)
-        else:
-            lows.append(value - math.pi)
-            highs.append(value + math.pi)
-    low, high = np.array(lows), np.array(highs)
-    rng = np.random.default_rng(SEARCH_SEED)
-    budget = [edges]
+#: what a configuration checked where it is costs of the search's budget, in legs (a check at one configuration is a
+#: few hundredths of a leg's: a leg near things takes tens of them)
+POINT_COST = 0.1
 
-    motion._prune(motion._levers())
-    motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else
 
-    def free(a: np.ndarray, b: np.ndarray) -> bool:
-        if budget[0] <= 0:
+class _Search:
+    """The lazy RRT-connect of `search_path` for one motion, from the joints' current values."""
+
+    def __init__(self, motion: Motion, start: np.ndarray, edges: int) -> None:
+        self.motion = motion
+        self.start = start
+        lows, highs = [], []
+        for joint, value in zip(motion.joints, start):
+            lows.append(joint.lower if joint.limited else value - math.pi)
+            highs.append(joint.upper if joint.limited else value + math.pi)
+        self.low, self.high = np.array(lows), np.array(highs)
+        self.names = [joint.name for joint in motion.joints]
+        self.budget = float(edges)
+        self.legs: dict[tuple[bytes, bytes], bool] = {}  # legs checked: whether free
+
+    def point_free(self, values: np.ndarray) -> bool:
+        """Whether the moving part is inside nothing at `values` (one check; the joints stay there)."""
+        if self.budget <= 0:
             return False
-        budget[0] -= 1
-        fraction, hits = motion._follow(a, b)
-        return not hits and fraction >= 1.0
+        self.budget -= POINT_COST
+        self.motion._put(values)
+        return not self.motion.scan()[1]
 
-    def toward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        step = np.max(np.abs(b - a))
-        return b if step <= SEARCH_STEP else a + (b - a) * (SEARCH_STEP / step)
+    def leg_free(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Whether the straight leg from `a` to `b` is free, checked as `move` checks a path (continuous joints
+        turning the short way round, as `move` turns them), once."""
+        key = (a.tobytes(), b.tobytes())
+        if key not in self.legs:
+            if self.budget <= 0:
+                return False
+            self.budget -= 1
+            fraction, hits = self.motion._follow(a, motion.short_way(self.motion.body, self.names, a, b))
+            self.legs[key] = not hits and fraction >= 1.0
+        return self.legs[key]
 
-    trees: list[list[tuple[np.ndarray, int]]] = [[(start_values, -1)], [(end_values, -1)]]
-    meeting: tuple[int, int] | None = None
-    try:
-        while budget[0] > 0 and meeting is None:
-            grow, other = trees[0], trees[1]
+    def run(self, end: np.ndarray) -> list[np.ndarray] | None:
+        """The way's waypoints after the start (the last is `end`), or None."""
+        motion = self.motion
+        motion._prune(motion._levers())
+        motion.allow_current()  # contacts where the arm starts may stay; none is made anywhere else
+        try:
+            path = self._connect(end)
+            return None if path is None else self._shorten(path)[1:]
+        finally:
+            motion._put(self.start)
+
+    def _connect(self, end: np.ndarray) -> list[np.ndarray] | None:
+        """The trees grown until they meet along a way whose legs are all free: the way, or None."""
+        rng = np.random.default_rng(SEARCH_SEED)
+        low, high = self.low, self.high
+        # each tree: configurations, the parent of each (-1: the root), whether each is still in the tree
+        trees: list[_Tree] = [_Tree(self.start), _Tree(end)]
+        start_tree = trees[0]  # (the two swap places as they take turns)
+        while self.budget > 0:
+            grow, other = trees
             # a random configuration, or (one time in five) the other tree's root
-            sample = other[0][0] if rng.random() < 0.2 else low + rng.random(len(low)) * (high - low)
-            near = min(range(len(grow)), key=lambda i: float(np.max(np.abs(grow[i][0] - sample))))
-            new = toward(grow[near][0], sample)
-            if not free(grow[near][0], new):
+            sample = other.values[0] if rng.random() < 0.2 else low + rng.random(len(low)) * (high - low)
+            new = _toward(grow.values[grow.nearest(sample)], sample)
+            if not self.point_free(new):
                 trees.reverse()
                 continue
-            grow.append((new, near))
-            # the other tree reaches for the new node, step by step
-            reach = min(range(len(other)), key=lambda i: float(np.max(np.abs(other[i][0] - new))))
-            while budget[0] > 0:
-                nxt = toward(other[reach][0], new)
-                if not free(other[reach][0], nxt):
+            grow.add(new, grow.nearest(sample))
+            # the other tree reaches for the new configuration, step by step
+            reach = other.nearest(new)
+            met = False
+            while self.budget > 0:
+                nxt = _toward(other.values[reach], new)
+                if not self.point_free(nxt):
                     break
-                other.append((nxt, reach))
-                reach = len(other) - 1
+                reach = other.add(nxt, reach)
                 if np.max(np.abs(nxt - new)) < 1e-9:
-                    meeting = (len(grow) - 1, reach) if grow is trees[0] else (reach, len(grow) - 1)
+                    met = True
                     break
-            if meeting is None:
-                trees.reverse()
-        if meeting is None:
-            return None
-        # the trees may have been swapped: the one holding the start comes first
-        if not np.array_equal(trees[0][0][0], start_values):
+            if met:
+                first, second = (grow, other) if grow is start_tree else (other, grow)
+                ends = (len(grow.values) - 1, reach) if grow is start_tree else (reach, len(grow.values) - 1)
+                path = self._checked(first, second, *ends)
+                if path is not None:
+                    return path
             trees.reverse()
-            meeting = (meeting[1], meeting[0])
+        return None
 
-        def chain(tree: list[tuple[np.ndarray, int]], index: int) -> list[np.ndarray]:
-            found = []
-            while index != -1:
-                found.append(tree[index][0])
-                index = tree[index][1]
-            return found
+    def _checked(self, first: "_Tree", second: "_Tree", i: int, j: int) -> list[np.ndarray] | None:
+        """The way from the start tree's root through its node `i` (= the other's `j`) to the goal tree's root when
+        every leg is free; else None, the node beyond the first blocked leg cut from its tree (with what hangs on
+        it)."""
+        ours, theirs = first.chain(i)[::-1], second.chain(j)
+        nodes = [(first, k) for k in ours] + [(second, k) for k in theirs[1:]]
+        for (tree_a, a), (tree_b, b) in zip(nodes, nodes[1:]):
+            if not self.leg_free(tree_a.values[a], tree_b.values[b]):
+                if self.budget > 0:
+                    tree, node = (tree_b, b) if tree_b is first else (tree_a, a)  # the one farther from its root
+                    tree.cut(node)
+                return None
+        return [tree.values[k] for tree, k in nodes]
 
-        path = list(reversed(chain(trees[0], meeting[0]))) + chain(trees[1], meeting[1])[1:]
-        budget[0] = max(budget[0], len(path) * 2)  # shortening gets a few checks of its own
+    def _shorten(self, path: list[np.ndarray]) -> list[np.ndarray]:
+        """The way with waypoints joined directly wherever that leg is free (a few legs' budget of its own)."""
+        self.budget = max(self.budget, len(path) * 2.0)
         short = [path[0]]
         i = 0
         while i < len(path) - 1:
             j = len(path) - 1
-            while j > i + 1 and not free(path[i], path[j]):
+            while j > i + 1 and not self.leg_free(path[i], path[j]):
                 j -= 1
             short.append(path[j])
             i = j
-        return [{n: float(v) for n, v in zip(order, values)} for values in short[1:]]
-    finally:
-        motion._put(start_values)
+        return short
+
+
+class _Tree:
+    """One of the search's trees: configurations, each one's parent, and whether it is still in the tree."""
+
+    def __init__(self, root: np.ndarray) -> None:
+        self.values: list[np.ndarray] = [root]
+        self.parents: list[int] = [-1]
+        self.alive: list[bool] = [True]
+
+    def add(self, values: np.ndarray, parent: int) -> int:
+        self.values.append(values)
+        self.parents.append(parent)
+        self.alive.append(True)
+        return len(self.values) - 1
+
+    def nearest(self, target: np.ndarray) -> int:
+        """The configuration in the tree nearest `target` (largest joint difference; the first of equals)."""
+        return min((i for i in range(len(self.values)) if self.alive[i]),
+                   key=lambda i: float(np.max(np.abs(self.values[i] - target))))
+
+    def chain(self, index: int) -> list[int]:
+        """The nodes from `index` up to the root."""
+        found = []
+        while index != -1:
+            found.append(index)
+            index = self.parents[index]
+        return found
+
+    def cut(self, index: int) -> None:
+        """Take `index` and everything that hangs on it out of the tree (a parent always comes before its children)."""
+        self.alive[index] = False
+        for k in range(index + 1, len(self.values)):
+            if self.alive[k] and not self.alive[self.parents[k]]:
+                self.alive[k] = False
+
+
+def _toward(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """`b`, or the configuration SEARCH_STEP from `a` towards it when it is farther (largest joint difference)."""
+    step = np.max(np.abs(b - a))
+    return b if step <= SEARCH_STEP else a + (b - a) * (SEARCH_STEP / step)
 
 
 # -- ways for an arm ------------------------------------------------------------------------------------------------

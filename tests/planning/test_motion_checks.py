@@ -43,14 +43,14 @@ def at_the_counter(world):
 
 def counting(monkeypatch, name):
     calls = []
-    original = getattr(motion.Motion, name) if name != "_search" else paths._search
+    original = getattr(motion.Motion, name) if name != "_search" else paths._Search.run
 
     def counted(*args, **kwargs):
         calls.append(1)
         return original(*args, **kwargs)
 
     if name == "_search":
-        monkeypatch.setattr(paths, "_search", counted)
+        monkeypatch.setattr(paths._Search, "run", counted)
     else:
         monkeypatch.setattr(motion.Motion, name, counted)
     return calls
