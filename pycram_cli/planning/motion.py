@@ -92,10 +92,6 @@ _CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 
 _AXES = np.arange(3)[None, :]
 
 
-def _corners(lo: Sequence[float], hi: Sequence[float]) -> np.ndarray:
-    return np.array([(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
-
-
 class Motion:
     """The moving part of a robot for some joints (their links and what those hold) and the obstacles around it."""
 
@@ -130,6 +126,7 @@ class Motion:
         self._joint_axes = np.array([quat_to_matrix(j.inertial_frame[1]) @ np.asarray(j.axis, dtype=float)
                                      / (np.linalg.norm(j.axis) or 1.0) for j in self.joints]).reshape(-1, 3)
         self._prismatic = np.array([j.type == "prismatic" for j in self.joints], dtype=bool)
+        self._parts_found: list[tuple[int, ...]] | None = None
 
     def situation(self) -> tuple | None:
         """Everything a walk or search of this motion depends on, exactly: the robot's configuration (where each of
@@ -279,7 +276,13 @@ class Motion:
 
     # -- paths --------------------------------------------------------------------------------------
     def _parts(self) -> list[tuple[int, ...]]:
-        """For each mover (links, then held objects): the indices of the moving joints above it, outermost first."""
+        """For each mover (links, then held objects): the indices of the moving joints above it, outermost first
+        (found once: the movers and their joints stay what they are for a motion)."""
+        if self._parts_found is None:
+            self._parts_found = self._find_parts()
+        return self._parts_found
+
+    def _find_parts(self) -> list[tuple[int, ...]]:
         body = self.body
         index_of = {j.index: i for i, j in enumerate(self.joints)}
         found = []
@@ -314,27 +317,26 @@ class Motion:
     def _levers(self) -> np.ndarray:
         """rᵢ for each moving joint: how far a point of the moving part can be from joint i (1 for a prismatic joint)."""
         body = self.body
-        index_of = {j.index: i for i, j in enumerate(self.joints)}
-        origins = [np.asarray(body.get_link_position(j.index)) for j in self.joints]
+        origins = np.array([body.get_link_position(j.index) for j in self.joints], dtype=float).reshape(-1, 3)
         levers = np.zeros(len(self.joints))
-        parts: list[tuple[int, np.ndarray]] = [(link, _corners(*body.get_aabb(link))) for link in self.links]
-        parts += [(self._holder(obj) or -1, _corners(*obj.get_aabb())) for obj in self.held]
-        for link, corners in parts:
-            ancestors = []  # the moving joints above this link, deepest last
-            index = link
-            while index != -1:
-                if index in index_of:
-                    ancestors.append(index_of[index])
-                index = body.joints[index].parent_index
-            ancestors.reverse()
+        parts = self._parts()
+        if not any(parts):
+            return levers
+        m_lo, m_hi = self._mover_boxes()
+        corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
+        # the farthest corner of each mover from each joint's origin, and the joints' origins from each other
+        far = np.sqrt(np.sum((corners[:, None, :, :] - origins[None, :, None, :]) ** 2, axis=3)).max(axis=2).tolist()
+        apart = np.sqrt(np.sum((origins[:, None, :] - origins[None, :, :]) ** 2, axis=2)).tolist()
+        prismatic = self._prismatic.tolist()
+        for k, ancestors in enumerate(parts):  # the moving joints above mover k, outermost first
             if not ancestors:
                 continue
-            reach = float(np.max(np.linalg.norm(corners - origins[ancestors[-1]], axis=1)))
+            reach = far[k][ancestors[-1]]
             for position in range(len(ancestors) - 1, -1, -1):
                 i = ancestors[position]
                 if position < len(ancestors) - 1:
-                    reach += float(np.linalg.norm(origins[ancestors[position + 1]] - origins[i]))
-                levers[i] = max(levers[i], 1.0 if self.joints[i].type == "prismatic" else reach)
+                    reach += apart[ancestors[position + 1]][i]
+                levers[i] = max(levers[i], 1.0 if prismatic[i] else reach)
         return levers
 
     def _prune(self, levers: np.ndarray) -> None:
