@@ -10,20 +10,23 @@ holds elsewhere, in its other hand, counts as an obstacle like anything else). C
 already exist where the motion starts may stay (a hand on a handle, a carton on the counter
 while it is lifted off), as long as they get no deeper.
 
-How densely the path is checked — conservative advancement, with a floor. For joint changes Δq,
-no point of the moving part moves farther than Σᵢ rᵢ·|Δqᵢ|, where rᵢ bounds how far the part
-reaches from joint i: the distance from the deepest moving joint above a link to the corners of
-the link's box (or the held object's), plus the (rigid) distances between the moving joints'
-origins up to joint i; measured once at the start, it holds all along the path. Checks are then
-placed so that between two of them no point moves farther than the gap between the moving
-part's boxes and every obstacle's box (nothing can be hit there), and never farther than
-`SPACING`, 1 cm, where something is closer than that. A collision can then only be missed where a
-link passes wholly through an obstacle within 1 cm of travel, i.e. where link and obstacle
-together are thinner than 1.1 cm along the motion. Nothing the robots and worlds here move or
-hit is that thin: the PR2's finger links are 1.5–2 cm across, the bundled kitchen's thinnest
-boxes (drawer bottom and walls) 1.2 cm, the real IAI kitchen's drawer walls 1.8 cm; a link and an
-obstacle are also never both at their thinnest along the direction of travel. In free space the
-checks are far apart (a park motion takes a handful), near the kitchen 1 cm apart.
+How densely the path is checked — conservative advancement, for each moving part, with a floor.
+Along the path, a point of a mover k (a link, or a held object) moves at most Σᵢ rᵢₖ·|Δqᵢ| per
+unit of the path, where rᵢₖ is the farthest corner of k's box from joint i's axis, over the moving
+joints i above k (1 for a prismatic joint); since rᵢₖ changes only as the joints below i move k,
+it is inflated by k's travel since it was measured and re-measured every `LEVER_REFRESH` of
+travel. Each mover's clearance (the gap between its box and every obstacle's box, measured exactly
+where the boxes are near) is how far it may move before the next check, never less than
+`SPACING`, 1 cm; the next check comes when the first mover may have used up its own (a gripper
+far from everything does not slow the check of an upper arm brushing the counter, nor the other
+way round). A collision can then only be missed where a link passes wholly through an obstacle
+within 1 cm of travel, i.e. where link and obstacle together are thinner than 1.1 cm along the
+motion. Nothing the robots and worlds here move or hit is that thin: the PR2's finger links are
+1.5–2 cm across, the bundled kitchen's thinnest boxes (drawer bottom and walls) 1.2 cm, the real
+IAI kitchen's drawer walls 1.8 cm; a link and an obstacle are also never both at their thinnest
+along the direction of travel. In free space the checks are far apart (a park motion takes a
+handful), near the kitchen 1–3 cm of the nearest part's travel apart. Before a walk, obstacles
+farther from the outermost moving joint than the moving part reaches (`_levers`) are set aside.
 
 Robot-specific knowledge (which joints an arm or a gripper has) comes from the description; the
 geometry comes from the world (`closest_points`, boxes); nothing here calls PyBullet.
