@@ -18,8 +18,10 @@ from typing import Any
 
 import numpy as np
 
-from .resolve import OUTCOMES, REASONS, BasePoseResolution, SpotResolution
-from .resolve import floor_map as build_floor_map
+from .base_poses import BasePoseResolution
+from .candidates import OUTCOMES, REASONS
+from .floor import floor_map as build_floor_map
+from .spots import SpotResolution
 
 #: the key under which a locate step's record holds its `candidate_map` while a replay is recorded (the replay
 #: record takes it out of the step: the trace itself never holds it)
