@@ -1,4 +1,4 @@
-"""The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo.py).
+"""The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo).
 
 Seed 2 is a wheeled robot with a 6-joint arm, a one-finger gripper and its camera on the wrist:
 wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 6's arm is too
