@@ -27,7 +27,7 @@ sys.path.insert(0, str(REPO))
 
 from pycram_cli.failures import LocationFailure  # noqa: E402
 from pycram_cli.locations import locate  # noqa: E402
-from pycram_cli.locations import resolve as resolving  # noqa: E402
+from pycram_cli.locations import floor as floor_maps  # noqa: E402
 from pycram_cli.robots.zoo import generate, write_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
@@ -41,7 +41,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
     try:
         times, found = [], True
         for _ in range(repeat):
-            resolving._MAPS.pop(world, None)
+            floor_maps._MAPS.pop(world, None)
             with world.snapshot():
                 start = time.perf_counter()
                 try:

@@ -186,7 +186,7 @@ LAYERS = ["world", "robots", "worldfile", "reasoning", "planning", "process_modu
           "design", "plan", "scenario", "sweep", "report", "cli"]
 #: modules at the package's top level shared by every layer; they import only each other
 SHARED = {"errors", "failures", "kinds", "schema", "yamlsource", "jsonable", "paths", "quiet", "limits", "files",
-          "interrupts", "signature", "status"}
+          "interrupts", "signature", "status", "drawing"}
 
 
 def _layer_of(module: str) -> str | None:

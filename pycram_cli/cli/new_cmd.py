@@ -24,7 +24,7 @@ from ..files import check_writable
 from ..paths import find_plan, find_world
 from ..plan import Plan, parse_plan
 from ..plan.params import plan_world, value_text
-from ..scenario.variations import SUFFIX
+from ..scenario.variation_files import SUFFIX
 from ..worldfile.spec import WorldSpec, parse_world
 from . import console
 from .complete import plan_names, world_names

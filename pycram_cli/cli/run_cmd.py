@@ -17,7 +17,7 @@ from ..scenario import prepare
 from ..limits import MAX_PROJECTED
 from ..scenario.starts import ImpossibleStart, possible_variant
 from ..sweep.projection import Projection, project
-from ..scenario.variations import read_variations, variation_file
+from ..scenario.variation_files import read_variations, variation_file
 from ..report.failures import failure_camera
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console

@@ -16,7 +16,7 @@ from ..designators import process_module_problems
 from ..errors import InputError, InputErrors, Location, as_list, raise_if_any
 from ..paths import find_plan, find_world
 from ..scenario import prepare
-from ..scenario.variations import SUFFIX, parse_variations
+from ..scenario.variation_files import SUFFIX, parse_variations
 from ..world import BulletWorld
 from ..worldfile.loader import load_spec
 from ..worldfile.starts import unsupported

@@ -8,9 +8,11 @@
 A location is a slot value written as a mapping (the `location` kind of `pycram_cli.kinds`):
 `{reachable-for: OBJECT|POSE, arm?, grasp?}`, `{visible-for: OBJECT}`, both at once,
 `{on: SURFACE, for: OBJECT, near: POSE?}` and `{accessing: HANDLE_LINK}`. It is resolved
-lazily into a ranked, deterministic sequence of poses (`resolve.py`): candidates from a map
-of the floor (`floor.py`), tested cheapest first, verified with the reasoning queries; an
-unsatisfiable location raises `LocationFailure` saying what ruled the candidates out.
+lazily into a ranked, deterministic sequence of poses (`base_poses.py`, `spots.py`): candidates
+from a lattice of the floor (`lattice.py`) ranked by cheap geometry (`scoring.py`), tested cheapest
+first against a map of the floor (`floor.py`), then with the planning the action itself will use
+(`reaching.py`, `accessing.py`) and the reasoning queries; an unsatisfiable location raises
+`LocationFailure` saying what ruled the candidates out (`candidates.py`). `plot.py` draws one.
 This package sits between motion planning (`planning/`, whose geometry it reuses: grasp points, the
 head, collisions) and the designators (whose actions use it).
 """
@@ -20,10 +22,16 @@ from typing import Any
 
 from ..robots import Robot
 from ..world import BulletWorld, Object
-from .floor import FloorMap
-from .resolve import (REASONS, BasePose, BasePoseResolution, Candidates, Spot, SpotResolution, floor_map, resolution,
-                      summary, take_from_here)
+from .base_poses import BasePoseResolution, take_from_here
+from .candidates import REASONS, BasePose, Candidates, Spot, summary
+from .floor import FloorMap, floor_map
 from .spec import Handle, LocationSpec, Surface, find_handle, find_surface, handle_of, opening_joint, parse_location
+from .spots import SpotResolution
+
+
+def resolution(robot: Robot, spec: LocationSpec) -> BasePoseResolution | SpotResolution:
+    """The lazy resolution of a location: `.next()` gives the next pose or spot, best first."""
+    return SpotResolution(robot, spec) if spec.on is not None else BasePoseResolution(robot, spec)
 
 
 def locate(world: BulletWorld, location: Any, for_object: Object | None = None) -> BasePoseResolution | SpotResolution:

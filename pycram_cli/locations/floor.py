@@ -11,13 +11,16 @@ one occupancy grid, which keeps the test exact at box level and cheap: a base po
 every few cells), turned by yaw and moved to (x, y), falls on an occupied cell of that band.
 
 The grid is a prefilter, conservative by about one cell: the robot's true collision shapes
-decide (`exact_collisions`), as the navigation process module does.
+decide (`exact_collisions`), as the navigation process module does. A map is kept per world while
+nothing in it moves (`floor_map`): the next location in the same state reuses it.
 """
 from __future__ import annotations
 
 import math
+import threading
+import weakref
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
 import numpy as np
 
@@ -25,7 +28,8 @@ from ..planning.contacts import PENETRATION, SUPPORT_SLACK, collisions, ground_z
 from ..world.pose import yaw_quaternion
 
 if TYPE_CHECKING:
-    from ..world import Object
+    from ..robots import Robot
+    from ..world import BulletWorld, Object
 
 #: grid cell size (m)
 RESOLUTION = 0.02
@@ -308,3 +312,44 @@ def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: flo
             if robot.world.distance(obj, other, 0.0) < -PENETRATION and other.name not in hits:
                 hits.append(other.name)
     return sorted(hits)
+
+
+# -- the floor map, kept while the world stands still ----------------------------------------------------------
+
+_MAPS: "weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, FloorMap]]" = weakref.WeakKeyDictionary()
+_MAPS_LOCK = threading.Lock()  # worlds may resolve locations in threads of their own
+
+
+def _signature(robot: "Robot", held: Sequence["Object"]) -> tuple:
+    """What the floor map depends on, exactly (a map is reused only for the very same state): every object's
+    pose and joints but the robot's base pose (the map is in world coordinates, the robot's footprint in its
+    own frame), and what the robot holds, with how it holds it."""
+    parts: list[Any] = [tuple((o.id, tuple(robot.body.attachments[o].transform)) for o in held
+                              if o in robot.body.attachments)]
+    for obj in robot.world.objects:
+        joints = tuple(obj.get_joint_positions().values())
+        if obj is robot.body or obj in held:
+            parts.append((obj.id, joints))
+            continue
+        pose = obj.get_com_pose()
+        parts.append((obj.id, tuple(pose[0]), tuple(pose[1]), joints))
+    return tuple(parts)
+
+
+def floor_map(robot: "Robot", held: Sequence["Object"], saved: bool = False) -> FloorMap:
+    """The floor map for the world as it is (built again whenever anything has moved). `saved`: the caller
+    restores the world afterwards (building turns the robot in place)."""
+    world = robot.world
+    key = _signature(robot, held)
+    with _MAPS_LOCK:
+        cached = _MAPS.get(world)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    if saved:
+        built = build(robot.body, held)
+    else:
+        with world.snapshot():
+            built = build(robot.body, held)
+    with _MAPS_LOCK:
+        _MAPS[world] = (key, built)
+    return built

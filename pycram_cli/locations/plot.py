@@ -8,8 +8,9 @@
   furthest test any of its turns reached), green for the poses found; spots on a surface the same;
 * the poses found: the robot's footprint outline with an arrow for its heading (the first one
   thicker), the target as a black cross;
-* a legend with the colours and how many candidates each test ruled out (drawn with a small
-  built-in pixel font, so no imaging library is needed).
+* a legend with the colours and how many candidates each test ruled out.
+
+Drawn with `pycram_cli.drawing` (Pillow), as the sweep's map is.
 """
 from __future__ import annotations
 
@@ -18,8 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from .resolve import OUTCOMES, REASONS, BasePoseResolution, SpotResolution
-from .resolve import floor_map as build_floor_map
+from ..drawing import TEXT_SIZE, Picture
+from .base_poses import BasePoseResolution
+from .candidates import OUTCOMES, REASONS
+from .floor import floor_map as build_floor_map
+from .spots import SpotResolution
 
 #: the key under which a locate step's record holds its `candidate_map` while a replay is recorded (the replay
 #: record takes it out of the step: the trace itself never holds it)
@@ -63,20 +67,20 @@ def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: floa
     hi = np.array([xs.max(), ys.max()]) + margin + floor_map.radius
     width = int(math.ceil((hi[0] - lo[0]) * pixels_per_metre))
     height = int(math.ceil((hi[1] - lo[1]) * pixels_per_metre))
-    canvas = Canvas(width, height, lo, pixels_per_metre)
-    canvas.image[:] = FLOOR
+    canvas = Canvas(Picture(width, height, FLOOR), lo, pixels_per_metre)
     # the floor map: every cell occupied at some height the robot has
     cx, cy = floor_map.cell_centres()
     px = canvas.to_px(np.stack(np.meshgrid(cx, cy, indexing="ij"), axis=-1).reshape(-1, 2))
     occupied = floor_map.any_occupied.reshape(-1)
-    canvas.put(px[occupied], OBSTACLE, radius=max(1, int(round(floor_map.resolution * pixels_per_metre / 2))))
+    canvas.picture.dots(px[occupied], OBSTACLE, radius=max(1, int(round(floor_map.resolution * pixels_per_metre / 2))))
     # the candidates, one square per position
     step = 0.05 if isinstance(resolution, BasePoseResolution) else 0.025
     best = {key: code for key, (code, _) in best_outcomes(resolution).items()}
     half = max(1, int(step * pixels_per_metre * 0.35))
     for (kx, ky), code in sorted(best.items(), key=lambda kv: RANK.index(OUTCOMES[kv[1]] or "not tried")):
         outcome = OUTCOMES[code] or "not tried"
-        canvas.put(canvas.to_px(np.array([[kx * 0.005, ky * 0.005]])), COLOURS[outcome], radius=half, alpha=0.7)
+        canvas.picture.dots(canvas.to_px(np.array([[kx * 0.005, ky * 0.005]])), COLOURS[outcome], radius=half,
+                            alpha=0.7)
     for obj in world.objects:  # every object's outline (but the floor's, the robot's and what it holds)
         if obj is robot.body or obj in held:
             continue
@@ -95,10 +99,10 @@ def draw(resolution: BasePoseResolution | SpotResolution, pixels_per_metre: floa
         if isinstance(resolution, BasePoseResolution):
             _pose(canvas, floor_map.base_boxes, found.position, found.yaw, thick=index == 0)
         else:
-            canvas.put(canvas.to_px(np.array([found.position[:2]])), COLOURS["ok"], radius=half + 2)
+            canvas.picture.dots(canvas.to_px(np.array([found.position[:2]])), COLOURS["ok"], radius=half + 2)
     canvas.cross(target[:2], (0, 0, 0), 7)
-    _legend(canvas, resolution)
-    return canvas.image
+    _legend(canvas.picture, resolution)
+    return canvas.picture.rgb()
 
 
 def best_outcomes(resolution: BasePoseResolution | SpotResolution) -> dict[tuple[int, int], tuple[int, int]]:
@@ -176,10 +180,11 @@ def _pose(canvas: "Canvas", boxes: list[tuple[np.ndarray, np.ndarray]], position
     canvas.line(position[:2], tip, colour, 2 if thick else 1)
     for side in (0.08, -0.08):
         canvas.line(tip, world(0.22, side), colour, 2 if thick else 1)
-    canvas.put(canvas.to_px(np.array([position[:2]])), colour, radius=3 if thick else 2)
+    canvas.picture.dots(canvas.to_px(np.array([position[:2]])), colour, radius=3 if thick else 2)
 
 
-def _legend(canvas: "Canvas", resolution: BasePoseResolution | SpotResolution) -> None:
+def _legend(picture: Picture, resolution: BasePoseResolution | SpotResolution) -> None:
+    """What the colours mean and how many candidates each test ruled out, in the top left corner."""
     counts = resolution.counts()
     rows = [("found", COLOURS["ok"], len(resolution.found))]
     if isinstance(resolution, BasePoseResolution):
@@ -188,90 +193,42 @@ def _legend(canvas: "Canvas", resolution: BasePoseResolution | SpotResolution) -
     lines: list[tuple[str, tuple[int, int, int] | None]] = [(resolution.spec.describe(), None)]
     lines += [(f"{text} {number}", colour) for text, colour, number in rows]
     lines += [("x target", None), ("grey: obstacles", OBSTACLE)]
-    x, y = 6, 6
-    box_w = 8 + max(len(text) for text, _ in lines) * 6 + 8
-    canvas.image[y - 3:y + 12 * len(lines) + 2, x - 3:x - 3 + box_w + 12] = (250, 250, 250)
+    x, y, line = 6, 6, TEXT_SIZE + 3
+    box_w = 12 + max(picture.text_width(text) for text, _ in lines) + 8
+    picture.rectangle((x - 3, y - 3), (x - 3 + box_w, y + line * len(lines) + 2), fill=(250, 250, 250))
     for text, colour in lines:
         if colour is not None:
-            canvas.image[y:y + 8, x:x + 8] = colour
-            canvas.text(x + 12, y, text, (20, 20, 20))
+            picture.rectangle((x, y + 2), (x + 8, y + 10), fill=colour)
+            picture.text((x + 12, y), text, (20, 20, 20))
         else:
-            canvas.text(x + 1, y, text, (20, 20, 20))
-        y += 12
+            picture.text((x + 1, y), text, (20, 20, 20))
+        y += line
 
 
 class Canvas:
-    """An RGB image with world (x, y) coordinates: +x to the right, +y up."""
+    """A picture with world (x, y) coordinates: +x to the right, +y up (`origin`: the world point at the bottom
+    left, `scale`: pixels per metre)."""
 
-    def __init__(self, width: int, height: int, origin: np.ndarray, scale: float) -> None:
-        self.image = np.zeros((height, width, 3), dtype=np.uint8)
-        self.origin, self.scale = origin, scale
+    def __init__(self, picture: Picture, origin: np.ndarray, scale: float) -> None:
+        self.picture, self.origin, self.scale = picture, origin, scale
 
     def to_px(self, points: np.ndarray) -> np.ndarray:
         """(n, 2) world points -> (n, 2) integer (column, row)."""
         col = np.floor((points[:, 0] - self.origin[0]) * self.scale).astype(int)
-        row = self.image.shape[0] - 1 - np.floor((points[:, 1] - self.origin[1]) * self.scale).astype(int)
+        row = self.picture.size[1] - 1 - np.floor((points[:, 1] - self.origin[1]) * self.scale).astype(int)
         return np.stack([col, row], axis=-1)
 
-    def put(self, px: np.ndarray, colour: tuple[int, int, int], radius: int = 0, alpha: float = 1.0) -> None:
-        h, w = self.image.shape[:2]
-        for dc in range(-radius, radius + 1):
-            for dr in range(-radius, radius + 1):
-                c, r = px[:, 0] + dc, px[:, 1] + dr
-                keep = (c >= 0) & (c < w) & (r >= 0) & (r < h)
-                if alpha >= 1.0:
-                    self.image[r[keep], c[keep]] = colour
-                else:
-                    under = self.image[r[keep], c[keep]].astype(float)
-                    self.image[r[keep], c[keep]] = (under * (1 - alpha) + np.asarray(colour) * alpha).astype(np.uint8)
-
     def line(self, a: Any, b: Any, colour: tuple[int, int, int], radius: int = 0) -> None:
-        n = max(2, int(math.dist(a, b) * self.scale * 2))
-        t = np.linspace(0.0, 1.0, n)[:, None]
-        points = np.asarray(a)[None, :2] * (1 - t) + np.asarray(b)[None, :2] * t
-        self.put(self.to_px(points), colour, radius)
+        """A line between two world points, 2 radius + 1 pixels wide."""
+        ends = self.to_px(np.array([a[:2], b[:2]], dtype=float))
+        self.picture.line([tuple(ends[0]), tuple(ends[1])], colour, width=2 * radius + 1)
 
     def rectangle(self, lo: Any, hi: Any, colour: tuple[int, int, int]) -> None:
-        corners = [(lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])]
-        for a, b in zip(corners, corners[1:] + corners[:1]):
-            self.line(a, b, colour)
+        """The outline of a box's footprint (its lowest and highest corner)."""
+        corners = self.to_px(np.array([lo[:2], hi[:2]], dtype=float))
+        self.picture.rectangle(tuple(corners[0]), tuple(corners[1]), outline=colour)
 
     def cross(self, at: Any, colour: tuple[int, int, int], size: int) -> None:
         d = size / self.scale
         self.line((at[0] - d, at[1] - d), (at[0] + d, at[1] + d), colour, 1)
         self.line((at[0] - d, at[1] + d), (at[0] + d, at[1] - d), colour, 1)
-
-    def text(self, x: int, y: int, text: str, colour: tuple[int, int, int]) -> None:
-        """Text in a 5x7 pixel font, 6 pixels per character (lower-case letters, digits, a little punctuation)."""
-        h, w = self.image.shape[:2]
-        for k, char in enumerate(text.lower()):
-            rows = FONT.get(char)
-            if rows is None:
-                continue
-            for r, bits in enumerate(rows):
-                for c in range(5):
-                    if bits >> (4 - c) & 1:
-                        yy, xx = y + r, x + k * 6 + c
-                        if 0 <= yy < h and 0 <= xx < w:
-                            self.image[yy, xx] = colour
-
-
-#: a 5x7 pixel font: each character is 7 rows of 5 bits
-FONT: dict[str, tuple[int, ...]] = {
-    " ": (0, 0, 0, 0, 0, 0, 0),
-    "a": (0, 0, 14, 1, 15, 17, 15), "b": (16, 16, 30, 17, 17, 17, 30), "c": (0, 0, 14, 16, 16, 17, 14),
-    "d": (1, 1, 15, 17, 17, 17, 15), "e": (0, 0, 14, 17, 31, 16, 14), "f": (6, 9, 8, 28, 8, 8, 8),
-    "g": (0, 0, 15, 17, 15, 1, 14), "h": (16, 16, 22, 25, 17, 17, 17), "i": (4, 0, 12, 4, 4, 4, 14),
-    "j": (2, 0, 6, 2, 2, 18, 12), "k": (16, 16, 18, 20, 24, 20, 18), "l": (12, 4, 4, 4, 4, 4, 14),
-    "m": (0, 0, 26, 21, 21, 17, 17), "n": (0, 0, 22, 25, 17, 17, 17), "o": (0, 0, 14, 17, 17, 17, 14),
-    "p": (0, 0, 30, 17, 30, 16, 16), "q": (0, 0, 13, 19, 15, 1, 1), "r": (0, 0, 22, 25, 16, 16, 16),
-    "s": (0, 0, 14, 16, 14, 1, 30), "t": (8, 8, 28, 8, 8, 9, 6), "u": (0, 0, 17, 17, 17, 19, 13),
-    "v": (0, 0, 17, 17, 17, 10, 4), "w": (0, 0, 17, 17, 21, 21, 10), "x": (0, 0, 17, 10, 4, 10, 17),
-    "y": (0, 0, 17, 17, 15, 1, 14), "z": (0, 0, 31, 2, 4, 8, 31),
-    "0": (14, 17, 19, 21, 25, 17, 14), "1": (4, 12, 4, 4, 4, 4, 14), "2": (14, 17, 1, 2, 4, 8, 31),
-    "3": (31, 2, 4, 2, 1, 17, 14), "4": (2, 6, 10, 18, 31, 2, 2), "5": (31, 16, 30, 1, 1, 17, 14),
-    "6": (6, 8, 16, 30, 17, 17, 14), "7": (31, 1, 2, 4, 8, 8, 8), "8": (14, 17, 17, 14, 17, 17, 14),
-    "9": (14, 17, 17, 15, 1, 2, 12),
-    ".": (0, 0, 0, 0, 0, 12, 12), ",": (0, 0, 0, 0, 12, 4, 8), ":": (0, 12, 12, 0, 12, 12, 0),
-    "-": (0, 0, 0, 31, 0, 0, 0), "(": (2, 4, 8, 8, 8, 4, 2), ")": (8, 4, 2, 2, 2, 4, 8), "/": (0, 1, 2, 4, 8, 16, 0),
-}

@@ -21,7 +21,7 @@ from typing import Any, Iterable
 from ..paths import plans_dir
 from ..plan import trace as traces
 from . import prepare
-from .variations import SUFFIX as VARIATIONS
+from .variation_files import SUFFIX as VARIATIONS
 
 ATOL = 1e-3
 

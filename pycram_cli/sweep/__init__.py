@@ -34,7 +34,8 @@ from ..paths import plans_dir, worlds_dir
 from ..plan import bind_params
 from ..plan.syntax import plain
 from ..scenario import Scenario, prepare
-from ..scenario.variations import Variations, beside, read_variations, scenario_seed, variation_file
+from ..scenario.variation_files import beside, read_variations, variation_file
+from ..scenario.variations import Variations, scenario_seed
 from . import ray_backend
 from .local import LocalPool, SweepError
 from .results import ResultsFile, file_digest

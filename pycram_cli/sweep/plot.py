@@ -2,10 +2,10 @@
 as a dot coloured by its outcome, so a person sees where the plan fails.
 
 Rendered headless with the world's own renderer (TinyRenderer, only the fixed environment
-objects: the things that were varied are drawn as dots) and written with `camera.write_png`;
-no plotting library. Marker shapes tell the varied objects apart (circle, square, triangle,
-diamond, ...), colours the outcomes (green: succeeded; one colour per failure type); a legend
-with counts sits in a corner, in a built-in 5x7 pixel font.
+objects: the things that were varied are drawn as dots), the markers and legend drawn over it with
+`pycram_cli.drawing` (Pillow, as the location map is), and written with `camera.write_png`. Marker
+shapes tell the varied objects apart (circle, square, triangle, diamond, ...), colours the outcomes
+(green: succeeded; one colour per failure type); a legend with counts sits in a corner.
 """
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..drawing import Picture, darker
 from ..errors import InputError, Location
 from ..world.camera import Camera, render, write_png
 from ..worldfile.loader import load_spec
@@ -99,16 +100,17 @@ def outcome_map(sweep: "PreparedSweep", records: list[dict[str, Any]], width: in
     names = sorted({p[0] for p in points})
     shape = {name: MARKERS[i % len(MARKERS)] for i, name in enumerate(names)}
     # successes first, failures on top of them
+    picture = Picture.of(image)
     for name, position, outcome in sorted(points, key=lambda p: p[2] != "succeeded"):
-        draw_marker(image, pixel(position), shape[name], table[outcome])
+        draw_marker(picture, pixel(position), shape[name], table[outcome])
     counts = Counter(outcome_of(r) for r in records)
     rows: list[tuple[str, Any, str]] = [("circle", table[o], f"{o} {counts[o]}") for o in table if counts[o]]
     rows += [(shape[n], (60, 60, 60), n) for n in names]
-    draw_legend(image, rows, f"{Path(sweep.meta['plan']).stem}: {len({r['index'] for r in records})} scenarios")
+    draw_legend(picture, rows, f"{Path(sweep.meta['plan']).stem}: {len({r['index'] for r in records})} scenarios")
     markers = [(record, name, pixel(tuple(varied["position"])))
                for record in records for name, varied in sorted((record.get("varied") or {}).items())
                if isinstance(varied, dict) and "position" in varied]
-    return OutcomeMap(image, markers)
+    return OutcomeMap(picture.rgb(), markers)
 
 
 def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: Path,
@@ -118,506 +120,36 @@ def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: P
 
 
 # -- drawing ------------------------------------------------------------------------------------------
-def draw_marker(image: np.ndarray, at: tuple[int, int], shape: str, colour: tuple[int, int, int],
+def draw_marker(picture: Picture, at: tuple[int, int], shape: str, colour: tuple[int, int, int],
                 radius: int = RADIUS) -> None:
-    height, width, _ = image.shape
-    cx, cy = at
-    r = radius
-    ys, xs = np.mgrid[-r - 1:r + 2, -r - 1:r + 2]
-    if shape == "circle":
-        inside = xs * xs + ys * ys <= r * r
-        edge = inside & (xs * xs + ys * ys > (r - 1.2) ** 2)
-    elif shape == "square":
-        inside = (abs(xs) <= r - 1) & (abs(ys) <= r - 1)
-        edge = inside & ((abs(xs) == r - 1) | (abs(ys) == r - 1))
-    elif shape == "triangle":
-        inside = (ys <= r - 1) & (ys >= -r) & (2 * abs(xs) <= ys + r)
-        edge = inside & ((ys == r - 1) | (2 * abs(xs) >= ys + r - 2))
-    elif shape == "diamond":
-        inside = abs(xs) + abs(ys) <= r
-        edge = inside & (abs(xs) + abs(ys) >= r - 1)
-    elif shape == "cross":
-        inside = ((abs(xs) <= 1) | (abs(ys) <= 1)) & (abs(xs) <= r) & (abs(ys) <= r)
-        edge = np.zeros_like(inside)
-    else:  # ring
-        inside = (xs * xs + ys * ys <= r * r) & (xs * xs + ys * ys >= (r - 2) ** 2)
-        edge = np.zeros_like(inside)
-    for fill, mask in ((colour, inside), (_darker(colour), edge)):
-        yy, xx = ys[mask] + cy, xs[mask] + cx
-        keep = (yy >= 0) & (yy < height) & (xx >= 0) & (xx < width)
-        image[yy[keep], xx[keep]] = fill
-
-
-def _darker(colour: tuple[int, int, int]) -> tuple[int, int, int]:
-    return tuple(int(c * 0.55) for c in colour)  # type: ignore[return-value]
-
-
-def draw_legend(image: np.ndarray, rows: list[tuple[str, Any, str]], title: str, scale: int = 2) -> None:
-    line = 8 * scale + 6
-    lines = [title.upper()] + [text.upper() for _, _, text in rows]
-    box_w = 12 + max(len(t) for t in lines) * 6 * scale + 24
-    box_h = 10 + line * len(lines)
-    x0, y0 = 10, 10
-    image[y0:y0 + box_h, x0:x0 + box_w] = (image[y0:y0 + box_h, x0:x0 + box_w] * 0.15 + 255 * 0.85).astype(np.uint8)
-    draw_text(image, (x0 + 8, y0 + 8), title.upper(), (20, 20, 20), scale)
-    for i, (shape, colour, text) in enumerate(rows, start=1):
-        y = y0 + 8 + i * line
-        draw_marker(image, (x0 + 14, y + 3 * scale), shape, colour, radius=5)
-        draw_text(image, (x0 + 28, y), text.upper(), (20, 20, 20), scale)
-
-
-def draw_text(image: np.ndarray, at: tuple[int, int], text: str, colour: tuple[int, int, int], scale: int = 2) -> None:
-    height, width, _ = image.shape
+    """One marker: the shape filled with the colour, its edge darker (a cross and a ring: the colour only)."""
     x, y = at
-    for char in text:
-        glyph = FONT.get(char, FONT["?"])
-        for row, bits in enumerate(glyph):
-            for col, bit in enumerate(bits):
-                if bit == "#":
-                    ys, xs = y + row * scale, x + col * scale
-                    if 0 <= ys < height - scale and 0 <= xs < width - scale:
-                        image[ys:ys + scale, xs:xs + scale] = colour
-        x += 6 * scale
+    r = radius
+    edge = darker(colour)
+    if shape == "circle":
+        picture.circle(at, r, fill=colour, outline=edge)
+    elif shape == "square":
+        picture.rectangle((x - r + 1, y - r + 1), (x + r - 1, y + r - 1), outline=edge, fill=colour)
+    elif shape == "triangle":
+        picture.polygon([(x, y - r), (x + r, y + r - 1), (x - r, y + r - 1)], fill=colour, outline=edge)
+    elif shape == "diamond":
+        picture.polygon([(x, y - r), (x + r, y), (x, y + r), (x - r, y)], fill=colour, outline=edge)
+    elif shape == "cross":
+        picture.rectangle((x - r, y - 1), (x + r, y + 1), fill=colour)
+        picture.rectangle((x - 1, y - r), (x + 1, y + r), fill=colour)
+    else:  # ring
+        picture.circle(at, r, outline=colour, width=2)
 
 
-def _font(spec: str) -> dict[str, list[str]]:
-    glyphs: dict[str, list[str]] = {}
-    for block in spec.strip("\n").split("\n\n"):
-        lines = block.split("\n")
-        glyphs[lines[0][0] if lines[0] != "space" else " "] = [line.ljust(5, ".") for line in lines[1:]]
-    return glyphs
-
-
-FONT = _font("""
-A
-.###.
-#...#
-#...#
-#####
-#...#
-#...#
-#...#
-
-B
-####.
-#...#
-#...#
-####.
-#...#
-#...#
-####.
-
-C
-.###.
-#...#
-#....
-#....
-#....
-#...#
-.###.
-
-D
-####.
-#...#
-#...#
-#...#
-#...#
-#...#
-####.
-
-E
-#####
-#....
-#....
-####.
-#....
-#....
-#####
-
-F
-#####
-#....
-#....
-####.
-#....
-#....
-#....
-
-G
-.###.
-#...#
-#....
-#.###
-#...#
-#...#
-.####
-
-H
-#...#
-#...#
-#...#
-#####
-#...#
-#...#
-#...#
-
-I
-.###.
-..#..
-..#..
-..#..
-..#..
-..#..
-.###.
-
-J
-..###
-...#.
-...#.
-...#.
-...#.
-#..#.
-.##..
-
-K
-#...#
-#..#.
-#.#..
-##...
-#.#..
-#..#.
-#...#
-
-L
-#....
-#....
-#....
-#....
-#....
-#....
-#####
-
-M
-#...#
-##.##
-#.#.#
-#.#.#
-#...#
-#...#
-#...#
-
-N
-#...#
-#...#
-##..#
-#.#.#
-#..##
-#...#
-#...#
-
-O
-.###.
-#...#
-#...#
-#...#
-#...#
-#...#
-.###.
-
-P
-####.
-#...#
-#...#
-####.
-#....
-#....
-#....
-
-Q
-.###.
-#...#
-#...#
-#...#
-#.#.#
-#..#.
-.##.#
-
-R
-####.
-#...#
-#...#
-####.
-#.#..
-#..#.
-#...#
-
-S
-.####
-#....
-#....
-.###.
-....#
-....#
-####.
-
-T
-#####
-..#..
-..#..
-..#..
-..#..
-..#..
-..#..
-
-U
-#...#
-#...#
-#...#
-#...#
-#...#
-#...#
-.###.
-
-V
-#...#
-#...#
-#...#
-#...#
-#...#
-.#.#.
-..#..
-
-W
-#...#
-#...#
-#...#
-#.#.#
-#.#.#
-#.#.#
-.#.#.
-
-X
-#...#
-#...#
-.#.#.
-..#..
-.#.#.
-#...#
-#...#
-
-Y
-#...#
-#...#
-.#.#.
-..#..
-..#..
-..#..
-..#..
-
-Z
-#####
-....#
-...#.
-..#..
-.#...
-#....
-#####
-
-0
-.###.
-#...#
-#..##
-#.#.#
-##..#
-#...#
-.###.
-
-1
-..#..
-.##..
-..#..
-..#..
-..#..
-..#..
-.###.
-
-2
-.###.
-#...#
-....#
-...#.
-..#..
-.#...
-#####
-
-3
-#####
-...#.
-..#..
-...#.
-....#
-#...#
-.###.
-
-4
-...#.
-..##.
-.#.#.
-#..#.
-#####
-...#.
-...#.
-
-5
-#####
-#....
-####.
-....#
-....#
-#...#
-.###.
-
-6
-..##.
-.#...
-#....
-####.
-#...#
-#...#
-.###.
-
-7
-#####
-....#
-...#.
-..#..
-.#...
-.#...
-.#...
-
-8
-.###.
-#...#
-#...#
-.###.
-#...#
-#...#
-.###.
-
-9
-.###.
-#...#
-#...#
-.####
-....#
-...#.
-.##..
-
-space
-.....
-.....
-.....
-.....
-.....
-.....
-.....
-
-:
-.....
-.##..
-.##..
-.....
-.##..
-.##..
-.....
-
-.
-.....
-.....
-.....
-.....
-.....
-.##..
-.##..
-
--
-.....
-.....
-.....
-#####
-.....
-.....
-.....
-
-_
-.....
-.....
-.....
-.....
-.....
-.....
-#####
-
-%
-##...
-##..#
-...#.
-..#..
-.#...
-#..##
-...##
-
-/
-.....
-....#
-...#.
-..#..
-.#...
-#....
-.....
-
-(
-...#.
-..#..
-.#...
-.#...
-.#...
-..#..
-...#.
-
-)
-.#...
-..#..
-...#.
-...#.
-...#.
-..#..
-.#...
-
-,
-.....
-.....
-.....
-.....
-.##..
-..#..
-.#...
-
-=
-.....
-.....
-#####
-.....
-#####
-.....
-.....
-
-?
-.###.
-#...#
-....#
-...#.
-..#..
-.....
-..#..
-""")
+def draw_legend(picture: Picture, rows: list[tuple[str, Any, str]], title: str, size: int = 16) -> None:
+    """The legend in the top left corner, over a light box: the title, then a marker and a text per row."""
+    line = size + 6
+    box_w = 36 + max(picture.text_width(t, size) for t in [title] + [text for _, _, text in rows])
+    box_h = 10 + line * (len(rows) + 1)
+    x0, y0 = 10, 10
+    picture.rectangle((x0, y0), (x0 + box_w - 1, y0 + box_h - 1), fill=(255, 255, 255), alpha=0.85)
+    picture.text((x0 + 8, y0 + 6), title, (20, 20, 20), size)
+    for i, (shape, colour, text) in enumerate(rows, start=1):
+        y = y0 + 6 + i * line
+        draw_marker(picture, (x0 + 14, y + size // 2 + 1), shape, colour, radius=5)
+        picture.text((x0 + 28, y), text, (20, 20, 20), size)

@@ -20,7 +20,8 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..scenario import prepare
-from ..scenario.variations import read_variations, scenario_seed, variation_file
+from ..scenario.variation_files import read_variations, variation_file
+from ..scenario.variations import scenario_seed
 from ..errors import InputError, Location
 from .local import LocalPool
 from .summary import summarise

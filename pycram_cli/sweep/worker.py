@@ -25,7 +25,8 @@ from ..jsonable import jsonable
 from ..plan.trace import comparable, normalised
 from ..scenario import Scenario, prepare
 from ..scenario.starts import ImpossibleStart
-from ..scenario.variations import Variations, read_variations
+from ..scenario.variation_files import read_variations
+from ..scenario.variations import Variations
 from .summary import INVALID
 from ..scenario.worlds import LoadedWorlds
 

@@ -1,4 +1,4 @@
-"""Base poses in line with an arm's reach line (resolve.line_poses, pull_aligned_poses, aligned_reach_line): an arm
+"""Base poses in line with an arm's reach line (geometry.line_poses, pull_aligned_poses, aligned_reach_line): an arm
 that keeps its tool in its pan's plane (a pan, pitches and a wrist roll) reaches with a front grasp only straight
 ahead of itself, so the candidates for it put that line through the target, whatever the arm's mount offset."""
 from __future__ import annotations
@@ -12,8 +12,8 @@ import pytest
 from pycram_cli.designators import perform
 from pycram_cli.failures import LocationFailure
 from pycram_cli.locations import LocationSpec, find_handle, locate
-from pycram_cli.locations.resolve import (STEP, ArmGeometry, aligned_reach_line, line_poses, pull_aligned_poses,
-                                          straight_reach_line)
+from pycram_cli.locations.geometry import (STEP, ArmGeometry, aligned_reach_line, line_poses, pull_aligned_poses,
+                                           straight_reach_line)
 from pycram_cli.robots import Robot
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world

@@ -1,5 +1,5 @@
 """A location where an arm reaches (reachable-for, accessing) tries other torso heights when the arm reaches from no
-pose with the torso where it is (resolve.py `_next_torso`), and the pose it finds says the height (`BasePose.torso`),
+pose with the torso where it is (base_poses.py `_next_torso`), and the pose it finds says the height (`BasePose.torso`),
 which the actions move the torso to on arriving (`go`; the whole demo on this robot: bench/zoo.py).
 
 Zoo seed 12's 5-joint arm (a pan, three pitches, a wrist roll) holds the 27 cm cereal box only from above (its sides
@@ -17,7 +17,7 @@ from pycram_cli.designators import perform
 from pycram_cli.failures import LocationFailure
 from pycram_cli.locations import LocationSpec
 from pycram_cli.locations.spec import find_handle
-from pycram_cli.locations.resolve import BasePoseResolution, take_from_here
+from pycram_cli.locations import BasePoseResolution, take_from_here
 from pycram_cli.robots import Robot
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world

@@ -1,4 +1,4 @@
-"""The robot zoo (pycram_cli/robots/zoo.py): seeded robots nobody tuned pycram for, written as data.
+"""The robot zoo (pycram_cli/robots/zoo): seeded robots nobody tuned pycram for, written as data.
 
 A seed gives one robot, always the same one, byte for byte. Every robot of seeds 0..19 loads in
 PyBullet, its description passes pycram's own checks (`pycram validate` on its kitchen world),

@@ -1,11 +1,11 @@
-"""The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo.py).
+"""The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo).
 
 Seed 2 is a wheeled robot with a 6-joint arm, a one-finger gripper and its camera on the wrist:
 wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 6's arm is too
 short for the counter: the run ends with a location failure saying the object is out of reach —
 a plan failure (exit 1), never an internal error. Seed 12 has a 5-joint arm (a pan, three pitches, a
 wrist roll) mounted off the base's centre line: its tool stays in the plane the pan turns, so it puts
-the milk down only from poses whose reach line runs through the place (locations/resolve.py
+the milk down only from poses whose reach line runs through the place (locations/geometry.py
 `line_poses`); the test runs only the milk's part of the demo. Seed 3's arm closes the drawer it
 opened all the way in two strokes.
 """

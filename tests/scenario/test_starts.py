@@ -13,7 +13,8 @@ from pycram_cli.cli.main import cli
 from pycram_cli.paths import plans_dir
 from pycram_cli.scenario import prepare
 from pycram_cli.scenario.starts import REDRAWS, ImpossibleStart, impossible
-from pycram_cli.scenario.variations import read_variations, scenario_seed
+from pycram_cli.scenario.variation_files import read_variations
+from pycram_cli.scenario.variations import scenario_seed
 from pycram_cli.scenario.worlds import LoadedWorlds
 
 

@@ -17,7 +17,8 @@ from pycram_cli.errors import InputError, InputErrors, as_list
 from pycram_cli.paths import plans_dir
 from pycram_cli.plan import trace as traces
 from pycram_cli.scenario import prepare
-from pycram_cli.scenario.variations import parse_variations, read_variations, scenario_seed
+from pycram_cli.scenario.variation_files import parse_variations, read_variations
+from pycram_cli.scenario.variations import scenario_seed
 from pycram_cli.scenario.worlds import LoadedWorlds
 
 SET_TABLE_VARY = plans_dir() / "set_table.vary.yaml"

@@ -1,0 +1,99 @@
+"""An accessing location's drawer (or door): where its handle goes, the floor it opens into, whether an arm pulls it.
+
+A pose for opening (or closing) something must do more than reach the handle: the robot must stand clear of the
+drawer opened, and the arm holding the handle must follow it all the way. These tests read the location's handle
+and distance (`LocationSpec.accessing`, `.distance`) and ask accessing's own planning (`planning/drawers.py`), so a
+pose found here is one from which the accessing action succeeds.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
+from ..kinds import arm_words
+from ..planning.drawers import DISTANCE, follows_handle, plan_handle_grasp
+from ..planning.paths import move_over
+from ..robots import Robot
+from ..world import Object
+from . import floor
+from .spec import Handle, LocationSpec
+
+
+def _handle(spec: LocationSpec) -> Handle:
+    handle = spec.accessing
+    assert handle is not None
+    return handle
+
+
+def goal(spec: LocationSpec, start: float) -> float:
+    """Where the accessing process module takes the joint: `distance` above its lower limit (at most to its upper
+    limit); the designator's default distance when the location names none."""
+    handle = _handle(spec)
+    joint = handle.obj.joint(handle.joint)
+    distance = DISTANCE.default if spec.distance is None else spec.distance
+    return min(joint.upper, joint.lower + distance) if joint.limited else start + distance
+
+
+def handle_positions(spec: LocationSpec) -> list[np.ndarray]:
+    """Where the handle is now and where accessing takes it (the location's distance; the drawer put back)."""
+    handle = _handle(spec)
+    obj = handle.obj
+    start = obj.get_joint_position(handle.joint)
+    end = goal(spec, start)
+    positions = []
+    with obj.joints_kept([handle.joint]):
+        for value in (start, end):
+            obj.reset_joints({handle.joint: value})
+            positions.append(np.asarray(obj.get_link_position(handle.link)))
+    return positions
+
+
+def closing(spec: LocationSpec) -> bool:
+    """Whether accessing pushes the handle towards the joint's lower limit (closes the drawer or door)."""
+    handle = _handle(spec)
+    start = handle.obj.get_joint_position(handle.joint)
+    return goal(spec, start) < start
+
+
+def opened_map(robot: Robot, spec: LocationSpec, held: list[Object]) -> floor.FloorMap:
+    """The floor map with the drawer where accessing takes it (the drawer put back)."""
+    handle = _handle(spec)
+    obj = handle.obj
+    with obj.joints_kept([handle.joint]):
+        obj.reset_joints({handle.joint: goal(spec, obj.get_joint_position(handle.joint))})
+        return floor.build(robot.body, held)
+
+
+def opened_collisions(robot: Robot, spec: LocationSpec, held: list[Object], x: float, y: float,
+                      yaw: float) -> list[str]:
+    """What the robot's base pose (x, y, yaw) collides with once the drawer is where accessing takes it."""
+    handle = _handle(spec)
+    obj = handle.obj
+    with obj.joints_kept([handle.joint]):
+        obj.reset_joints({handle.joint: goal(spec, obj.get_joint_position(handle.joint))})
+        return floor.exact_collisions(robot.body, held, x, y, yaw)
+
+
+def takes_handle(robot: Robot, spec: LocationSpec, arm: str) -> bool:
+    """Accessing's own planning takes the handle from here and pulls it to the goal: its grasp (aligned with the handle's
+    box, not turned with the base as the reach test's first IK) and its pre-grasp pose are reached, the arm holding
+    the handle so follows it all the way, step by step (`follows_handle`: the drawer then inside no part of
+    the robot but the hand, as a robot standing too close would open it into its own arm), and the arm, its
+    gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`)."""
+    handle = _handle(spec)
+    obj = handle.obj
+    gripper = robot.description.arm(arm).gripper
+    names = list(robot.description.arm(arm).joints) + list(gripper.joints)
+    with robot.body.joints_kept(names):
+        try:
+            robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
+            _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
+            end = goal(spec, obj.get_joint_position(handle.joint))
+            robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
+            if not follows_handle(robot, arm, obj, handle.link, handle.joint, end, at):
+                return False
+            robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
+            move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
+        except (GripperFailure, ReachabilityFailure, ManipulationFailure):
+            return False
+    return True

@@ -1,0 +1,129 @@
+"""The robot as geometry for ranking base poses: each arm's shoulder and length, its reach line, the camera.
+
+Scoring thousands of candidate base poses cannot call inverse kinematics for each; it needs a few numbers read once
+from the robot's description and its body as it stands (all in the base frame), and the poses that put an arm's
+reach line through a point (an arm that cannot turn its tool freely reaches sideways only on that line).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..planning.pick_place import PLACE_TURNS, level
+from ..robots import Robot
+from ..world import Object
+from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_quaternion
+
+#: candidate base positions: a lattice of the floor with this spacing (m); poses along a reach line are as far apart
+STEP = 0.05
+
+
+@dataclass(frozen=True)
+class ArmGeometry:
+    """An arm as the scores see it: where its shoulder is and how far it reaches."""
+
+    name: str
+    shoulder: np.ndarray  # (x, y, z) in the base frame, z above the floor
+    length: float  # shoulder to tool frame, stretched out
+
+
+def arm_geometry(robot: Robot) -> dict[str, ArmGeometry]:
+    """Each arm's shoulder (its first joint) in the base frame and its length (the sum of its links)."""
+    body = robot.body
+    base_pos, base_orn = body.get_pose()
+    to_base = invert((base_pos, base_orn))
+    found = {}
+    for arm in robot.description.arms.values():
+        links = [body.joint(j).child_link for j in arm.joints] + [arm.tool_frame]
+        points = [np.asarray(compose(to_base, (body.get_link_position(link), (0, 0, 0, 1)))[0]) for link in links]
+        length = float(sum(np.linalg.norm(b - a) for a, b in zip(points, points[1:])))
+        found[arm.name] = ArmGeometry(arm.name, points[0], length)
+    return found
+
+
+#: an arm with fewer rotating joints than this cannot turn its tool about every axis wherever it reaches
+FREE_ORIENTATION_JOINTS = 6
+
+
+def straight_reach_line(robot: Robot, arm: str) -> float:
+    """The lateral offset (m, the base frame's y) of the arm's tool frame with every arm joint at zero: the line
+    straight ahead of the robot on which the arm reaches with its tool pointing along the base's x."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    tool = robot.description.arm(arm).tool_frame
+    with body.joints_kept(names):
+        body.reset_joints({n: 0.0 for n in names})
+        offset = compose(invert(body.get_pose()), (body.get_link_position(tool), (0, 0, 0, 1)))[0]
+    return float(offset[1])
+
+
+def aligned_reach_line(robot: Robot, arm: str) -> float | None:
+    """`straight_reach_line` for an arm that cannot orient its tool freely (fewer than FREE_ORIENTATION_JOINTS
+    rotating joints: a pan, pitches and a wrist roll keep the tool in the vertical plane the pan turns, so a front
+    grasp, pointing along the base's x, is reachable only on that line); None for an arm that can."""
+    body = robot.body
+    rotating = sum(1 for n in robot.description.arm(arm).joints if body.joint(n).type in ("revolute", "continuous"))
+    return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
+
+
+def line_poses(point: Sequence[float], heading: float, arm: ArmGeometry,
+               line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Base poses (xs, ys, yaws) turned to `heading` (rad) with the arm's reach line (`straight_reach_line`) through
+    `point`, the shoulder STEP, 2 STEP, ... up to the arm's length short of it: from these an arm that keeps its
+    tool in its pan's plane reaches `point` with its tool pointing along `heading`. The lattice's candidates face
+    the target from the base's centre and miss that line by the arm's mount offset."""
+    into = np.array([math.cos(heading), math.sin(heading)])
+    left = np.array([-into[1], into[0]])
+    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the point's x in the base frame
+    xs = point[0] - ahead * into[0] - line * left[0]
+    ys = point[1] - ahead * into[1] - line * left[1]
+    return xs, ys, np.full(len(xs), heading)
+
+
+def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: ArmGeometry,
+                       line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """`line_poses` for a handle: facing along its pull (from `opened` towards `closed`), the line through the closed
+    handle; from these the arm follows the handle all the way open with one front grasp."""
+    into = np.asarray(closed[:2], dtype=float) - np.asarray(opened[:2], dtype=float)
+    if float(np.hypot(*into)) < 1e-6:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    return line_poses(closed, math.atan2(into[1], into[0]), arm, line)
+
+
+def place_headings(robot: Robot, obj: Object, target: Sequence[float]) -> list[tuple[np.ndarray, float]]:
+    """(tool position, tool heading) for each way place may stand the held `obj` at `target` (`PLACE_TURNS`), where
+    the tool points sideways (a tool pointing down turns about the vertical with the wrist: none)."""
+    held = invert(robot.body.attachments[obj].transform)
+    upright = level(obj.get_orientation(), obj.upright)
+    found = []
+    for turn in PLACE_TURNS:
+        position, orientation = compose((tuple(target), quat_multiply(yaw_quaternion(turn), upright)), held)
+        x = quat_to_matrix(orientation)[:, 0]
+        if abs(float(x[2])) < 0.7:
+            found.append((np.asarray(position, dtype=float), math.atan2(float(x[1]), float(x[0]))))
+    return found
+
+
+def camera_offset(robot: Robot) -> np.ndarray | None:
+    """The camera frame in the base frame (None without a camera)."""
+    camera = robot.description.camera
+    if camera is None:
+        return None
+    body = robot.body
+    to_base = invert(body.get_pose())
+    return np.asarray(compose(to_base, (body.get_link_position(camera.frame), (0, 0, 0, 1)))[0])
+
+
+def centre(obj: Object) -> np.ndarray:
+    """The centre of the object's bounding box (what a location faces and a camera looks at)."""
+    lo, hi = obj.get_aabb()
+    return (np.asarray(lo) + np.asarray(hi)) / 2.0
+
+
+def yaw_of(orientation: Sequence[float]) -> float:
+    """The heading (rad) of a quaternion (x, y, z, w) turned about the vertical."""
+    x, y, z, w = orientation
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))

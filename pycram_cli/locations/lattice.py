@@ -1,0 +1,110 @@
+"""Where base-pose candidates come from: a lattice of the floor around the target, and poses in line with a reach line.
+
+The lattice (every STEP metres within the arms' or the camera's range of the target) faces each position to the
+target and turns it a little either way. An arm with fewer than six rotating joints keeps its tool in the plane
+its pan turns, so it reaches with the tool pointing sideways only on its own reach line, which the lattice misses
+by the arm's mount offset: for it, opening a drawer and placing a thing held from the side also get the poses that
+put that line through the handle or the place (tried first); any other arm gets the drawer's in-line poses only
+once the lattice has failed (deferred).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from ..planning.head import camera_yaw
+from ..robots import Robot
+from .geometry import (STEP, ArmGeometry, aligned_reach_line, line_poses, place_headings, pull_aligned_poses,
+                       straight_reach_line)
+from .scoring import VIEW_DISTANCE
+from .spec import LocationSpec
+
+#: turns tried at every position, besides facing the target (rad)
+TURNS = (0.0, math.radians(20), -math.radians(20))
+#: `Poses.kind`: a lattice pose, an in-line pose tried first, an in-line pose deferred until the others failed
+LATTICE, FIRST, DEFERRED = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class Poses:
+    """Candidate base poses as arrays: position, heading, how far each is turned from facing the target, and kind."""
+
+    xs: np.ndarray
+    ys: np.ndarray
+    yaws: np.ndarray
+    turns: np.ndarray
+    kind: np.ndarray  # LATTICE, FIRST or DEFERRED (int8)
+
+
+def search_radius(arms: dict[str, ArmGeometry], reaching: bool, camera: np.ndarray | None) -> float:
+    """How far from the target candidates stand: an arm's reach from the base's centre, or the camera's range."""
+    if reaching:
+        return max(float(np.hypot(*a.shoulder[:2])) + a.length for a in arms.values()) + STEP
+    return VIEW_DISTANCE[2] + (float(np.hypot(*camera[:2])) if camera is not None else 0.0)
+
+
+def floor_lattice(target: np.ndarray, radius: float, turned: float, tried: Sequence[float]) -> Poses:
+    """The lattice of the floor within `radius` of `target`, each position facing it (less `turned`: a camera fixed
+    at an angle to the base's front) and turned by each of `tried`."""
+    lo = np.floor((target[:2] - radius) / STEP).astype(int)
+    hi = np.ceil((target[:2] + radius) / STEP).astype(int)
+    gx, gy = np.meshgrid(np.arange(lo[0], hi[0] + 1) * STEP, np.arange(lo[1], hi[1] + 1) * STEP, indexing="ij")
+    px, py = gx.ravel(), gy.ravel()
+    keep = np.hypot(px - target[0], py - target[1]) <= radius
+    px, py = px[keep], py[keep]
+    facing = np.arctan2(target[1] - py, target[0] - px)
+    if turned:
+        facing = facing - turned
+    xs = np.concatenate([px] * len(tried))
+    ys = np.concatenate([py] * len(tried))
+    turns = np.concatenate([np.full(len(px), t) for t in tried])
+    yaws = np.concatenate([facing] * len(tried)) + turns
+    return Poses(xs, ys, yaws, turns, np.zeros(len(xs), dtype=np.int8))
+
+
+def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry], reach_target: np.ndarray | None,
+                  handle_ends: tuple[np.ndarray, np.ndarray] | None) -> list[tuple[np.ndarray, ...]]:
+    """(xs, ys, yaws, kinds) of the poses in line with each arm's reach line: facing along a handle's pull
+    (`handle_ends`: closed, opened), or for each way a held thing may be placed at `reach_target`."""
+    parts = []
+    if handle_ends is not None:
+        closed, opened = handle_ends
+        for name, geo in arms.items():
+            line = aligned_reach_line(robot, name)
+            ax, ay, ayaw = pull_aligned_poses(closed, opened,
+                                              geo, line if line is not None else straight_reach_line(robot, name))
+            parts.append((ax, ay, ayaw, np.full(len(ax), FIRST if line is not None else DEFERRED, dtype=np.int8)))
+    elif spec.placing is not None and reach_target is not None:
+        # an arm that cannot turn its tool freely puts a thing held from the side down only on its reach line
+        for name, geo in arms.items():
+            line = aligned_reach_line(robot, name)
+            if line is None:
+                continue
+            for point, heading in place_headings(robot, spec.placing, reach_target):
+                ax, ay, ayaw = line_poses(point, heading, geo, line)
+                parts.append((ax, ay, ayaw, np.full(len(ax), FIRST, dtype=np.int8)))
+    return parts
+
+
+def candidate_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry], target: np.ndarray,
+                    reach_target: np.ndarray | None, fixed_camera: bool, camera: np.ndarray | None,
+                    handle_ends: tuple[np.ndarray, np.ndarray] | None) -> Poses:
+    """Every base-pose candidate of a location: the lattice around `target`, then the in-line poses within its
+    radius (a base that cannot drive gets them all the same: the resolution keeps only where it stands)."""
+    reaching = reach_target is not None
+    radius = search_radius(arms, reaching, camera)
+    turned = camera_yaw(robot) if fixed_camera and not reaching else 0.0  # the camera, not the front, faces it
+    # a head or an arm turns the camera to look: facing is enough; a camera fixed on the body needs the turns too
+    poses = floor_lattice(target, radius, turned, TURNS if reaching or fixed_camera else TURNS[:1])
+    parts = in_line_poses(robot, spec, arms, reach_target, handle_ends) if robot.description.mobile else []
+    if not parts:
+        return poses
+    ax, ay, ayaw, kind = (np.concatenate([part[k] for part in parts]) for k in range(4))
+    near = np.hypot(ax - target[0], ay - target[1]) <= radius
+    ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
+    aturn = np.angle(np.exp(1j * (ayaw - np.arctan2(target[1] - ay, target[0] - ax))))
+    return Poses(np.concatenate([poses.xs, ax]), np.concatenate([poses.ys, ay]), np.concatenate([poses.yaws, ayaw]),
+                 np.concatenate([poses.turns, aturn]), np.concatenate([poses.kind, kind]))

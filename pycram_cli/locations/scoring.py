@@ -1,0 +1,86 @@
+"""The cheap geometry that ranks base-pose candidates: scores, arm order, and the first two tests, vectorised.
+
+Every candidate gets a score from how far its arm's shoulder is from the target compared with a comfortable reach,
+how far its camera is from what it should see, how much it turns away and how far the robot would drive; a shoulder
+farther than the arm's length rules it `out of reach`, a camera too near or too far `out of view`. All of it is
+numpy over every candidate at once (thousands), so the expensive tests see only the best few. The additions keep
+one order: scores are compared to the last bit, and the same world must give the same ranking.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..planning.head import camera_pitch
+from ..robots import Robot
+from .candidates import CODE
+from .geometry import ArmGeometry
+
+#: the comfortable distance from the shoulder to the target, as a fraction of the arm's length
+REACH_FRACTION = 0.6
+#: visible-for: horizontal distances from the camera to the object (m): comfortable, least, most
+VIEW_DISTANCE = (1.0, 0.45, 2.5)
+#: a camera fixed on the body: how much of half its vertical view the target may be off its axis
+VIEW_FILL = 0.8
+#: score weights: per radian turned away, per metre driven, per metre off the comfortable view distance
+TURN_WEIGHT = 0.15
+TRAVEL_WEIGHT = 0.02
+VIEW_WEIGHT = 0.3
+
+
+def travel_scores(xs: np.ndarray, ys: np.ndarray, turns: np.ndarray, here: np.ndarray) -> np.ndarray:
+    """The score of turning away from the target and of driving from where the robot stands (`here`, x and y)."""
+    return TURN_WEIGHT * np.abs(turns) + TRAVEL_WEIGHT * np.hypot(xs - here[0], ys - here[1])
+
+
+def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray,
+              arms: dict[str, ArmGeometry], target: np.ndarray, floor_z: float) -> tuple[np.ndarray, np.ndarray]:
+    """The scores with the best arm's reach cost added, and each candidate's arms nearest first (indices into
+    `arms`, -1 for an arm that cannot reach); candidates no arm reaches are marked `out of reach` in `outcome`."""
+    c, s = np.cos(yaws), np.sin(yaws)
+    costs = []
+    for geo in arms.values():
+        sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
+        sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
+        sz = floor_z + geo.shoulder[2]
+        distance = np.sqrt((target[0] - sx) ** 2 + (target[1] - sy) ** 2 + (target[2] - sz) ** 2)
+        cost = np.abs(distance - REACH_FRACTION * geo.length)
+        costs.append(np.where(distance > geo.length + 0.02, np.inf, cost))
+    stacked = np.stack(costs, axis=1)  # candidates x arms
+    best = stacked.min(axis=1)
+    order = np.argsort(stacked, axis=1, kind="stable")
+    arm_order = np.where(np.isfinite(np.take_along_axis(stacked, order, axis=1)), order, -1).astype(np.int8)
+    outcome[~np.isfinite(best)] = CODE["out of reach"]
+    return scores + np.where(np.isfinite(best), best, 0.0), arm_order
+
+
+def add_view(robot: Robot, scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray,
+             yaws: np.ndarray, camera: np.ndarray | None, target: np.ndarray, floor_z: float,
+             fixed_camera: bool) -> np.ndarray:
+    """The scores with the view cost added (distance off the comfortable one; for a camera fixed on the body, also
+    how far the target is off its axis); candidates whose camera is too near, too far or cannot see the target's
+    height are marked `out of view` in `outcome` (unless already ruled out)."""
+    c, s = np.cos(yaws), np.sin(yaws)
+    cx = xs + c * camera[0] - s * camera[1] if camera is not None else xs
+    cy = ys + s * camera[0] + c * camera[1] if camera is not None else ys
+    distance = np.hypot(target[0] - cx, target[1] - cy)
+    out = (distance < VIEW_DISTANCE[1]) | (distance > VIEW_DISTANCE[2])
+    if fixed_camera and camera is not None and robot.description.camera is not None:
+        # a camera that cannot tilt sees the target only from the distances that put it in its view's height
+        off = np.abs(np.arctan2(target[2] - (floor_z + camera[2]), distance) - camera_pitch(robot))
+        out |= off > VIEW_FILL * robot.description.camera.vertical_fov / 2
+        scores = scores + VIEW_WEIGHT * off
+    outcome[(outcome == 0) & out] = CODE["out of view"]
+    return scores + VIEW_WEIGHT * np.abs(distance - VIEW_DISTANCE[0])
+
+
+def here_arm_order(arms: dict[str, ArmGeometry], target: np.ndarray | None, x: float, y: float, yaw: float,
+                   floor_z: float) -> np.ndarray:
+    """The arms to try from the robot's own pose (x, y, yaw): nearest shoulder first (one row of arm indices)."""
+    if target is None or not arms:
+        return np.zeros((1, len(arms)), dtype=np.int8)
+    c, s = math.cos(yaw), math.sin(yaw)
+    distance = [math.dist(target, (x + c * g.shoulder[0] - s * g.shoulder[1], y + s * g.shoulder[0] + c * g.shoulder[1],
+                                   floor_z + g.shoulder[2])) for g in arms.values()]
+    return np.array([sorted(range(len(arms)), key=lambda k: (distance[k], k))], dtype=np.int8)

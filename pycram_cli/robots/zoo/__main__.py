@@ -1,0 +1,6 @@
+"""`python -m pycram_cli.robots.zoo 0 1 2 --out /tmp/zoo`: write zoo robots and their kitchen worlds."""
+from __future__ import annotations
+
+from .files import main
+
+raise SystemExit(main())

@@ -1,0 +1,236 @@
+"""Writing a zoo robot: its URDF (with inertia from its shapes), its robot description, and a kitchen world.
+
+What: `urdf_text`, `description_text`, `write(robot, folder)`, `write_world` (the bundled kitchen with the zoo
+robot in place of the PR2), and the command line (`python -m pycram_cli.robots.zoo 0 1 2 --out /tmp/zoo`).
+Why: the files are what pycram reads, as it reads a user's robot; numbers are written with a fixed precision.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from ...paths import worlds_dir
+from .build import generate
+from .model import FRAME_INERTIA, FRAME_MASS, Joint, Link, Shape, ZooRobot, fmt, fmt3
+from .park import rpy_matrix
+
+# -- inertia ------------------------------------------------------------------------------------------------------
+
+
+def _volume(shape: Shape) -> float:
+    if shape.kind == "box":
+        return float(np.prod(shape.dims))
+    if shape.kind == "cylinder":
+        return math.pi * shape.dims[0] ** 2 * shape.dims[1]
+    return 4.0 / 3.0 * math.pi * shape.dims[0] ** 3
+
+
+def _own_inertia(shape: Shape, mass: float) -> np.ndarray:
+    """The inertia tensor of a solid primitive about its centre, in link axes."""
+    if shape.kind == "box":
+        sx, sy, sz = shape.dims
+        local = np.diag([sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2]) * mass / 12.0
+    elif shape.kind == "cylinder":
+        radius, length = shape.dims
+        side = mass * (3 * radius**2 + length**2) / 12.0
+        local = np.diag([side, side, mass * radius**2 / 2.0])
+    else:
+        local = np.eye(3) * 0.4 * mass * shape.dims[0] ** 2
+    rot = rpy_matrix(shape.rpy)
+    return rot @ local @ rot.T
+
+
+def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
+    """(mass, centre of mass, diagonal inertia) of a link of uniform density; a token one for a frame-only link."""
+    if link.density is None or not link.shapes:
+        return FRAME_MASS, np.zeros(3), np.full(3, FRAME_INERTIA)
+    volumes = np.array([_volume(s) for s in link.shapes])
+    masses = link.density * volumes
+    centres = np.array([s.xyz for s in link.shapes], dtype=float)
+    mass = float(masses.sum())
+    com = (masses[:, None] * centres).sum(axis=0) / mass
+    tensor = np.zeros((3, 3))
+    for shape, part, centre in zip(link.shapes, masses, centres):
+        d = centre - com
+        tensor += _own_inertia(shape, part) + part * (d @ d * np.eye(3) - np.outer(d, d))
+    return mass, com, np.maximum(np.diag(tensor), FRAME_INERTIA)
+
+
+# -- writing ------------------------------------------------------------------------------------------------------
+
+
+def _geometry(shape: Shape) -> str:
+    if shape.kind == "box":
+        return f'<box size="{fmt3(shape.dims)}"/>'
+    if shape.kind == "cylinder":
+        return f'<cylinder radius="{fmt(shape.dims[0])}" length="{fmt(shape.dims[1])}"/>'
+    return f'<sphere radius="{fmt(shape.dims[0])}"/>'
+
+
+def _link_xml(link: Link) -> list[str]:
+    mass, com, diag = inertial(link)
+    lines = [f'  <link name="{link.name}">',
+             "    <inertial>",
+             f'      <origin xyz="{fmt3(com)}" rpy="0 0 0"/>',
+             f'      <mass value="{fmt(mass)}"/>',
+             f'      <inertia ixx="{fmt(diag[0], 8)}" ixy="0" ixz="0" iyy="{fmt(diag[1], 8)}" iyz="0" '
+             f'izz="{fmt(diag[2], 8)}"/>',
+             "    </inertial>"]
+    for shape in link.shapes:
+        origin = f'<origin xyz="{fmt3(shape.xyz)}" rpy="{fmt3(shape.rpy)}"/>'
+        lines += ["    <visual>", f"      {origin}", f"      <geometry>{_geometry(shape)}</geometry>",
+                  f'      <material name="c{fmt3(shape.rgba, 2).replace(" ", "_")}"><color rgba="{fmt3(shape.rgba, 3)}"/>'
+                  "</material>",
+                  "    </visual>",
+                  "    <collision>", f"      {origin}", f"      <geometry>{_geometry(shape)}</geometry>", "    </collision>"]
+    lines.append("  </link>")
+    return lines
+
+
+def _joint_xml(joint: Joint) -> list[str]:
+    lines = [f'  <joint name="{joint.name}" type="{joint.type}">',
+             f'    <parent link="{joint.parent}"/>',
+             f'    <child link="{joint.child}"/>',
+             f'    <origin xyz="{fmt3(joint.xyz)}" rpy="{fmt3(joint.rpy)}"/>']
+    if joint.axis is not None:
+        lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
+    if joint.type != "fixed":
+        bounds = f'lower="{fmt(joint.lower)}" upper="{fmt(joint.upper)}" ' if joint.lower is not None else ""
+        lines.append(f'    <limit {bounds}effort="{fmt(joint.effort)}" velocity="{fmt(joint.velocity)}"/>')
+    lines.append("  </joint>")
+    return lines
+
+
+def urdf_text(robot: ZooRobot) -> str:
+    """The robot's URDF (one element a line: PyBullet cannot parse a URDF written on one line)."""
+    lines = ['<?xml version="1.0"?>',
+             f"<!-- GENERATED by pycram_cli/robots/zoo from seed {robot.seed} - a robot of the zoo, not a real one. -->",
+             f'<robot name="{robot.name}">']
+    links = {link.name: link for link in robot.links}
+    lines += _link_xml(links[robot.root_link])
+    for joint in robot.joints:
+        lines += _joint_xml(joint)
+        lines += _link_xml(links[joint.child])
+    lines.append("</robot>")
+    return "\n".join(lines) + "\n"
+
+
+def _flow(values: Iterable[float | str]) -> str:
+    return "[" + ", ".join(v if isinstance(v, str) else fmt(v) for v in values) + "]"
+
+
+def description_text(robot: ZooRobot) -> str:
+    """The robot description (docs/robots.md), with only the keys that document defines."""
+    g, c, arm = robot.gripper, robot.camera, robot.arm_name
+    lines = [f"# Robot description of {robot.name}, a robot of pycram's zoo (seed {robot.seed}):",
+             "# GENERATED by pycram_cli/robots/zoo - do not edit by hand.",
+             f"name: {robot.name}",
+             f"base_link: {robot.root_link}",
+             "mobile: true"]
+    if robot.torso_joint:
+        lines.append(f"torso: {{joint: {robot.torso_joint}, default: {fmt(robot.torso_default)}}}")
+    lines += ["camera:",
+              f"  frame: {c.frame}   # on the {c.kind}; optical: +z forward, +x right, +y down",
+              f"  horizontal_fov: {fmt(c.horizontal_fov)}",
+              f"  vertical_fov: {fmt(c.vertical_fov)}",
+              f"  near: {fmt(c.near)}",
+              f"  far: {fmt(c.far)}"]
+    if robot.head is not None:
+        h = robot.head
+        lines.append(f"head: {{pan_joint: {h.pan_joint}, tilt_joint: {h.tilt_joint}, pan_link: {h.pan_link}, "
+                     f"tilt_link: {h.tilt_link}}}")
+    lines += ["arms:",
+              f"  {arm}:",
+              f"    joints: {_flow(robot.arm_joints)}",
+              f"    tool_frame: {robot.tool_frame}",
+              f"    palm_link: {robot.palm_link}",
+              f"    gripper:   # {g.kind.replace('_', ' ')} fingers",
+              f"      joints: {_flow(g.joints)}",
+              f"      open: {fmt(g.open)}",
+              f"      closed: {fmt(g.closed)}",
+              f"      max_width: {fmt(g.max_width)}",
+              f"      finger_height: {fmt(g.finger_height)}",
+              f"    links: {_flow(robot.arm_links)}",
+              "    poses:",
+              f"      park: {_flow(robot.park)}",
+              "# Tool orientation (x, y, z, w) relative to the base: the tool's +x points out of the gripper, the",
+              "# fingers close along its y; with the arm at zero it is aligned with the base (stretched forward).",
+              "grasps:"]
+    lines += [f"  {name}: {_flow(q)}" for name, q in robot.grasps.items()]
+    if robot.camera.kind == "wrist":
+        lines += ["# The camera is on the wrist: looking moves the arm.", f'resources: {{head: "arm:{arm}"}}']
+    return "\n".join(lines) + "\n"
+
+
+def write(robot: ZooRobot, folder: Path) -> Path:
+    """Write `<name>.urdf` and its description `<name>.yaml` into folder; returns the URDF's path."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    urdf = folder / f"{robot.name}.urdf"
+    urdf.write_text(urdf_text(robot), encoding="utf-8", newline="\n")
+    (folder / f"{robot.name}.yaml").write_text(description_text(robot), encoding="utf-8", newline="\n")
+    return urdf
+
+
+def world_joints(robot: ZooRobot) -> dict[str, float]:
+    """The joint values a zoo world starts with: the torso's default, the head looking down, the arm parked."""
+    values: dict[str, float] = {}
+    if robot.torso_joint:
+        values[robot.torso_joint] = robot.torso_default
+    if robot.head is not None:
+        values[robot.head.tilt_joint] = robot.head.tilt_down
+    values.update(zip(robot.arm_joints, robot.park))
+    return values
+
+
+def write_world(robot: ZooRobot, folder: Path, base: Sequence[float] = (0.0, 0.7, 0.0),
+                template: Path | None = None) -> Path:
+    """Write `<name>_kitchen.yaml`: the bundled kitchen (worlds/kitchen.yaml) with this robot in place of the PR2.
+
+    The robot's files are written into the same folder (`write`) and named by absolute paths.
+    """
+    folder = Path(folder).resolve()
+    urdf = write(robot, folder)
+    source = (template or worlds_dir() / "kitchen.yaml").read_text(encoding="utf-8").splitlines()
+    start = next(i for i, line in enumerate(source) if line.strip() == "- name: pr2")
+    end = next(i for i in range(start + 1, len(source)) if source[i].lstrip().startswith("- name:"))
+    block = [f"  - name: {robot.name}",
+             "    type: robot",
+             f"    file: {urdf}",
+             f"    description: {urdf.with_suffix('.yaml')}",
+             f"    position: {_flow(base)}",
+             "    joints:"]
+    block += [f"      {name}: {fmt(value)}" for name, value in world_joints(robot).items()]
+    lines = [f"# GENERATED by pycram_cli/robots/zoo: worlds/kitchen.yaml with the zoo robot {robot.name}"
+             f" (seed {robot.seed}) in place of the PR2."]
+    for line in source[:start]:
+        if line.startswith("#"):
+            continue  # the template's own comments speak of the PR2 and of paths relative to it
+        if line.startswith("description:"):
+            line = f"description: {robot.name} (robot zoo, seed {robot.seed}) in the IAI kitchen, breakfast items on the sink counter"
+        lines.append(line)
+    lines += block + source[end:]
+    world = folder / f"{robot.name}_kitchen.yaml"
+    world.write_text("\n".join(lines) + "\n", encoding="utf-8", newline="\n")
+    return world
+
+
+# -- command line -----------------------------------------------------------------------------------------------
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m pycram_cli.robots.zoo",
+                                     description="Write zoo robots (URDF + description) and a kitchen world for each seed.")
+    parser.add_argument("seeds", nargs="+", type=int, metavar="SEED")
+    parser.add_argument("--out", type=Path, required=True, help="the folder to write into")
+    args = parser.parse_args(argv)
+    for seed in args.seeds:
+        robot = generate(seed)
+        world = write_world(robot, args.out)
+        print(f"seed {seed}: {robot.name} ({len(robot.arm_joints)}-joint arm, {robot.gripper.kind} gripper, "
+              f"camera on the {robot.camera.kind}{', torso' if robot.torso_joint else ''}) -> {world}")
+    return 0
