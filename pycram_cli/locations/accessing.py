@@ -74,12 +74,13 @@ def opened_collisions(robot: Robot, spec: LocationSpec, held: list[Object], x: f
         return floor.exact_collisions(robot.body, held, x, y, yaw)
 
 
-def takes_handle(robot: Robot, spec: LocationSpec, arm: str) -> bool:
+def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True) -> bool | None:
     """Accessing's own planning takes the handle from here and pulls it to the goal: its grasp (aligned with the handle's
     box, not turned with the base as the reach test's first IK) and its pre-grasp pose are reached, the arm holding
     the handle so follows it all the way, step by step (`follows_handle`: the drawer then inside no part of
     the robot but the hand, as a robot standing too close would open it into its own arm), and the arm, its
-    gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`)."""
+    gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`; with
+    `search` off, without its joint-space search: None when only that way is blocked, a search might find one)."""
     handle = _handle(spec)
     obj = handle.obj
     gripper = robot.description.arm(arm).gripper
@@ -93,7 +94,10 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str) -> bool:
             if not follows_handle(robot, arm, obj, handle.link, handle.joint, end, at):
                 return False
             robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
-            move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle")
         except (GripperFailure, ReachabilityFailure, ManipulationFailure):
             return False
+        try:
+            move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle", search=search)
+        except ManipulationFailure:
+            return None if not search else False
     return True

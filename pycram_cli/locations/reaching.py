@@ -37,15 +37,17 @@ class Miss:
 
     reason: str
     detail: str = ""
+    #: whether a joint-space search for the arm's way (not made: `ArmTests.searching` was off) might have passed it
+    unsearched: bool = False
 
 
-def _missed(blocked: list[str], holdable: bool, target: Any) -> Miss:
+def _missed(blocked: list[str], holdable: bool, target: Any, unsearched: bool = False) -> Miss:
     """Blocked when something was in the way, else cannot hold (an object no grasp fits), else out of reach."""
     if blocked:
-        return Miss("blocked", ", ".join(blocked))
+        return Miss("blocked", ", ".join(blocked), unsearched)
     if not holdable and isinstance(target, Object):
-        return Miss("cannot hold", target.name)
-    return Miss("out of reach")
+        return Miss("cannot hold", target.name, unsearched)
+    return Miss("out of reach", "", unsearched)
 
 
 class ArmTests:
@@ -63,12 +65,15 @@ class ArmTests:
         self.attempts: list[tuple[str, Any, str]] = []
         self.taken: Any = None
         self.shortfall = math.inf
+        #: whether the tests may search the arm's joint space for a way (`move_over`'s last resort: about 0.4 s when
+        #: no way exists); a test that failed only for want of one says so (`Miss.unsearched`)
+        self.searching = True
 
     def reach(self, arms: list[str]) -> tuple[str, Any] | Miss:
         """The first arm and grasp (arms in the order given, grasps in the description's order) that reach untouched."""
         robot, spec = self.robot, self.spec
         blocked: list[str] = []
-        holdable = False
+        holdable = unsearched = False
         target = spec.reachable_for
         if isinstance(target, Object) and spec.placing is None and spec.accessing is None:
             return self._grasp(arms, target)
@@ -82,12 +87,15 @@ class ArmTests:
                 solution = reach(robot, arm, position, orientation)
                 if not solution.success:
                     continue
-                if spec.accessing is not None and not takes_handle(robot, spec, arm):
-                    continue
+                if spec.accessing is not None:
+                    takes = takes_handle(robot, spec, arm, search=self.searching)
+                    if not takes:
+                        unsearched |= takes is None
+                        continue
                 if self._touches_at(solution.joint_positions, blocked):
                     continue
                 return arm, grasp
-        return _missed(blocked, holdable, spec.reachable_for)
+        return _missed(blocked, holdable, spec.reachable_for, unsearched)
 
     def _grasp(self, arms: list[str], obj: Object) -> tuple[str, Any] | Miss:
         """The first arm and grasp with which pick-up itself would take `obj` from here: the test is the pick-up
@@ -130,7 +138,7 @@ class ArmTests:
                     self.taken = solution
                     return arm, grasp
                 viable.append((arm, grasp, pre, solution, legs))  # its ways may go around what is in the way
-        for tier in (AROUND, SEARCH):
+        for tier in ((AROUND, SEARCH) if self.searching else (AROUND,)):
             for arm, grasp, pre, solution, legs in viable:
                 if self._ways_free(obj, arm, pre, solution, tier, blocked, legs):
                     self.taken = solution
@@ -140,7 +148,7 @@ class ArmTests:
             attempts[arm, grasp] = str(failure) if failure is not None else "its ways are blocked"
         self.attempts = [(arm, grasp, attempts[arm, grasp]) for arm in arms for grasp in grasps
                          if (arm, grasp) in attempts]
-        return _missed(blocked, holdable, obj)
+        return _missed(blocked, holdable, obj, bool(viable) and not self.searching)
 
     def _touches_at(self, joints: Mapping[str, float], blocked: list[str]) -> bool:
         """Whether the arm at these joint values touches anything but what it may (the target, its support), what
@@ -189,6 +197,7 @@ class ArmTests:
         robot = self.robot
         body = robot.body
         blocked: list[str] = []
+        unsearched = False
         for arm in arms:
             try:
                 _, _, solution, above, _ = plan_place(robot, arm, obj, tuple(float(v) for v in target))
@@ -209,14 +218,16 @@ class ArmTests:
             free = True
             with body.joints_kept(list(above.joint_positions)):
                 try:
-                    move_over(robot, arm, above.joint_positions, f"the {arm_words(arm)}'s motion above the place")
+                    move_over(robot, arm, above.joint_positions, f"the {arm_words(arm)}'s motion above the place",
+                              search=self.searching)
                 except ManipulationFailure as failure:
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                     free = False
             body.move_attached()  # what it holds back with the arm (joints_kept puts only the joints back)
             if free and self._way_back_free(arm, obj, solution.joint_positions, blocked):
                 return arm, None
-        return Miss("blocked", ", ".join(blocked)) if blocked else Miss("out of reach")
+            unsearched |= not self.searching
+        return Miss("blocked", ", ".join(blocked), unsearched) if blocked else Miss("out of reach", "", unsearched)
 
     def _way_back_free(self, arm: str, obj: Object, placed: Mapping[str, float], blocked: list[str]) -> bool:
         """Whether the arm, having let `obj` go at the place (`placed`: its joint values there), finds a way back to the
@@ -231,7 +242,7 @@ class ArmTests:
             body.reset_joints(placed)
             try:
                 move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the place", down_onto_goal=False,
-                          ignore=[obj])
+                          ignore=[obj], search=self.searching)
             except ManipulationFailure as failure:
                 blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
                 return False
