@@ -50,8 +50,9 @@ from ..world.pose import quat_to_matrix, quats_to_matrices
 PENETRATION = 0.001
 #: the farthest any point of the moving part travels between two checks near obstacles (m)
 SPACING = 0.01
-#: boxes closer than this are measured exactly (closest points), to step farther near big boxes (m)
-NEAR = 0.03
+#: boxes closer than this are measured exactly (closest points), so that a check near big boxes (a counter, a
+#: cabinet) steps as far as the parts' true distance allows, not only as far as their boxes' gap (m)
+NEAR = 0.15
 #: the levers (see `walk`) are measured afresh after this much travel (m)
 LEVER_REFRESH = 0.1
 #: approaches stop this close to the first contact (m of travel)
@@ -254,10 +255,11 @@ class Motion:
             apart = gaps[apart_k, apart_o]
             order = np.argsort(apart, kind="stable")
             for k, o, box_gap in zip(apart_k[order].tolist(), apart_o[order].tolist(), apart[order].tolist()):
-                if lows[k] <= SPACING or box_gap > lows[k]:
+                if lows[k] <= SPACING or box_gap >= lows[k]:
                     continue  # nothing further can change this mover's clearance where it matters
-                distance = self._distance(k, o, NEAR)
-                lows[k] = min(lows[k], max(distance, 0.0) if distance < NEAR else NEAR)
+                within = min(lows[k], NEAR)
+                distance = self._distance(k, o, within)  # inf: not nearer than `within`
+                lows[k] = min(lows[k], within if distance == math.inf else max(distance, 0.0))
         return np.array(lows), sorted(hits.values(), key=lambda h: -h.depth)
 
     def allow_current(self) -> None:
