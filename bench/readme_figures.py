@@ -198,7 +198,7 @@ def bench_table(name: str) -> Callable[[dict[str, Any]], str]:
 
 REGIONS: dict[str, Callable[[dict[str, Any]], str]] = {
     "plans": plans_table, **{name: bench_table(name) for name in (
-        "reasoning", "locations", "scale_design", "scale_crowded", "scale_plans")}}
+        "reasoning", "locations", "motion", "scale_design", "scale_crowded", "scale_plans")}}
 
 
 def fill_regions(text: str, results: dict[str, Any]) -> str:
