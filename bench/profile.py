@@ -145,6 +145,8 @@ def _import_everything() -> list[Any]:
     """Every module of the package (so that every reference to an entry point can be found and wrapped)."""
     modules = []
     for info in pkgutil.walk_packages(pycram_cli.__path__, "pycram_cli."):
+        if info.name.rsplit(".", 1)[-1] == "__main__":
+            continue  # a package's command line: importing it runs it
         try:
             modules.append(importlib.import_module(info.name))
         except Exception:  # noqa: BLE001 - an optional extra (ray, a GUI) that is not installed
