@@ -234,6 +234,10 @@ def move_tool(robot: Robot, arm: str, position: Sequence[float], orientation: Se
 #: it is (these heights, m), back towards the robot's base (BACK, m) and up, and down onto its goal from above it
 VIA_HEIGHTS = (0.1, 0.2, 0.3)
 BACK = 0.15
+#: or the tool drawn straight back towards the base, this far (m), through LINE_STEPS poses on the line (a joint-space
+#: leg between two poses far apart can swing what the hand holds down into the counter it was lifted from)
+LINE_BACKS = (0.3, 0.45)
+LINE_STEPS = 3
 
 
 def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: float,
@@ -262,7 +266,8 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
               around: bool = True, search: bool = True, ignore: Sequence[Object] = (),
               straight: ManipulationFailure | None = None, edges: int = SEARCH_EDGES) -> None:
     """Move an arm to joint values along a collision-free path: straight (in joint space) when it is free, else around
-    what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up —
+    what is in the way, through a few poses of the tool — up from where it is, or back towards the base and up, or
+    straight back along a line —
     or joint by joint (the arm's outer joints first, folding it in, or its inner ones first), or through one of the
     arm's named poses (the description's park, carry, ...), and, for a goal that is
     a tool pose, down onto the goal from above it; last, a search through the arm's joint space
@@ -298,6 +303,10 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
                 solved[key] = _shifted(robot, arm, via(("up", 0.0, BACK)), key[1])
             elif kind == "onto":  # above the goal
                 solved[key] = _shifted(robot, arm, goal, key[1])
+            elif kind == "line":  # the k-th of n poses on the line back, from the one before it
+                length, k, n = key[1], key[2], key[3]
+                solved[key] = _shifted(robot, arm, start if k == 1 else via(("line", length, k - 1, n)), 0.0,
+                                       length / n)
         return solved[key]
 
     departures: list[list[Any]] = [[]]
@@ -308,6 +317,8 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
         departures.append([("up", 0.0, BACK), ("back-up", h)])
     for h in VIA_HEIGHTS:  # up and back at once (where the arm cannot draw back at its height)
         departures.append([("up", h, BACK)])
+    for length in LINE_BACKS:  # straight back, along a line
+        departures.append([("line", length, k, LINE_STEPS) for k in range(1, LINE_STEPS + 1)])
     # or joint by joint: the arm's outer half first (folding it in, out of the way), or its inner half first
     names = [n for n in robot.description.arm(arm).joints if n in goal]
     half = len(names) // 2
