@@ -33,6 +33,7 @@ geometry comes from the world (`closest_points`, boxes); nothing here calls PyBu
 """
 from __future__ import annotations
 
+import heapq
 import math
 import weakref
 from collections import OrderedDict
@@ -213,15 +214,19 @@ class Motion:
         clear, hits = self.clearances(boxes)
         return (float(clear.min()) if len(clear) else math.inf), hits
 
-    def clearances(self, boxes: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, list[Hit]]:
-        """`scan` for each mover (the links, then the held objects): a lower bound of its gap to the obstacles (exact
-        above SPACING, at or below SPACING otherwise), and what the moving part is inside of.
+    def clearances(self, boxes: tuple[np.ndarray, np.ndarray] | None = None,
+                   rates: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, list[Hit]]:
+        """`scan` for each mover (the links, then the held objects): a lower bound of its gap to the obstacles, and
+        what the moving part is inside of.
 
         Only boxes that overlap can hold parts inside each other (PyBullet's boxes enclose the shapes), so only
-        their pairs are measured for hits; a pair whose boxes are apart (but nearer than NEAR) is measured only
-        while it can still lower its mover's clearance: nearest boxes first, until the mover's clearance is at
-        SPACING or the pair's box gap is beyond it (the distance between two parts is never below the gap between
-        their boxes)."""
+        their pairs are measured for hits. A pair whose boxes are apart (but nearer than NEAR) is measured only
+        while it can still matter (the distance between two parts is never below the gap between their boxes, so
+        a mover's bound is the smaller of what was measured and its nearest unmeasured pair's box gap):
+        - without `rates`, for every mover, nearest boxes first, until its bound is at SPACING or exact;
+        - with `rates` (a path's check: each mover's travel per unit of the path is `base + travel · weight`, see
+          `_follow`), only the mover that limits the next step is measured further, until its bound is at SPACING
+          or exact: the step the bounds allow is then the one exact clearances would allow, with fewer queries."""
         count = len(self.links) + len(self.held)
         if not count:
             return np.zeros(0), []
@@ -250,17 +255,48 @@ class Motion:
             key = (self._mover_name(k), obj.id, link)
             if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
                 hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
+        found = sorted(hits.values(), key=lambda h: -h.depth)
         apart_k, apart_o = np.nonzero(near & (gaps > 0.0))
-        if len(apart_k):
-            apart = gaps[apart_k, apart_o]
-            order = np.argsort(apart, kind="stable")
-            for k, o, box_gap in zip(apart_k[order].tolist(), apart_o[order].tolist(), apart[order].tolist()):
-                if lows[k] <= SPACING or box_gap >= lows[k]:
-                    continue  # nothing further can change this mover's clearance where it matters
-                within = min(lows[k], NEAR)
-                distance = self._distance(k, o, within)  # inf: not nearer than `within`
-                lows[k] = min(lows[k], within if distance == math.inf else max(distance, 0.0))
-        return np.array(lows), sorted(hits.values(), key=lambda h: -h.depth)
+        if not len(apart_k):
+            return np.array(lows), found
+        apart = gaps[apart_k, apart_o]
+        order = np.argsort(apart, kind="stable")
+        pending: list[list[tuple[float, int]]] = [[] for _ in range(count)]  # each mover's pairs, nearest last
+        for k, o, box_gap in zip(apart_k[order].tolist(), apart_o[order].tolist(), apart[order].tolist()):
+            pending[k].append((box_gap, o))
+        for queue in pending:
+            queue.reverse()
+
+        def measure(k: int) -> None:
+            """The nearest unmeasured pair of mover k measured (its box gap below k's bound so far)."""
+            _, o = pending[k].pop()
+            within = min(lows[k], NEAR)
+            distance = self._distance(k, o, within)  # inf: not nearer than `within`
+            lows[k] = min(lows[k], within if distance == math.inf else max(distance, 0.0))
+
+        def bound(k: int) -> float:
+            return min(lows[k], pending[k][-1][0]) if pending[k] else lows[k]
+
+        if rates is None:
+            for k in range(count):
+                while pending[k] and lows[k] > SPACING and pending[k][-1][0] < lows[k]:
+                    measure(k)
+            return np.array([bound(k) for k in range(count)]), found
+        base, weight = rates[0].tolist(), rates[1].tolist()
+
+        def step(k: int) -> float:
+            travel = max(min(bound(k), 1.0), SPACING)
+            return travel / (base[k] + travel * weight[k])
+
+        heap = [(step(k), k) for k in range(count) if base[k] + weight[k] > 0.0]
+        heapq.heapify(heap)
+        while heap:
+            _, k = heapq.heappop(heap)
+            if not pending[k] or lows[k] <= SPACING or pending[k][-1][0] >= lows[k]:
+                break  # the mover that limits the step is measured as far as it matters
+            measure(k)
+            heapq.heappush(heap, (step(k), k))
+        return np.array([bound(k) for k in range(count)]), found
 
     def allow_current(self) -> None:
         """Contacts as they are now may stay (no deeper) along the motion."""
@@ -409,20 +445,21 @@ class Motion:
             while True:
                 self._put(start + t * (end - start))
                 boxes = self._mover_boxes()
-                clear, hits = self.clearances(boxes)
-                if hits:
-                    break
-                last_free = t
-                if t >= 1.0:
-                    break
                 # no point of mover k moves farther than `travel[k]` before the next check. Along the path, a point
                 # of k moves at most Σᵢ rᵢₖ·|Δqᵢ| per unit of t; its distance from joint i's axis changes only as
                 # the joints below i move it, so by no more than its travel since the levers were measured
                 # (`since`) plus this step's: they are measured afresh every LEVER_REFRESH of travel
                 if levers is None or since.max() > LEVER_REFRESH:
                     levers, since = self._local_levers(*boxes, below), np.zeros(len(parts))
+                base = delta @ levers + since * weights
+                clear, hits = self.clearances(boxes, (base, weights))
+                if hits:
+                    break
+                last_free = t
+                if t >= 1.0:
+                    break
                 travel = np.maximum(np.minimum(clear, 1.0), SPACING)
-                rates = delta @ levers + (since + travel) * weights
+                rates = base + travel * weights
                 moving = rates > 0
                 if not moving.any():
                     t = 1.0
