@@ -3,6 +3,7 @@
 
     python bench/project.py              # 3 repetitions, 20 runs per alternative
     python bench/project.py --runs 5 --repeat 1
+    python bench/project.py --modes 1,2,4,8   # in this process against forked workers, by projected runs
 
 Measured in one process on the bundled kitchen, PR2 at the counter:
 
@@ -14,6 +15,12 @@ Measured in one process on the bundled kitchen, PR2 at the counter:
 
 Both print medians over the repetitions, and their ratio: the step's own overhead (saving,
 resetting, drawing, checking starts, folding the trace) on top of the pick-ups themselves.
+The step runs as `pycram run` runs it (sweep/projection.py's LocalProjector: the first run here,
+timed, the rest on forked workers when that is faster).
+
+`--modes R1,R2,...`: the step with 2 x R projected runs, in this process and on forked workers
+(one per core; the first run always here), medians of each; and the same with runs that do
+nothing (a log step): what forking the workers and collecting their rows costs (STARTUP_COST).
 """
 from __future__ import annotations
 
@@ -31,22 +38,26 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
 from pycram_cli.plan import load_plan, run_plan  # noqa: E402
+from pycram_cli.sweep.projection import LocalProjector, cores  # noqa: E402
 from pycram_cli.world.pose import quat_multiply, yaw_quaternion  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
 COUNTER = "{target: [0.65, 0.7, 0], orientation: [0, 0, 0, 1]}"
 
 
-def project_plan(folder: Path, runs: int) -> Path:
+def project_plan(folder: Path, runs: int, action: str = "pick-up") -> Path:
+    """The plan: drive to the counter, project the left and the right arm's pick-up (or a log step), run the best."""
     path = folder / "project.yaml"
+    left, right = (("{pick-up: {object: milk, arm: left}}", "{pick-up: {object: milk, arm: right}}")
+                   if action == "pick-up" else ("{log: left}", "{log: right}"))
     path.write_text(textwrap.dedent(f"""\
         world: kitchen
         body:
           - moving: {COUNTER}
           - project:
               alternatives:
-                left: [{{pick-up: {{object: milk, arm: left}}}}]
-                right: [{{pick-up: {{object: milk, arm: right}}}}]
+                left: [{left}]
+                right: [{right}]
               runs: {runs}
               vary: {{milk: {{noise: [0.02, 0.02, 0], yaw: 0.3}}}}
         """))
@@ -65,12 +76,43 @@ def chosen_seconds(trace: dict) -> float:
     return float(chosen["timing"]["duration"])
 
 
+def step_seconds(world, plan, start, projector) -> float:
+    """The project step's own time: the plan's, minus the chosen pick-up's."""
+    world.reset_to(start)
+    began = time.perf_counter()
+    result = run_plan(plan, world, projector=projector)
+    assert result.succeeded, result.failure
+    return time.perf_counter() - began - chosen_seconds(result.trace)
+
+
+def modes(world, folder: Path, counts: list[int], repeat: int) -> None:
+    start = world.save_state()
+    print(f"2 x R projected runs, medians over {repeat}: in this process | on {cores()} forked workers")
+    for action in ("pick-up", "log"):
+        for runs in counts:
+            plan = load_plan(project_plan(folder, runs, action), world)
+            here, forked = [], []
+            for _ in range(repeat):
+                here.append(step_seconds(world, plan, start, LocalProjector(startup=float("inf"))))
+                forked.append(step_seconds(world, plan, start, LocalProjector(startup=0.0)))
+            a, b = statistics.median(here), statistics.median(forked)
+            print(f"{action:8s} R={runs:3d} ({2 * runs:3d} runs): {a:6.3f} s | {b:6.3f} s   "
+                  f"({'workers' if b < a else 'in process'} faster by {abs(a - b):.3f} s)")
+    print(f"(load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=20, help="projected runs per alternative (default 20)")
     parser.add_argument("--repeat", type=int, default=3, help="repetitions (default 3)")
+    parser.add_argument("--modes", help="R1,R2,...: in this process against forked workers for 2 x R runs")
     args = parser.parse_args()
     world = load_world("kitchen")
+    if args.modes:
+        with tempfile.TemporaryDirectory() as tmp:
+            modes(world, Path(tmp), [int(r) for r in args.modes.split(",")], args.repeat)
+        world.exit()
+        return
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         project = load_plan(project_plan(folder, args.runs), world)
@@ -85,7 +127,7 @@ def main() -> None:
         for _ in range(args.repeat):
             world.reset_to(start)
             began = time.perf_counter()
-            result = run_plan(project, world)
+            result = run_plan(project, world, projector=LocalProjector())
             timed.append(time.perf_counter() - began - chosen_seconds(result.trace))
             assert result.succeeded, result.failure
             world.reset_to(start)

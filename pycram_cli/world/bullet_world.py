@@ -177,6 +177,18 @@ class BulletWorld:
 
         return unwatch
 
+    @contextlib.contextmanager
+    def unwatched(self) -> Iterator[None]:
+        """`with world.unwatched():` — steps inside (of the world and of its prospection copy) are seen by no
+        watcher: what a `project` step tries out is not the run, and a replay must not show its physics."""
+        saved = list(self._step_watchers), list(self._copy_watchers)
+        self._step_watchers.clear()
+        self._copy_watchers.clear()  # the same list as the copy's own (prospection.py)
+        try:
+            yield
+        finally:
+            self._step_watchers[:], self._copy_watchers[:] = saved
+
     def exit(self) -> None:
         """Disconnect the client; the current world becomes the newest live one (or None)."""
         if self._exited:
