@@ -13,8 +13,11 @@ Measured in one process on the bundled kitchen, PR2 at the counter:
 - baseline: what a person would otherwise do by hand — the same 2 x RUNS pick-ups, each run as a
   plan of its own on the world put back with `reset_to` and the milk moved by the same kind of draw.
 
-Both print medians over the repetitions, and their ratio: the step's own overhead (saving,
-resetting, drawing, checking starts, folding the trace) on top of the pick-ups themselves.
+Both print medians over the repetitions, and their ratio. Then what a projected run costs
+beyond its own steps (saving, resetting, drawing, checking starts, the quiet runtime, folding
+the trace): the same step whose alternatives only log, in this process, per run. The figures
+go to bench/results.json (`project`), from which the README's are written
+(bench/readme_figures.py).
 The step runs as `pycram run` runs it (sweep/projection.py's LocalProjector: the first run here,
 timed, the rest on forked workers when that is faster).
 
@@ -37,6 +40,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+import results_file  # noqa: E402
 from pycram_cli.plan import load_plan, run_plan  # noqa: E402
 from pycram_cli.sweep.projection import LocalProjector, cores  # noqa: E402
 from pycram_cli.world.pose import quat_multiply, yaw_quaternion  # noqa: E402
@@ -113,8 +117,12 @@ def main() -> None:
             modes(world, Path(tmp), [int(r) for r in args.modes.split(",")], args.repeat)
         world.exit()
         return
+    load_before = os.getloadavg()[0]
+    used: list[int] = []
+    overhead: list[float] = []
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
+        logging = load_plan(project_plan(folder, args.runs, "log"), world)
         project = load_plan(project_plan(folder, args.runs), world)
         singles = {arm: load_plan(one_plan(folder, arm), world) for arm in ("left", "right")}
         (folder / "move.yaml").write_text(f"world: kitchen\nbody:\n  - moving: {COUNTER}\n")
@@ -125,10 +133,13 @@ def main() -> None:
         timed: list[float] = []
         baseline: list[float] = []
         for _ in range(args.repeat):
+            overhead.append(step_seconds(world, logging, start, LocalProjector(startup=float("inf"))) / (2 * args.runs))
             world.reset_to(start)
+            projector = LocalProjector()  # as `pycram run` runs the step
             began = time.perf_counter()
-            result = run_plan(project, world, projector=LocalProjector())
+            result = run_plan(project, world, projector=projector)
             timed.append(time.perf_counter() - began - chosen_seconds(result.trace))
+            used.append(projector.used)
             assert result.succeeded, result.failure
             world.reset_to(start)
             run_plan(mover, world)
@@ -145,12 +156,18 @@ def main() -> None:
                     run_plan(singles[arm], world)
             baseline.append(time.perf_counter() - began)
         world.exit()
-    step, plain = statistics.median(timed), statistics.median(baseline)
+    step, plain, extra = statistics.median(timed), statistics.median(baseline), statistics.median(overhead)
     load = os.getloadavg()[0]
     print(f"project step, 2 x {args.runs} projected pick-ups: median {step:.2f} s over {args.repeat} "
-          f"(target <= 2 s)")
+          f"(target <= 2 s), {1000 * step / (2 * args.runs):.0f} ms a run; workers {used}")
     print(f"baseline, the same pick-ups as plans of their own: median {plain:.2f} s")
     print(f"ratio step / baseline: {step / plain:.2f}   (load average {load:.2f} on {os.cpu_count()} cores)")
+    print(f"a projected run's cost beyond its own steps: {1000 * extra:.1f} ms (median)")
+    figures = {"runs": args.runs, "repeat": args.repeat, "step_s": round(step, 3), "baseline_s": round(plain, 3),
+               "run_ms": round(1000 * step / (2 * args.runs), 1), "overhead_ms": round(1000 * extra, 2),
+               "workers": max(used), "cores": os.cpu_count(), **results_file.provenance(),
+               "load_before": round(load_before, 2)}
+    print(f"wrote {results_file.update('project', figures)}")
 
 
 if __name__ == "__main__":
