@@ -24,6 +24,7 @@ from ..status import Status
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable, size_problem
 from .params import bind_params
+from .replay import Recorder
 from .resources import ResourceAnalysis
 from .runtime import Cancelled, Decider, LimitExceeded, Projector, Record, Token, close_pending
 from .scheduler import CancelToken, Key, Scheduler
@@ -192,17 +193,27 @@ class Exec:
     def projector(self) -> Projector | None:
         return self.run.projector
 
-    def projected(self, token: Token) -> "Exec":
+    def projected(self, token: Token, record: bool = False) -> "Exec":
         """A runtime for one projected run (see runtime.Runtime.projected): a quiet copy of the run — no
         observers, a scheduler of its own (nothing else takes turns in a projection; the `project` step holds
         the world), a limit stops only the projection — with a frame of its own below this thread's."""
         run = copy.copy(self.run)
-        run.observer = None
+        run.observer = Recorder(self.run.world) if record else None
         run.scheduler = Scheduler()
         run.token = cast(CancelToken, token)
         run.threads, run.limit_error = 0, None
         run._threads_lock, run._observer_lock = threading.Lock(), threading.Lock()
         return Exec(run, Frame(parent=self.frame), cast(CancelToken, token), (), self.depth)
+
+    def replay_record(self) -> dict[str, Any] | None:
+        recorder = self.run.observer
+        if not isinstance(recorder, Recorder):
+            return None
+        recorder.close()
+        return recorder.record()
+
+    def keep_replay(self, tn: Record, name: str, run: int, replay: dict[str, Any]) -> None:
+        self.run.notify("projected", _own(tn), name, run, replay)
 
     def evaluate(self, value: Any) -> Any:
         """The value with its references looked up; LimitExceeded (at the step evaluating it) when it is too large."""

@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import Location, did_you_mean
 from ..failures import Failure, ProjectionFailure
-from ..limits import MAX_PROJECTED, MAX_SCENARIO_TIMEOUT
+from ..limits import MAX_PROJECTED, MAX_PROJECTED_REPLAYS, MAX_SCENARIO_TIMEOUT
 from ..schema import describe, is_number
 from ..status import Status
 from ..world.pose import quat_multiply, yaw_quaternion
@@ -68,6 +68,8 @@ REDRAWS = 20
 TIMED_OUT = "ran past the projection's timeout"
 #: a row's key for what its trace entry ended with (status, failure): taken out when the run is folded
 FOLD = "_ended"
+#: a row's key for the run's replay (when the run's replay is recorded): handed to the replay record when folded
+REPLAY = "_replay"
 
 
 class InProcess:
@@ -229,8 +231,10 @@ class Project(Node):
             timer = threading.Timer(self.timeout, token.cancel, (TIMED_OUT,))
             timer.daemon = True
             timer.start()
+        keep = world.recording_replay and run < MAX_PROJECTED_REPLAYS  # a report may open it (bounded)
+        projected = ex.projected(token, record=keep)
         try:
-            ex.projected(token).run_group(steps, record)
+            projected.run_group(steps, record)
             row.update(status="succeeded", failure=None)
         except Failure as exc:
             row.update(status="failed", failure=f"{exc.type_name}: {exc.message}")
@@ -247,6 +251,9 @@ class Project(Node):
         finally:
             if timer is not None:
                 timer.cancel()
+            replay = projected.replay_record()
+        if replay is not None:
+            row[REPLAY] = {**replay, "root": record.to_dict(timing=True)}
         row["steps"] = _steps(record)
         row[FOLD] = {"status": str(Status.SUCCEEDED if row["status"] == "succeeded" else Status.FAILED),
                      "failure": record.failure}
@@ -255,12 +262,14 @@ class Project(Node):
     @staticmethod
     def _fold(ex: Runtime, tn: Record, name: str, where: Location, row: dict[str, Any]) -> None:
         """The run's entry in the trace, folded at once into `projected NAME` (the trace stays small)."""
-        ended = row.pop(FOLD, None)
+        ended, replay = row.pop(FOLD, None), row.pop(REPLAY, None)
         if ended is None:  # a run that could not start has no entry
             return
         child = tn.child(f"projected {name} {row['run']}", "projection", where)
         child.status, child.failure = Status(ended["status"]), ended["failure"]
         ex.fold(tn, child, f"projected {name}")
+        if replay is not None:
+            ex.keep_replay(tn, name, row["run"], replay)
 
     def _vary(self, world: "BulletWorld", world_state: Any, path: str, run: int) -> list[str] | None:
         """Move the varied objects for run `run` (drawn again while they cannot start); the rejected draws' reasons,

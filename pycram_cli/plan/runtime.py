@@ -63,6 +63,10 @@ class Record(Protocol):
         run's, which the `project` step folds into the tree afterwards."""
         ...
 
+    def to_dict(self, timing: bool = True) -> dict[str, Any]:
+        """The entry and everything below it as the trace's JSON has them."""
+        ...
+
     def walk(self) -> Iterator[Record]:
         """This entry and every entry below it."""
         ...
@@ -164,9 +168,18 @@ class Runtime(Protocol):
         """Who runs a `project` step's projected runs (None: the step runs them here, one after another)."""
         ...
 
-    def projected(self, token: Token) -> Runtime:
+    def projected(self, token: Token, record: bool = False) -> Runtime:
         """A runtime for one projected run: a frame of its own below this one, cancelled by `token` (a child of
-        this thread's), and nothing of it seen by the run's observers (live views, the replay) or its scheduler."""
+        this thread's), and nothing of it seen by the run's observers (live views, the replay) or its scheduler;
+        with `record`, its own replay is recorded (see `replay_record`)."""
+        ...
+
+    def replay_record(self) -> dict[str, Any] | None:
+        """What a projected runtime made with `record` recorded (plan/replay.py's record), or None."""
+        ...
+
+    def keep_replay(self, tn: Record, name: str, run: int, replay: dict[str, Any]) -> None:
+        """Hand a projected run's replay to the run's observers (the replay record keeps it, bounded)."""
         ...
 
     def world_action(self) -> AbstractContextManager[None]:
