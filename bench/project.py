@@ -80,6 +80,13 @@ def chosen_seconds(trace: dict) -> float:
     return float(chosen["timing"]["duration"])
 
 
+def cpu() -> float:
+    """CPU seconds of this process and of its ended children (forked workers): what the work cost, whatever the
+    load (wall-clock seconds on a loaded machine also count the waits for a core)."""
+    t = os.times()
+    return t.user + t.system + t.children_user + t.children_system
+
+
 def step_seconds(world, plan, start, projector) -> float:
     """The project step's own time: the plan's, minus the chosen pick-up's."""
     world.reset_to(start)
@@ -132,13 +139,17 @@ def main() -> None:
         assert milk is not None
         timed: list[float] = []
         baseline: list[float] = []
+        timed_cpu: list[float] = []
+        baseline_cpu: list[float] = []
         for _ in range(args.repeat):
             overhead.append(step_seconds(world, logging, start, LocalProjector(startup=float("inf"))) / (2 * args.runs))
             world.reset_to(start)
             projector = LocalProjector()  # as `pycram run` runs the step
-            began = time.perf_counter()
+            began, began_cpu = time.perf_counter(), cpu()
             result = run_plan(project, world, projector=projector)
-            timed.append(time.perf_counter() - began - chosen_seconds(result.trace))
+            chosen = chosen_seconds(result.trace)
+            timed.append(time.perf_counter() - began - chosen)
+            timed_cpu.append(cpu() - began_cpu - chosen)  # the chosen pick-up (wall time: about its CPU time)
             used.append(projector.used)
             assert result.succeeded, result.failure
             world.reset_to(start)
@@ -146,7 +157,7 @@ def main() -> None:
             at_counter = world.save_state()
             (x, y, z), orientation = milk.get_pose()
             rng = random.Random(0)
-            began = time.perf_counter()
+            began, began_cpu = time.perf_counter(), cpu()
             for arm in ("left", "right"):
                 for _ in range(args.runs):
                     world.reset_to(at_counter)
@@ -155,6 +166,7 @@ def main() -> None:
                                                       turned)
                     run_plan(singles[arm], world)
             baseline.append(time.perf_counter() - began)
+            baseline_cpu.append(cpu() - began_cpu)
         world.exit()
     step, plain, extra = statistics.median(timed), statistics.median(baseline), statistics.median(overhead)
     load = os.getloadavg()[0]
@@ -162,9 +174,13 @@ def main() -> None:
           f"(target <= 2 s), {1000 * step / (2 * args.runs):.0f} ms a run; workers {used}")
     print(f"baseline, the same pick-ups as plans of their own: median {plain:.2f} s")
     print(f"ratio step / baseline: {step / plain:.2f}   (load average {load:.2f} on {os.cpu_count()} cores)")
+    step_cpu, plain_cpu = statistics.median(timed_cpu), statistics.median(baseline_cpu)
+    print(f"CPU seconds: step {step_cpu:.2f}, baseline {plain_cpu:.2f}, ratio {step_cpu / plain_cpu:.2f}")
     print(f"a projected run's cost beyond its own steps: {1000 * extra:.1f} ms (median)")
     figures = {"runs": args.runs, "repeat": args.repeat, "step_s": round(step, 3), "baseline_s": round(plain, 3),
                "run_ms": round(1000 * step / (2 * args.runs), 1), "overhead_ms": round(1000 * extra, 2),
+               "step_cpu_s": round(step_cpu, 3), "baseline_cpu_s": round(plain_cpu, 3),
+               "run_cpu_ms": round(1000 * step_cpu / (2 * args.runs), 1),
                "workers": max(used), "cores": os.cpu_count(), **results_file.provenance(),
                "load_before": round(load_before, 2)}
     print(f"wrote {results_file.update('project', figures)}")
