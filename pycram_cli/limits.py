@@ -61,6 +61,8 @@ MAX_SCENARIO_TIMEOUT = 86_400.0
 MAX_WORKERS = 256
 #: the most runs `pycram run --project N` projects before acting
 MAX_PROJECTED = 10_000
+#: the projected runs of each alternative of a `project` step whose replay a recorded run keeps (the first ones)
+MAX_PROJECTED_REPLAYS = 10
 
 
 def size_text(count: int) -> str:

@@ -34,7 +34,7 @@ from ..designators import DESIGNATORS
 from ..designators.actions import ACTIONS
 from ..failures import ALIASES, FAILURES
 from ..kinds import KINDS
-from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_WAIT
+from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_SCENARIO_TIMEOUT, MAX_WAIT
 from ..paths import resources_dir
 from ..plan.context import IDENTIFIER, NAME, REFERENCE
 from ..plan.language import NODE_TYPES
@@ -118,6 +118,8 @@ HEAD_VALUES: dict[str, Schema] = {
             "at-least": _number(0, 1, "the success rate the chosen alternative needs (else a ProjectionFailure)"),
             "seed": {"type": "integer", "minimum": 0, "maximum": 2**32 - 1,
                      "description": "the projected runs' draws come from it"},
+            "timeout": {"type": "number", "exclusiveMinimum": 0, "maximum": MAX_SCENARIO_TIMEOUT,
+                        "description": "seconds a projected run may take; one past it is recorded as a Timeout"},
             "as": _with(ref("name"), "the variable bound to {name, value, table}"),
         }},
 }

@@ -14,9 +14,9 @@ from ..files import check_writable
 from ..errors import InputError, Location
 from ..plan.trace import TraceNode, dumps, normalised
 from ..scenario import prepare
-from ..limits import MAX_PROJECTED
+from ..limits import MAX_PROJECTED, MAX_WORKERS
 from ..scenario.starts import ImpossibleStart, possible_variant
-from ..sweep.projection import Projection, project
+from ..sweep.projection import LocalProjector, Projection, project
 from ..scenario.variation_files import read_variations, variation_file
 from ..report.failures import failure_camera
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
@@ -135,6 +135,9 @@ class QuietView:
                    "(--vary) and print the success rate and the failures by cause.")
 @click.option("--require", type=Number(0.0, 1.0), default=None, metavar="P",
               help="With --project: do not run (exit 1) when the projected success rate is below P (0-1).")
+@click.option("--workers", type=click.IntRange(1, MAX_WORKERS), default=None, metavar="K",
+              help="Worker processes for projections (--project, and `project` steps when that is faster): at most "
+                   "K (default: the cores other work leaves idle).")
 @click.option("--follow/--no-follow", default=True, show_default=True,
               help="With --gui: the window's camera follows the robot (else it stays where it was put at the start).")
 @json_option
@@ -143,7 +146,7 @@ class QuietView:
 def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tuple[str, ...], trace_file: Path | None,
         render_file: Path | None, camera: str | None, size: str, report_file: Path | None, mcap_file: Path | None,
         pace: float | None, scenario_seed: int | None, vary_file: str | None, project_runs: int | None,
-        require: float | None, follow: bool, as_json: bool, gui: bool) -> None:
+        require: float | None, workers: int | None, follow: bool, as_json: bool, gui: bool) -> None:
     """Validate and run PLAN (a plan file, or the name of a bundled plan).
 
     Shows the plan as a live tree while it runs and a summary at the end. Exit code 0 when
@@ -175,7 +178,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
     if project_runs is not None:
         given = {name for name in (a.partition("=")[0].strip() for a in params)}
         projection = Projection(str(scenario.plan.path), vary_file, str(scenario.world_path),
-                                {k: v for k, v in scenario.params.items() if k in given}, project_runs)
+                                {k: v for k, v in scenario.params.items() if k in given}, project_runs,
+                                workers=workers)
         try:
             summary = project(projection)
         except KeyboardInterrupt:
@@ -229,12 +233,13 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         for output in (trace_file, render_file, report_file, mcap_file):
             if output is not None:
                 interrupts.owe(str(output))  # said on stderr if a signal's deadline ends the run before it is written
+        projector = None if gui else LocalProjector(workers)  # `project` steps' runs on local workers (not under a window)
         try:
             if isinstance(progress, LiveView):
                 with view:
-                    result = scenario.run(world, observer, replay=replay)
+                    result = scenario.run(world, observer, replay=replay, projector=projector)
             else:
-                result = scenario.run(world, observer, replay=replay)
+                result = scenario.run(world, observer, replay=replay, projector=projector)
         finally:
             if isinstance(observer, GuiView):
                 observer.close()

@@ -10,6 +10,7 @@ thread, and helpers to run child steps in sequence (`seq`) or concurrently
 from __future__ import annotations
 
 import contextlib
+import copy
 import threading
 import time
 from dataclasses import dataclass, field
@@ -23,8 +24,9 @@ from ..status import Status
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable, size_problem
 from .params import bind_params
+from .replay import Recorder
 from .resources import ResourceAnalysis
-from .runtime import Cancelled, Decider, LimitExceeded, Record, close_pending
+from .runtime import Cancelled, Decider, LimitExceeded, Projector, Record, Token, close_pending
 from .scheduler import CancelToken, Key, Scheduler
 from .syntax import Node, Plan
 from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
@@ -65,8 +67,10 @@ class Run:
     """One execution of a plan on a world."""
 
     def __init__(self, plan: Plan, world: BulletWorld, params: Mapping[str, Any],
-                 observer: Observer | None = None, world_name: str | None = None) -> None:
+                 observer: Observer | None = None, world_name: str | None = None,
+                 projector: Projector | None = None) -> None:
         self.plan = plan
+        self.projector = projector
         self.world = world
         self.params = dict(params)
         self.observer = observer
@@ -184,6 +188,32 @@ class Exec:
                depth: int | None = None) -> "Exec":
         return Exec(self.run, frame if frame is not None else self.frame, token if token is not None else self.token,
                     key if key is not None else self.key, depth if depth is not None else self.depth)
+
+    @property
+    def projector(self) -> Projector | None:
+        return self.run.projector
+
+    def projected(self, token: Token, record: bool = False) -> "Exec":
+        """A runtime for one projected run (see runtime.Runtime.projected): a quiet copy of the run — no
+        observers, a scheduler of its own (nothing else takes turns in a projection; the `project` step holds
+        the world), a limit stops only the projection — with a frame of its own below this thread's."""
+        run = copy.copy(self.run)
+        run.observer = Recorder(self.run.world) if record else None
+        run.scheduler = Scheduler()
+        run.token = cast(CancelToken, token)
+        run.threads, run.limit_error = 0, None
+        run._threads_lock, run._observer_lock = threading.Lock(), threading.Lock()
+        return Exec(run, Frame(parent=self.frame), cast(CancelToken, token), (), self.depth)
+
+    def replay_record(self) -> dict[str, Any] | None:
+        recorder = self.run.observer
+        if not isinstance(recorder, Recorder):
+            return None
+        recorder.close()
+        return recorder.record()
+
+    def keep_replay(self, tn: Record, name: str, run: int, replay: dict[str, Any]) -> None:
+        self.run.notify("projected", _own(tn), name, run, replay)
 
     def evaluate(self, value: Any) -> Any:
         """The value with its references looked up; LimitExceeded (at the step evaluating it) when it is too large."""
@@ -440,11 +470,13 @@ class Outcome:
 
 
 def run_plan(plan: Plan, world: BulletWorld, params: Mapping[str, Any] | None = None,
-             observer: Observer | None = None, world_name: str | None = None, bound: bool = False) -> RunResult:
+             observer: Observer | None = None, world_name: str | None = None, bound: bool = False,
+             projector: Projector | None = None) -> RunResult:
     """Run `plan` on `world` with the given parameters (defaults filled in by `bind_params`, unless `bound`:
-    the values were bound already, as a `Scenario` does once)."""
+    the values were bound already, as a `Scenario` does once). `projector`: who runs `project` steps'
+    projected runs (default: the step itself, in this process)."""
     values = dict(params or {}) if bound else bind_params(plan, params or {})
-    run = Run(plan, world, values, observer, world_name)
+    run = Run(plan, world, values, observer, world_name, projector)
     try:
         return run.execute()
     except KeyboardInterrupt:

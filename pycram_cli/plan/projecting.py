@@ -10,6 +10,7 @@
         choose: most-successful        # or first-success, fewest-steps, {max: rate - 0.01 * steps}
         at-least: 0.8                  # else fail with a ProjectionFailure carrying the table
         seed: 0
+        timeout: 30                    # seconds a projected run may take (else recorded as a Timeout)
       as: choice                       # {name: the chosen alternative, table: its outcomes by alternative}
 
 Why: `try_in_order` and `try_all` try alternatives for real, so a failed attempt leaves the world
@@ -20,9 +21,13 @@ How: the world's state is saved; every projected run starts from it exactly
 (`BulletWorld.reset_to`: the same state whatever ran before), the varied objects moved by draws
 from the run's own seed (the same draws for every alternative, so that they are compared on
 the same scenes; a draw that puts an object inside another or over nothing is drawn again, see
-worldfile/starts.py), and runs the alternative's steps with bindings of their own. Each run is
-recorded, then folded into one summary entry per alternative (the trace stays small); the table
-of outcomes goes into the node's `projection` record. Then the world is reset to the saved state
+worldfile/starts.py), and runs the alternative's steps with bindings of their own, quietly (no
+live view or replay sees them: `Runtime.projected`). Who runs the runs is the run's `Projector`
+(runtime.py): by default this process, one after another; `pycram run` gives the sweep's local
+workers (sweep/projection.py), which run them in forked copies of this process when that is
+faster. Either way each run gives a row, and the rows are folded in order into one summary
+entry per alternative (the trace stays small, and the same however they ran); the table of
+outcomes goes into the node's `projection` record. Then the world is reset to the saved state
 — bitwise the state before the node — and the chosen alternative runs for real, its steps
 under `chosen NAME`. Choices are deterministic: `fewest-steps` counts steps, not seconds.
 """
@@ -31,12 +36,13 @@ from __future__ import annotations
 import hashlib
 import math
 import random
+import threading
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import Location, did_you_mean
 from ..failures import Failure, ProjectionFailure
-from ..limits import MAX_PROJECTED
+from ..limits import MAX_PROJECTED, MAX_PROJECTED_REPLAYS, MAX_SCENARIO_TIMEOUT
 from ..schema import describe, is_number
 from ..status import Status
 from ..world.pose import quat_multiply, yaw_quaternion
@@ -44,7 +50,7 @@ from ..worldfile.starts import start_problems
 from ..yamlsource import LList, LMap
 from .composites import Seq
 from .context import Frame, jsonable
-from .runtime import Cancelled, LimitExceeded, Record, Runtime
+from .runtime import Cancelled, LimitExceeded, Record, Row, Runtime
 from .scoring import OUTCOMES, SENSES, Score, ScoreError, parse_score
 from .syntax import Node, Parser, node_type
 
@@ -53,11 +59,32 @@ if TYPE_CHECKING:
     from .validate import Validator
 
 CHOICES = ("most-successful", "first-success", "fewest-steps")
-PROJECT_KEYS = ("alternatives", "runs", "vary", "choose", "at-least", "seed", "as")
+PROJECT_KEYS = ("alternatives", "runs", "vary", "choose", "at-least", "seed", "timeout", "as")
 VARY_KEYS = ("noise", "yaw")
 DEFAULT_RUNS = 10
 #: draws of one run before it is given up as impossible (recorded as such, not counted)
 REDRAWS = 20
+#: the reason a projected run's token is cancelled with when it runs past the step's `timeout`
+TIMED_OUT = "ran past the projection's timeout"
+#: a row's key for what its trace entry ended with (status, failure): taken out when the run is folded
+FOLD = "_ended"
+#: a row's key for the run's replay (when the run's replay is recorded): handed to the replay record when folded
+REPLAY = "_replay"
+
+
+class InProcess:
+    """The default `Projector`: the runs one after another, in this process."""
+
+    def runs(self, count: int, one: Callable[[int], Row], lost: Callable[[int, str, str], Row],
+             check: Callable[[], None], timeout: float | None) -> list[Row]:
+        rows = []
+        for index in range(count):
+            check()
+            rows.append(one(index))
+        return rows
+
+
+IN_PROCESS = InProcess()
 
 
 def run_seed(seed: int, path: str, run: int, attempt: int = 0) -> int:
@@ -84,10 +111,11 @@ class Project(Node):
            "fails with a ProjectionFailure when none succeeds often enough")
 
     def __init__(self, head: str, where: Location, alternatives: list[tuple[str, Location, list[Node]]], runs: int,
-                 variations: list[Variation], choose: str | Score, at_least: float, seed: int) -> None:
+                 variations: list[Variation], choose: str | Score, at_least: float, seed: int,
+                 timeout: float | None = None) -> None:
         super().__init__(head, where)
         self.alternatives, self.runs, self.variations = alternatives, runs, variations
-        self.choose, self.at_least, self.seed = choose, at_least, seed
+        self.choose, self.at_least, self.seed, self.timeout = choose, at_least, seed, timeout
 
     # -- reading ---------------------------------------------------------------------------------
     @classmethod
@@ -124,7 +152,14 @@ class Project(Node):
                          key="at-least")
             at_least = 0.0
         variations = _variations(parser, body)
-        node = cls(head, step.loc(head), alternatives, int(runs), variations, choose, float(at_least), int(seed))
+        timeout = body.get("timeout")
+        if timeout is not None and (isinstance(timeout, bool) or not is_number(timeout)
+                                    or not 0.0 < float(timeout) <= MAX_SCENARIO_TIMEOUT):
+            parser.error(f"expected seconds above 0 and at most {MAX_SCENARIO_TIMEOUT:g}, got {describe(timeout)}",
+                         body.loc("timeout", True), key="timeout")
+            timeout = None
+        node = cls(head, step.loc(head), alternatives, int(runs), variations, choose, float(at_least), int(seed),
+                   None if timeout is None else float(timeout))
         if "as" in body:  # also written inside the mapping (an `as` beside `project` wins)
             node.bind = parser.identifier(body["as"], body.loc("as", True), "as")
             node.bind_where = body.loc("as", True)
@@ -145,19 +180,28 @@ class Project(Node):
     # -- running -----------------------------------------------------------------------------------
     def execute(self, ex: Runtime, tn: Record) -> Any:
         world = ex.world
+        runs = [(name, where, steps, run) for name, where, steps in self.alternatives for run in range(self.runs)]
+        table: dict[str, dict[str, Any]] = {}
+        # The world is held for the whole projection (other branches wait): every run starts from `state`,
+        # and worker processes are made from this process as it is now (sweep/projection.py).
         with ex.world_action():
             state = world.save_state()
-        table: dict[str, dict[str, Any]] = {}
-        try:
-            for name, where, steps in self.alternatives:
-                rows = [self._project(ex, tn, world, state, name, where, steps, run) for run in range(self.runs)]
-                table[name] = _row(rows)
-            choice, why = self._choose(table)
-            choose = self.choose.describe() if isinstance(self.choose, Score) else self.choose
-            tn.info["projection"] = {"runs": self.runs, "seed": self.seed, "choose": choose,
-                                     "at-least": self.at_least, "alternatives": table, "choice": choice, "why": why}
-        finally:  # also when cancelled (no cancellation check): the trace's final state is the real world's
-            with world.lock:
+            try:
+                with world.unwatched():  # not the real run: a replay shows none of it
+                    rows = (ex.projector or IN_PROCESS).runs(
+                        len(runs), lambda i: self._project(ex, tn, world, state, *runs[i]),
+                        lambda i, status, message: _lost(runs[i][3], status, message), ex.token.check, self.timeout)
+                for (name, where, _, _), row in zip(runs, rows):  # folded in order, however they were run
+                    self._fold(ex, tn, name, where, row)
+                for name, _, _ in self.alternatives:
+                    table[name] = _row([row for (alternative, _, _, _), row in zip(runs, rows) if alternative == name])
+                choice, why = self._choose(table)
+                choose = self.choose.describe() if isinstance(self.choose, Score) else self.choose
+                tn.info["projection"] = {"runs": self.runs, "seed": self.seed, "choose": choose,
+                                         "at-least": self.at_least, "alternatives": table, "choice": choice, "why": why}
+                if self.timeout is not None:
+                    tn.info["projection"]["timeout"] = self.timeout
+            finally:  # also when cancelled (no cancellation check): the trace's final state is the real world's
                 world.reset_to(state)  # bitwise the state before the node, and the same whatever was projected
                 world.release_state(state)
         if choice is None:
@@ -173,26 +217,59 @@ class Project(Node):
 
     def _project(self, ex: Runtime, tn: Record, world: "BulletWorld", state: Any, name: str, where: Location,
                  steps: list[Node], run: int) -> dict[str, Any]:
-        """One projected run of one alternative: reset, vary, run in a frame of its own, fold; its row."""
-        with ex.world_action():
-            world.reset_to(state)
-            redrawn = self._vary(world, world_state=state, path=tn.path, run=run)
+        """One projected run of one alternative: reset, vary, run quietly in a frame of its own; its row (with
+        what its trace entry ended with under FOLD, for `_fold`). The same here and in a worker process."""
+        world.reset_to(state)
+        redrawn = self._vary(world, world_state=state, path=tn.path, run=run)
         if redrawn is None:
             return {"run": run, "status": "impossible", "failure": None, "steps": 0}
-        child = tn.child(f"projected {name} {run}", "projection", where)
+        record = tn.detached(f"projected {name} {run}", "projection", where)
         row: dict[str, Any] = {"run": run, **({"redrawn": len(redrawn)} if redrawn else {})}
+        token = ex.token.child()
+        timer = None
+        if self.timeout is not None:
+            timer = threading.Timer(self.timeout, token.cancel, (TIMED_OUT,))
+            timer.daemon = True
+            timer.start()
+        keep = world.recording_replay and run < MAX_PROJECTED_REPLAYS  # a report may open it (bounded)
+        projected = ex.projected(token, record=keep)
         try:
-            ex.derive(frame=Frame(parent=ex.frame)).run_group(steps, child)
+            projected.run_group(steps, record)
             row.update(status="succeeded", failure=None)
         except Failure as exc:
             row.update(status="failed", failure=f"{exc.type_name}: {exc.message}")
-        except (Cancelled, LimitExceeded):
-            raise
+        except Cancelled:
+            if ex.token.cancelled or token.reason != TIMED_OUT:
+                raise
+            row.update(_lost(run, "timeout", f"ran past the {self.timeout:g} s timeout"))
+            record.failure = _failure(row)
+        except LimitExceeded as exc:  # in a projection, an outcome of the alternative like any other
+            row.update(status="failed", failure=f"LimitExceeded: {exc.message}")
+            record.failure = _failure(row)
         except Exception as exc:  # noqa: BLE001 - an internal error in one projection is recorded; the node goes on
             row.update(status="error", failure=f"{type(exc).__name__}: {exc}")
-        row["steps"] = _steps(child)
-        ex.fold(tn, child, f"projected {name}")
+        finally:
+            if timer is not None:
+                timer.cancel()
+            replay = projected.replay_record()
+        if replay is not None:
+            row[REPLAY] = {**replay, "root": record.to_dict(timing=True)}
+        row["steps"] = _steps(record)
+        row[FOLD] = {"status": str(Status.SUCCEEDED if row["status"] == "succeeded" else Status.FAILED),
+                     "failure": record.failure}
         return row
+
+    @staticmethod
+    def _fold(ex: Runtime, tn: Record, name: str, where: Location, row: dict[str, Any]) -> None:
+        """The run's entry in the trace, folded at once into `projected NAME` (the trace stays small)."""
+        ended, replay = row.pop(FOLD, None), row.pop(REPLAY, None)
+        if ended is None:  # a run that could not start has no entry
+            return
+        child = tn.child(f"projected {name} {row['run']}", "projection", where)
+        child.status, child.failure = Status(ended["status"]), ended["failure"]
+        ex.fold(tn, child, f"projected {name}")
+        if replay is not None:
+            ex.keep_replay(tn, name, row["run"], replay)
 
     def _vary(self, world: "BulletWorld", world_state: Any, path: str, run: int) -> list[str] | None:
         """Move the varied objects for run `run` (drawn again while they cannot start); the rejected draws' reasons,
@@ -340,6 +417,18 @@ def _row(rows: list[dict[str, Any]]) -> dict[str, Any]:
             "steps": round(sum(r["steps"] for r in succeeded) / len(succeeded), 2) if succeeded else None,
             "failures": dict(sorted(failures.items())), "impossible": len(rows) - len(counted),
             "outcomes": jsonable(rows)}
+
+
+def _lost(run: int, status: str, message: str) -> dict[str, Any]:
+    """The row of a run that gave no answer: `timeout` or `error` (its worker process died)."""
+    kind = "Timeout" if status == "timeout" else "InternalError"
+    return {"run": run, "status": status, "failure": f"{kind}: {message}", "steps": 0,
+            FOLD: {"status": str(Status.FAILED), "failure": {"type": kind, "message": message}}}
+
+
+def _failure(row: dict[str, Any]) -> dict[str, Any]:
+    kind, _, message = row["failure"].partition(": ")
+    return {"type": kind, "message": message}
 
 
 def _table_text(table: dict[str, dict[str, Any]]) -> str:

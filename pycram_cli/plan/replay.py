@@ -34,6 +34,12 @@ that stands for all of them: `{"path": ".../folded attempts", "status": "failed"
 after the last of them. So the states after it are exact, and a replayed run shows the folded
 attempts as one step.
 
+A `project` step's projected runs are not steps of the run (the world is put back after them),
+so none of them is among `steps`; the first MAX_PROJECTED_REPLAYS runs of each alternative are
+recorded where they run, each as a record of its own, `{"initial", "steps", "root"}` (`root`: the
+run's own trace tree, which the run's trace folds away), under `projections`: step path ->
+alternative -> run number. A report opens them from the step's table.
+
 The trace keeps this under its `replay` key, which `trace.comparable()` leaves out: golden traces
 and `trace diff` compare behaviour, not the replay. The record is still deterministic: a leaf's
 `finished` event comes while its thread holds the scheduler's turn (see scheduler.py), so the
@@ -120,13 +126,16 @@ class Recorder:
         self._whatif = PhysicsFrames(world, self.initial, free_only=True)
         self._unwatch = [world.watch_steps(self._physics.stepped),
                          world.watch_steps(self._whatif.stepped, prospection=True)]
+        self._was_recording = world.recording_replay
         world.recording_replay = True
+        #: the replays of projected runs (a `project` step's, see `projected`): step path -> alternative -> run
+        self.projections: dict[str, dict[str, dict[str, Any]]] = {}
 
     def close(self) -> None:
         """Stop watching the world's physics (the run is over)."""
         for unwatch in self._unwatch:
             unwatch()
-        self.world.recording_replay = False
+        self.world.recording_replay = self._was_recording  # a projected run's recorder: the run's goes on
 
     def started(self, node: TraceNode) -> None:
         if self.inner is not None:
@@ -163,9 +172,19 @@ class Recorder:
         if inner is not None:
             inner(summary, child)
 
+    def projected(self, node: TraceNode, name: str, run: int, replay: dict[str, Any]) -> None:
+        """The replay of run `run` of alternative `name` of the `project` step `node` (recorded where it ran)."""
+        self.projections.setdefault(node.path, {}).setdefault(name, {})[str(run)] = replay
+        inner = getattr(self.inner, "projected", None)
+        if inner is not None:
+            inner(node, name, run, replay)
+
     def record(self) -> dict[str, Any]:
         """The replay record (see the module docstring), ready for the trace's `replay` key."""
-        return {"world_file": self.world_file, "initial": self.initial, "steps": list(self.steps)}
+        record = {"world_file": self.world_file, "initial": self.initial, "steps": list(self.steps)}
+        if self.projections:
+            record["projections"] = self.projections
+        return record
 
 
 class PhysicsFrames:

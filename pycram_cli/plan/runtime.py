@@ -15,7 +15,7 @@ runs the branches, the composite decides (see composites.py). `Cancelled` and
 from __future__ import annotations
 
 from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any, Iterable, Iterator, Protocol, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Protocol, Sequence
 
 from ..errors import Location
 from ..status import Status
@@ -58,6 +58,15 @@ class Record(Protocol):
         """A new (pending) entry below this one (raises LimitExceeded beyond the run's limits)."""
         ...
 
+    def detached(self, label: str, type: str, source: Location | None = None) -> Record:
+        """A new entry named like a child of this one but in no tree (with a step budget of its own): a projected
+        run's, which the `project` step folds into the tree afterwards."""
+        ...
+
+    def to_dict(self, timing: bool = True) -> dict[str, Any]:
+        """The entry and everything below it as the trace's JSON has them."""
+        ...
+
     def walk(self) -> Iterator[Record]:
         """This entry and every entry below it."""
         ...
@@ -77,6 +86,17 @@ class Token(Protocol):
         """Raise Cancelled when the thread's branch has been cancelled."""
         ...
 
+    @property
+    def cancelled(self) -> bool: ...
+
+    def cancel(self, reason: str = "") -> None:
+        """Cancel it and every token made from it."""
+        ...
+
+    def child(self) -> Token:
+        """A token cancelled with this one, and also on its own."""
+        ...
+
 
 class Decider(Protocol):
     """A concurrent composite (par, pursue, try_all): when it is decided and what it then yields."""
@@ -86,6 +106,25 @@ class Decider(Protocol):
     def decides(self, status: Status) -> bool: ...
 
     def outcome(self, results: list[tuple[Status, Any]], decided: int | None, children: Sequence[Record]) -> Any: ...
+
+
+Row = dict[str, Any]
+
+
+class Projector(Protocol):
+    """Runs the projected runs of a `project` step: here, one after another, or on worker processes.
+
+    The step hands over `count` runs as functions of their index; whoever runs them (the default,
+    in this process; sweep/projection.py's `LocalProjector`, on the sweep's local workers) gives
+    back each run's row in index order, whatever order they finished in.
+    """
+
+    def runs(self, count: int, one: Callable[[int], Row], lost: Callable[[int, str, str], Row],
+             check: Callable[[], None], timeout: float | None) -> list[Row]:
+        """`[one(i) for i in range(count)]`, each `one(i)` starting from the same saved state. `lost(i, status,
+        message)`: the row of a run that gave no answer (its worker died, or it ran `timeout` s and a grace period
+        past it). `check()` raises (Cancelled) when the run is stopped: called at least every 0.1 s."""
+        ...
 
 
 class Runtime(Protocol):
@@ -122,6 +161,25 @@ class Runtime(Protocol):
 
     def derive(self, *, frame: Frame | None = None, depth: int | None = None) -> Runtime:
         """The same thread with another frame or call depth (a subplan call)."""
+        ...
+
+    @property
+    def projector(self) -> Projector | None:
+        """Who runs a `project` step's projected runs (None: the step runs them here, one after another)."""
+        ...
+
+    def projected(self, token: Token, record: bool = False) -> Runtime:
+        """A runtime for one projected run: a frame of its own below this one, cancelled by `token` (a child of
+        this thread's), and nothing of it seen by the run's observers (live views, the replay) or its scheduler;
+        with `record`, its own replay is recorded (see `replay_record`)."""
+        ...
+
+    def replay_record(self) -> dict[str, Any] | None:
+        """What a projected runtime made with `record` recorded (plan/replay.py's record), or None."""
+        ...
+
+    def keep_replay(self, tn: Record, name: str, run: int, replay: dict[str, Any]) -> None:
+        """Hand a projected run's replay to the run's observers (the replay record keeps it, bounded)."""
         ...
 
     def world_action(self) -> AbstractContextManager[None]:

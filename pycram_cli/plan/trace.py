@@ -94,6 +94,10 @@ class TraceNode:
             self.children.append(node)
         return node
 
+    def detached(self, label: str, type: str, source: Location | None = None) -> "TraceNode":
+        """A new entry with a child's path, in no tree and with a budget of its own (runtime.Record.detached)."""
+        return TraceNode(f"{self.path}/{label}", type, source, None, self.depth + 1)
+
     def summarise(self, child: "TraceNode", label: str) -> "TraceNode | None":
         """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place; the summary."""
         with self._lock:

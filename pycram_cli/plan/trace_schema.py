@@ -271,8 +271,20 @@ class _Checker:
         if value is None:
             return
         if not self.fields(value, path, "the replay record", {"initial": self.obj, "steps": self.replay_steps},
-                           {"world_file": self.string_or_null}):
+                           {"world_file": self.string_or_null, "root": self.obj}):
             return
+        projections = value.get("projections")
+        if projections is not None and self.typed(projections, path + ("projections",), dict, "an object"):
+            for step, alternatives in projections.items():  # step path -> alternative -> run -> a replay of its own
+                where = path + ("projections", step)
+                if self.typed(alternatives, where, dict, "an object"):
+                    for name, runs in alternatives.items():
+                        if self.typed(runs, where + (name,), dict, "an object"):
+                            for run, record in runs.items():
+                                if len(self.problems) >= MAX_PROBLEMS:
+                                    return
+                                # its steps are the projected run's own (in its `root`), not the trace's
+                                self.replay(record, where + (name, run), objects, False)
         initial = value.get("initial")
         if isinstance(initial, dict):
             for name, entry in initial.items():

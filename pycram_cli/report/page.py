@@ -66,12 +66,29 @@ def report_data(trace: dict[str, Any], world_path: Path) -> dict[str, Any]:
         scene = Scene(world)
         replayer = Replayer(scene, replay, _index(trace.get("root") or {}, {}), trace.get("root") or {})
         steps = replayer.frames()
+        projections = projected_runs(scene, replay)
         drawn = scene.to_dict()
     finally:
         world.exit()
     shown = {k: v for k, v in trace.items() if k != REPLAY_KEY}
     return {"trace": shown, "scene": drawn, "frames": steps, "failures": replayer.failures, "replayed": bool(replay),
-            "world_file": world_path.name, "generator": f"pycram {_pycram_version()}"}
+            "projections": projections, "world_file": world_path.name, "generator": f"pycram {_pycram_version()}"}
+
+
+def projected_runs(scene: Scene, replay: dict[str, Any] | None) -> dict[str, Any]:
+    """The replays a `project` step kept of its projected runs (plan/replay.py), each as the page plays a run:
+    step path -> alternative -> run -> {root: the run's tree, status, failure, frames, failures}."""
+    found: dict[str, Any] = {}
+    for path, alternatives in ((replay or {}).get("projections") or {}).items():
+        for name, runs in alternatives.items():
+            for run, record in runs.items():
+                root = record.get("root") or {}
+                replayer = Replayer(scene, record, _index(root, {}), root)
+                frames = replayer.frames()
+                found.setdefault(path, {}).setdefault(name, {})[run] = {
+                    "root": root, "status": root.get("status"), "failure": root.get("failure"), "frames": frames,
+                    "failures": replayer.failures}
+    return found
 
 
 def _script_safe(json_text: str) -> str:

@@ -23,6 +23,7 @@ from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
 from ..plan.executor import Observer
 from ..plan.replay import Recorder
+from ..plan.runtime import Projector
 from ..plan.trace import REPLAY_KEY
 from ..world import BulletWorld
 from ..world.state import WorldState
@@ -74,25 +75,26 @@ class Scenario:
         return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values}, robots=robots)})
 
     def run(self, world: BulletWorld | None = None, observer: Observer | None = None, mode: str = "direct",
-            replay: bool = False) -> RunResult:
+            replay: bool = False, projector: Projector | None = None) -> RunResult:
         """Run the plan: on `world` if given (left open), else on a freshly loaded world (exited afterwards).
 
         With `replay`, the trace also records the world's state after every step (its `replay` key,
         see plan/replay.py), which `pycram run --report` and `trace show --report` replay.
         """
         if world is not None:
-            return self._run(world, observer, replay)
+            return self._run(world, observer, replay, projector)
         sim = self.load_world(mode)
         try:
-            return self._run(sim, observer, replay)
+            return self._run(sim, observer, replay, projector)
         finally:
             sim.exit()
 
-    def _run(self, world: BulletWorld, observer: Observer | None, replay: bool) -> RunResult:
+    def _run(self, world: BulletWorld, observer: Observer | None, replay: bool,
+             projector: Projector | None = None) -> RunResult:
         recorder = Recorder(world, observer, self.world_path) if replay else None
         try:
             result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
-                              bound=True)
+                              bound=True, projector=projector)
         finally:
             if recorder is not None:
                 recorder.close()

@@ -10,7 +10,8 @@ variations, `--compare`, the results folder), then scenario i — drawn from its
 (`scenario.worlds`). Outcomes depend on the seed alone, never on the worker or the order.
 
     worker.py        SweepJob, Task, Worker: one scenario's outcome record
-    local.py         LocalPool: worker processes, timeouts, crashes
+    local.py         LocalPool: worker processes (spawned for sweeps, forked for `project` steps), timeouts, crashes
+    projection.py    `pycram run --project N`, and LocalProjector: a `project` step's runs on forked workers
     ray_backend.py   the same on a Ray cluster (optional extra: pip install '.[ray]')
     results.py       results.jsonl and sweep.json: append, resume, sorted at the end
     summary.py       success rate and interval, failures by type and node, --compare

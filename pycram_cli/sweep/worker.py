@@ -42,6 +42,16 @@ class SweepJob:
     #: extensions (module names or .py files) to import before the plan is read: they declare designators or queries
     imports: tuple[str, ...] = ()
 
+    def worker(self) -> "Worker":
+        """What runs in one worker process (local.py): the scenario prepared, its worlds loaded."""
+        return Worker(self)
+
+    def timeout_record(self, task: "Task", how: str) -> dict[str, Any]:
+        return timeout_record(task, self.timeout, how=how)
+
+    def error_record(self, task: "Task", message: str) -> dict[str, Any]:
+        return error_record(task, message)
+
 
 @dataclass(frozen=True)
 class Task:

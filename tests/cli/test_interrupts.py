@@ -80,16 +80,24 @@ def statuses(trace: dict) -> list[str]:
     (signal.SIGINT, 130, "- log: waiting\n- wait: 60\n- log: never\n"),
     (signal.SIGTERM, 143, "- log: waiting\n- par:\n    - wait: 60\n    - seq: [{wait: 50}, {log: never}]\n"
                           "    - seq: [{log: sibling}, {wait: 40}]\n"),
+    # projected runs in this process (the first run is always here) ...
     (signal.SIGINT, 130, "- log: waiting\n- project:\n    alternatives: {slow: [{wait: 60}], quick: [{log: x}]}\n"
+                         "    vary: {box: {noise: 0.05}}\n"),
+    # ... and on two forked workers (the first run, timed, says the other 19 are worth them)
+    (signal.SIGINT, 130, "- log: waiting\n- project:\n    alternatives: {first: [{wait: 0.2}], slow: [{wait: 60}]}\n"
                          "    vary: {box: {noise: 0.05}}\n"),
 ])
 def test_a_signal_during_wait_ends_the_run_within_a_second_with_its_trace(tmp_path, signum, code, body):
     plan = plan_files(tmp_path, body)
     trace = tmp_path / "t.json"
     trace.write_text("the previous trace")
-    process = start(["run", str(plan), "--trace", str(trace)], tmp_path)
+    process = start(["run", str(plan), "--trace", str(trace), "--workers", "2"], tmp_path)
     wait_for(lambda: process.poll() is not None or b"waiting" in _stderr_so_far(process))
     time.sleep(0.3)  # well inside the wait
+    workers: list[int] = []
+    if "first" in body:  # the workers run the other runs now
+        wait_for(lambda: len(children(process.pid)) >= 2)
+        workers = children(process.pid)
     took, out, err = signal_and_time(process, signum)
     assert process.returncode == code, err
     assert took < 1.0, f"took {took:.2f} s to end"
@@ -101,6 +109,13 @@ def test_a_signal_during_wait_ends_the_run_within_a_second_with_its_trace(tmp_pa
     assert "cancelled" in statuses(data)
     if "project" in body:  # the world the trace ends with is the real one, not a projected run's
         assert data["final_state"]["objects"]["box"]["position"] == [0.5, 0.0, 0.025]
+    assert not [w for w in workers if Path(f"/proc/{w}").exists()], "worker processes outlived the run"
+
+
+def children(pid: int) -> list[int]:
+    """The processes `pid` started that are still there (Linux)."""
+    path = Path(f"/proc/{pid}/task/{pid}/children")
+    return [int(c) for c in path.read_text().split()] if path.exists() else []
 
 
 _buffers: dict[int, bytearray] = {}

@@ -215,6 +215,7 @@ def test_an_expression_over_the_outcomes_chooses(tmp_path, kitchen, score, chose
                                                                           "(did you mean 'milk'?)"),
     ("project: {alternatives: {a: [{pick-up: {object: milc}}]}}", "milc"),
     ("project: {alternatives: {a: [{log: x}]}, rnus: 3}", "unknown key 'rnus' in 'project'"),
+    ("project: {alternatives: {a: [{log: x}]}, timeout: 0}", "timeout: expected seconds above 0 and at most 86400"),
 ])
 def test_problems_are_input_errors_with_their_place(tmp_path, body, message):
     path = write(tmp_path, f"world: kitchen\nbody:\n  - {body}\n")

@@ -254,3 +254,40 @@ def test_what_stable_simulates_on_the_prospection_copy_is_recorded_apart(milk_ov
     assert frames and all(set(f["changed"]) == {"milk"} for f in frames)  # only what the step names
     assert [f["t"] for f in frames] == sorted(f["t"] for f in frames)
     assert "milk" not in check["changed"] and "physics" not in check  # the world itself did not move
+
+
+def test_a_project_steps_runs_are_replayed_apart_the_first_of_each_alternative_only(tmp_path):
+    """Projected runs are not the run: none of their steps is among the replay's, and the replay (and its
+    final state) is the real run's; each alternative's first MAX_PROJECTED_REPLAYS runs are kept apart, each a
+    replay of its own from its varied start, with its own tree."""
+    from pycram_cli.limits import MAX_PROJECTED_REPLAYS
+
+    plan = tmp_path / "project.yaml"
+    plan.write_text(f"""
+world: kitchen
+body:
+  - project:
+      alternatives:
+        look: [{{looking: {{target: [1.3, 0.8, 0.9]}}}}]
+        drive: [{{moving: {{target: [0.5, 0.7, 0]}}}}]
+      runs: {MAX_PROJECTED_REPLAYS + 2}
+      vary: {{milk: {{noise: [0.02, 0.02, 0]}}}}
+      choose: first-success
+  - log: done
+""")
+    trace = prepare(plan).run(replay=True).trace
+    replay = trace["replay"]
+    assert [step["path"] for step in replay["steps"]] == ["body/0:project/chosen look/0:looking", "body/1:log"]
+    assert _replays_to_the_final_state(trace)
+    kept = replay["projections"]["body/0:project"]
+    assert list(kept) == ["look", "drive"]
+    assert list(kept["drive"]) == [str(run) for run in range(MAX_PROJECTED_REPLAYS)]
+    drive = kept["drive"]["3"]
+    assert drive["root"]["path"] == "body/0:project/projected drive 3" and drive["root"]["status"] == "succeeded"
+    assert [step["path"] for step in drive["steps"]] == ["body/0:project/projected drive 3/0:moving"]
+    assert drive["steps"][0]["changed"]["pr2"]["position"][:2] == [0.5, 0.7]
+    assert drive["initial"]["milk"]["position"] != replay["initial"]["milk"]["position"]  # its own varied start
+    assert traces.comparable(trace) == traces.comparable(prepare(plan).run().trace)  # the same run, recorded or not
+    docs = (REPO / "docs" / "plans.md").read_text()
+    assert f"the first {MAX_PROJECTED_REPLAYS} runs of each alternative" in docs  # as the docs say
+    assert f"(the first {MAX_PROJECTED_REPLAYS} of each alternative)" in docs

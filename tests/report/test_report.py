@@ -169,3 +169,56 @@ def test_the_reasoning_of_a_step_is_in_its_frame(set_table_report):
     import numpy as np
     axes = np.array(views[0]["axes"]).reshape(3, 3)
     assert np.allclose(axes @ axes.T, np.eye(3), atol=1e-3)
+
+
+PROJECTING = """\
+world: kitchen
+body:
+  - moving: {target: [0.65, 0.7, 0], orientation: [0, 0, 0, 1]}
+  - project:
+      alternatives:
+        front: [{pick-up: {object: cereal, arm: right, grasp: front}}]
+        top: [{pick-up: {object: cereal, arm: right, grasp: top}}]
+      runs: 2
+      vary: {cereal: {noise: [0.01, 0.01, 0], yaw: 0.2}}
+"""
+
+
+@pytest.fixture(scope="module")
+def projecting_report(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("projecting")
+    (folder / "plan.yaml").write_text(PROJECTING)
+    result = run("run", folder / "plan.yaml", "--report", folder / "run.html", "--trace", folder / "run.json")
+    assert result.exit_code == 0, result.output
+    return folder
+
+
+def test_the_report_holds_each_kept_projected_run_as_a_replay_of_its_own(projecting_report):
+    data = page_data(projecting_report / "run.html")
+    table = data["trace"]["root"]["children"][1]["projection"]["alternatives"]
+    kept = data["projections"]["body/1:project"]
+    assert sorted(kept) == ["front", "top"] and all(sorted(runs) == ["0", "1"] for runs in kept.values())
+    for name, runs in kept.items():
+        for run_number, replay in runs.items():
+            outcome = table[name]["outcomes"][int(run_number)]
+            assert replay["status"] == outcome["status"]
+            assert replay["root"]["path"] == f"body/1:project/projected {name} {run_number}"
+            assert len(replay["frames"]) == 2  # before the pick-up, after it
+            assert [f["path"] for f in replay["failures"]] == (
+                [] if outcome["status"] == "succeeded" else [f"body/1:project/projected {name} {run_number}/0:pick-up"])
+    assert table["front"]["failures"] and table["top"]["succeeded"] == 2
+    # the main replay is the real run's: driving, then the chosen pick-up
+    assert [f["path"] for f in data["frames"][1:]] == ["body/0:moving", "body/1:project/chosen top/0:pick-up"]
+
+
+def test_a_saved_trace_with_projected_replays_makes_the_same_report(projecting_report, tmp_path):
+    result = run("trace", "show", projecting_report / "run.json", "--report", tmp_path / "again.html")
+    assert result.exit_code == 0, result.output
+    again, first = page_data(tmp_path / "again.html"), page_data(projecting_report / "run.html")
+
+    def untimed(value):  # the trace file keeps timings to the microsecond
+        if isinstance(value, dict):
+            return {k: untimed(v) for k, v in value.items() if k != "timing"}
+        return [untimed(v) for v in value] if isinstance(value, list) else value
+
+    assert untimed(again["projections"]) == untimed(first["projections"])

@@ -276,3 +276,69 @@ def test_next_failure_walks_through_recovered_failures_too(tmp_path):
     view = image[top + 100:top + height - 10, left + 10:left + width - 10]
     pink = (view[:, :, 0] > 150) & (view[:, :, 0] - view[:, :, 1] > 50) & (view[:, :, 2] - view[:, :, 1] > 10)
     assert pink.sum() > 30, "the spoon in the closed drawer is not shown"
+
+
+PROJECTING = """\
+world: kitchen
+body:
+  - moving: {target: [0.65, 0.7, 0], orientation: [0, 0, 0, 1]}
+  - project:
+      alternatives:
+        front: [{pick-up: {object: cereal, arm: right, grasp: front}}]
+        top: [{pick-up: {object: cereal, arm: right, grasp: top}}]
+      runs: 2
+"""
+
+# A page holding the report in a frame: once the report is ready it clicks the first projected run in the
+# table, and once the page that opens is ready it writes what that page shows on its own <body>.
+CLICKER = """<!DOCTYPE html><html><body data-clicked="" data-opened="" data-opened-steps="" data-opened-labels="">
+<iframe id="report" src="REPORT#step=last" style="width:1400px;height:860px"></iframe>
+<script>
+const frame = document.getElementById("report");
+let clicked = false;
+setInterval(() => {
+  const page = frame.contentDocument;
+  if (!page || !page.body || page.body.dataset.ready !== "1") return;
+  if (!clicked) {
+    const link = page.querySelector("header table.projection-table a.run");
+    if (!link) return;
+    clicked = true;
+    document.body.dataset.clicked = link.getAttribute("href");
+    link.click();
+    return;
+  }
+  if (!page.body.dataset.projected) return;
+  document.body.dataset.opened = page.body.dataset.projected;
+  document.body.dataset.openedSteps = page.body.dataset.steps;
+  document.body.dataset.openedFailure = page.body.dataset.failure || "";
+  document.body.dataset.openedLabels = [...page.querySelectorAll("#tree .label")].map((e) => e.textContent).join(",");
+  document.body.dataset.banner = (page.getElementById("projected-banner") || {}).textContent || "";
+}, 50);
+</script></body></html>
+"""
+
+
+def test_clicking_a_projected_run_in_the_table_opens_its_replay(tmp_path):
+    (tmp_path / "plan.yaml").write_text(PROJECTING)
+    report = tmp_path / "run.html"
+    result = CliRunner().invoke(cli, ["run", str(tmp_path / "plan.yaml"), "--report", str(report)])
+    assert result.exit_code == 0, result.output
+    # the run's own page: the table, each run a link to its replay
+    dom, attributes = dump(tmp_path, "run", report.as_uri() + "#step=last")
+    assert attributes["ready"] == "1" and attributes["projected"] == ""
+    assert "projected at body/1:project: chose top" in dom
+    header, details = dom.split("</header>")[0], dom.split('id="details"')[1]
+    links = re.findall(r'<a class="run st-(\w+)" href="([^"]+)"', header)
+    assert [status for status, _ in links] == ["failed", "failed", "succeeded", "succeeded"]
+    assert re.findall(r'<a class="run st-(\w+)" href="([^"]+)"', details) == links  # beside the chosen pick-up too
+    # clicking the first (front, run 0) opens that run alone: its pick-up, failed, the banner saying what it is
+    clicker = tmp_path / "clicker.html"
+    clicker.write_text(CLICKER.replace("REPORT", report.name))
+    dom = chromium(tmp_path / "click", "--allow-file-access-from-files", "--dump-dom",
+                   clicker.as_uri()).stdout.decode(errors="replace")
+    body = body_of(dom)
+    assert body["clicked"] == links[0][1]  # both as the DOM dump escapes them
+    assert body["opened"] == "body/1:project|front|0", dom[:3000]
+    assert body["openedsteps"] == "1" and body["openedfailure"] == "1"
+    assert body["openedlabels"] == "projected front 0,0:pick-up"
+    assert body["banner"].startswith("Projected run 0 of “front” at body/1:project")

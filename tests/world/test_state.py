@@ -56,3 +56,26 @@ def test_restoring_after_objects_were_added_is_a_clear_error(world, data_dir):
     Object("cube", "box", data_dir / "cube.obj")
     with pytest.raises(StateError, match="objects were added or removed"):
         world.restore_state(state)
+
+
+def test_a_reset_with_no_step_since_the_last_is_a_restore_and_simulates_on_exactly_as_a_full_one(world, data_dir):
+    """reset_to steps once to refresh the contact caches; when nothing stepped since the last reset to the same
+    state (a projected run that only teleports and asks), the caches are that reset's, and the restore alone is
+    the same world: what follows simulates bitwise as after a full reset."""
+    Object("floor", "environment", "plane.urdf")
+    cubes = [Object(f"c{i}", "box", data_dir / "cube.obj", [0.3 * i, 0.0, 0.2 + 0.1 * i]) for i in range(3)]
+    world.simulate(0.2)  # falling and landing: contacts matter from here on
+    state = world.save_state()
+
+    world.simulate(0.1)
+    world.reset_to(state)  # a full reset (the world stepped)
+    world.simulate(0.5)
+    after_full = full_state(world)
+
+    world.reset_to(state)
+    cubes[0].set_position([2.0, 2.0, 0.5])  # teleports, no step
+    taken = world._steps_taken
+    world.reset_to(state)  # nothing stepped since the last reset to this state: a restore
+    assert world._steps_taken == taken
+    world.simulate(0.5)
+    assert full_state(world) == after_full

@@ -11,9 +11,31 @@
 // step (a failed run opens at its failure); #failure=N at the N-th failed step; #node=PATH at a node (a
 // composite: its first step), as clicking it in the tree does; #play starts playing; #select=NAME selects a body; #hide=A,B hides
 // bodies; #png makes the image of the view (the link #png-link). window.pycramReport: seek(k), step(), select().
+// `project` steps: DATA.projections (step path -> alternative -> run -> {root, status, failure, frames, failures})
+// holds the projected runs the run kept the replay of; the step's table (in the header, and beside its steps)
+// links each to #projected=PATH&alternative=NAME&run=N, which opens the page on that run alone, played like a run.
 (function () {
   "use strict";
-  const DATA = JSON.parse(document.getElementById("pycram-data").textContent);
+  const FULL = JSON.parse(document.getElementById("pycram-data").textContent);
+  function projectedKey(hash) {  // #projected=PATH&alternative=NAME&run=N (each part URI-encoded) -> [path, name, run]
+    const parts = {};
+    for (const part of hash.replace(/^#/, "").split("&")) {
+      const at = part.indexOf("=");
+      if (at > 0) parts[part.slice(0, at)] = decodeURIComponent(part.slice(at + 1));
+    }
+    return parts.projected === undefined ? null : [parts.projected, parts.alternative || "", parts.run || ""];
+  }
+  const opened = projectedKey(location.hash);
+  const kept = opened ? ((((FULL.projections || {})[opened[0]] || {})[opened[1]] || {})[opened[2]] || null) : null;
+  const DATA = kept ? { ...FULL, frames: kept.frames, failures: kept.failures,
+    trace: { ...FULL.trace, status: kept.status, failure: kept.failure, root: kept.root } } : FULL;
+  // opening another projected run, or going back to the run, makes the page again
+  window.addEventListener("hashchange", () => {
+    if (JSON.stringify(projectedKey(location.hash)) !== JSON.stringify(kept ? opened : null)) location.reload();
+  });
+  function projectedLink(path, name, run) {
+    return `#projected=${encodeURIComponent(path)}&alternative=${encodeURIComponent(name)}&run=${encodeURIComponent(run)}`;
+  }
   const trace = DATA.trace, scene = DATA.scene, frames = DATA.frames;
   const STEPS = frames.length - 1;
   const $ = (id) => document.getElementById(id);
@@ -115,7 +137,42 @@
     if (trace.failure) {
       h.append(el("div", { class: "failure", text: `${trace.failure.type} at ${trace.failure.path}: ${trace.failure.message}` }));
     }
+    if (kept) {
+      h.append(el("div", { class: "projected", id: "projected-banner" },
+        `Projected run ${opened[2]} of “${opened[1]}” at ${opened[0]}: tried in prospection before the robot acted — the world did not do this. `,
+        el("a", { href: "#", id: "back-to-run", text: "back to the run" })));
+    }
+    for (const node of nodes) {
+      if (!kept && node.data.projection) {
+        const p = node.data.projection;
+        h.append(el("details", { class: "projection" }, el("summary", { text: `projected at ${node.data.path}: ${p.choice === null ? "nothing good enough" : `chose ${p.choice}`} (${p.why})` }),
+          projectionTable(node.data)));
+      }
+    }
   })();
+
+  // ---------------------------------------------------------------- a `project` step's table of projected runs
+  function projectionTable(data) {
+    const p = data.projection, keptRuns = (FULL.projections || {})[data.path] || {};
+    const table = el("table", { class: "projection-table", "data-step": data.path });
+    table.append(el("tr", {}, el("th", { text: "alternative" }), el("th", { text: "succeeded" }), el("th", { text: "failures" }),
+      el("th", { text: "runs (click one with a replay to open it)" })));
+    for (const [name, row] of Object.entries(p.alternatives || {})) {
+      const runs = el("td", { class: "runs" });
+      for (const outcome of row.outcomes || []) {
+        const mark = { succeeded: "✓", failed: "✗", error: "!", timeout: "⏱", impossible: "·" }[outcome.status] || "?";
+        const title = `run ${outcome.run}: ${outcome.status}${outcome.failure ? ` — ${outcome.failure}` : ""}`;
+        const replayed = keptRuns[name] && keptRuns[name][String(outcome.run)];
+        runs.append(replayed
+          ? el("a", { class: `run st-${outcome.status}`, href: projectedLink(data.path, name, String(outcome.run)), title: `${title} (open its replay)`, text: mark })
+          : el("span", { class: `run st-${outcome.status}`, title, text: mark }));
+      }
+      const causes = Object.entries(row.failures || {}).map(([kind, count]) => `${count} ${kind}`).join(", ");
+      table.append(el("tr", { class: name === p.choice ? "chosen" : "" }, el("td", { text: name + (name === p.choice ? " (chosen)" : "") }),
+        el("td", { text: `${row.succeeded} of ${row.runs}` }), el("td", { text: causes || "—" }), runs));
+    }
+    return table;
+  }
 
   // ---------------------------------------------------------------- the tree
   function buildTree(node) {
@@ -834,6 +891,9 @@
       walk(action);
       add("expansion", el("span", {}, `${label(action.data)} → `, list));
     }
+    let projecting = node.parent;  // a step the project step chose after projecting: its table
+    while (projecting && !projecting.data.projection) projecting = projecting.parent;
+    if (projecting && !kept) add("projected", projectionTable(projecting.data));
     const failure = data.failure;
     if (failure) {
       const fatal = node.final !== "recovered";
@@ -986,6 +1046,7 @@
   window.pycramReport = { seek, step: () => shown, position: () => position, select: (name) => select(bodyIndex.has(name) ? bodyIndex.get(name) : -1),
     stepOf: (path) => (byPath.has(path) ? stepOf(byPath.get(path)) : null) };
   document.body.dataset.steps = String(STEPS);
+  document.body.dataset.projected = kept ? opened.join("|") : "";
   document.body.dataset.ready = "1";
   setInterval(tick, 30);
   requestAnimationFrame(draw);
