@@ -94,8 +94,7 @@ class ArmTests:
         process module's own planning (pre-grasp and grasp reached, the open gripper inside nothing), so a pose found
         here is one from which the pick-up succeeds; the arm at the grasp then touches nothing but the object and
         what it stands on. An arm and grasp whose ways are straight come before one whose ways must go around
-        something (finding that a way round does not exist costs a search: about 0.4 s). Long: the tiers share the
-        one loop's bookkeeping (what blocked, what each attempt ran into)."""
+        something (finding that a way round does not exist costs a search: about 0.4 s)."""
         robot, spec = self.robot, self.spec
         blocked: list[str] = []
         holdable = False
