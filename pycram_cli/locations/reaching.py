@@ -135,8 +135,8 @@ class ArmTests:
                     self.taken = solution
                     return arm, grasp
         for arm, grasp, _, _, legs in viable:
-            failure = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
-            attempts[arm, grasp] = str(failure) if failure is not None else "its ways are blocked"
+            why = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
+            attempts[arm, grasp] = str(why) if why is not None else "its ways are blocked"
         self.attempts = [(arm, grasp, attempts[arm, grasp]) for arm in arms for grasp in grasps
                          if (arm, grasp) in attempts]
         return _missed(blocked, holdable, obj)
@@ -168,13 +168,14 @@ class ArmTests:
             try:
                 if legs.get("pre") is not True:
                     move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the pre-grasp pose",
-                              straight=legs.get("pre"), **tier)
+                              straight=legs.get("pre"), around=tier["around"], search=tier["search"])
                     legs["pre"] = True
                 if rest is not None and legs.get("rest") is not True:
                     body.reset_joints(solution.joint_positions)  # holding it as grasped: the way to rest holding it so
                     move_over(robot, arm, rest_configuration(robot, arm, holding=True) or {},
                               f"the {arm_words(arm)}'s motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
-                              straight=legs.get("rest"), **tier)
+                              straight=legs.get("rest"), around=tier["around"],
+                              search=tier["search"])
                     legs["rest"] = True
             except ManipulationFailure as failure:  # move_over raises its straight path's failure
                 legs["pre" if legs.get("pre") is not True else "rest"] = failure
