@@ -56,6 +56,7 @@ def where_of(value: Any, fallback: Location) -> Location:
 MERGE_TAG = "tag:yaml.org,2002:merge"
 
 
+# long: the Loader class is defined inside, closing over the file name every location names
 def _make_loader(filename: str) -> type[yaml.SafeLoader]:
     def location(mark: yaml.Mark) -> Location:
         return Location(filename, mark.line + 1, mark.column + 1)

@@ -107,6 +107,7 @@ class QuietView:
 
 
 # -- the command -----------------------------------------------------------------------------------------
+# long: one click command: each of its flags handed on in the order a run needs them (the work is in scenario/)
 @click.command("run")
 @click.argument("plan_file", metavar="PLAN", shell_complete=plan_names)
 @click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,

@@ -138,7 +138,7 @@ class BasePoseResolution(Resolution):
     # -- the candidates ---------------------------------------------------------------------------------------
     def _prepare(self) -> None:
         """The candidates, ranked and through the cheap tests (geometry, the floor map's core), and what the arm
-        tests need (allowed contacts, the handle's path). Long: one pass over the arrays, each step reading the last."""
+        tests need (allowed contacts, the handle's path)."""
         robot, spec = self.robot, self.spec
         self.held = robot.held_objects()
         self.map = floor_map = floor.floor_map(robot, self.held, saved=True)

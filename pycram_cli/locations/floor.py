@@ -211,6 +211,7 @@ def _rasterise(boxes: Sequence[Box], origin: np.ndarray, shape: tuple[int, int],
     return grid
 
 
+# long: one pass from boxes to bands to grids, each step's arrays feeding the next
 def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RESOLUTION,
           ignore: Iterable["Object"] = ()) -> FloorMap:
     """The floor map of the robot's world for its current configuration (the world is left as it was)."""

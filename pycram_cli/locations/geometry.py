@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Sequence, Union
 
 import numpy as np
 
@@ -19,6 +19,8 @@ from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_qua
 
 #: candidate base positions: a lattice of the floor with this spacing (m); poses along a reach line are as far apart
 STEP = 0.05
+#: a point or direction: a sequence of floats or a numpy array
+Point = Union[Sequence[float], np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -69,7 +71,7 @@ def aligned_reach_line(robot: Robot, arm: str) -> float | None:
     return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
 
 
-def line_poses(point: Sequence[float], heading: float, arm: ArmGeometry,
+def line_poses(point: Point, heading: float, arm: ArmGeometry,
                line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Base poses (xs, ys, yaws) turned to `heading` (rad) with the arm's reach line (`straight_reach_line`) through
     `point`, the shoulder STEP, 2 STEP, ... up to the arm's length short of it: from these an arm that keeps its
@@ -83,7 +85,7 @@ def line_poses(point: Sequence[float], heading: float, arm: ArmGeometry,
     return xs, ys, np.full(len(xs), heading)
 
 
-def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: ArmGeometry,
+def pull_aligned_poses(closed: Point, opened: Point, arm: ArmGeometry,
                        line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """`line_poses` for a handle: facing along its pull (from `opened` towards `closed`), the line through the closed
     handle; from these the arm follows the handle all the way open with one front grasp."""
@@ -93,7 +95,7 @@ def pull_aligned_poses(closed: Sequence[float], opened: Sequence[float], arm: Ar
     return line_poses(closed, math.atan2(into[1], into[0]), arm, line)
 
 
-def place_headings(robot: Robot, obj: Object, target: Sequence[float]) -> list[tuple[np.ndarray, float]]:
+def place_headings(robot: Robot, obj: Object, target: Point) -> list[tuple[np.ndarray, float]]:
     """(tool position, tool heading) for each way place may stand the held `obj` at `target` (`PLACE_TURNS`), where
     the tool points sideways (a tool pointing down turns about the vertical with the wrist: none)."""
     held = invert(robot.body.attachments[obj].transform)

@@ -26,6 +26,8 @@ from .spec import LocationSpec
 TURNS = (0.0, math.radians(20), -math.radians(20))
 #: `Poses.kind`: a lattice pose, an in-line pose tried first, an in-line pose deferred until the others failed
 LATTICE, FIRST, DEFERRED = 0, 1, 2
+#: one arm's in-line poses: xs, ys, yaws and kinds
+InLine = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
 @dataclass(frozen=True)
@@ -66,10 +68,10 @@ def floor_lattice(target: np.ndarray, radius: float, turned: float, tried: Seque
 
 
 def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry], reach_target: np.ndarray | None,
-                  handle_ends: tuple[np.ndarray, np.ndarray] | None) -> list[tuple[np.ndarray, ...]]:
+                  handle_ends: tuple[np.ndarray, np.ndarray] | None) -> list[InLine]:
     """(xs, ys, yaws, kinds) of the poses in line with each arm's reach line: facing along a handle's pull
     (`handle_ends`: closed, opened), or for each way a held thing may be placed at `reach_target`."""
-    parts = []
+    parts: list[InLine] = []
     if handle_ends is not None:
         closed, opened = handle_ends
         for name, geo in arms.items():

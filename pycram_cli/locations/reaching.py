@@ -102,8 +102,7 @@ class ArmTests:
         process module's own planning (pre-grasp and grasp reached, the open gripper inside nothing), so a pose found
         here is one from which the pick-up succeeds; the arm at the grasp then touches nothing but the object and
         what it stands on. An arm and grasp whose ways are straight come before one whose ways must go around
-        something (finding that a way round does not exist costs a search: about 0.4 s). Long: the tiers share the
-        one loop's bookkeeping (what blocked, what each attempt ran into)."""
+        something (finding that a way round does not exist costs a search: about 0.4 s)."""
         robot, spec = self.robot, self.spec
         blocked: list[str] = []
         holdable = False
@@ -144,8 +143,8 @@ class ArmTests:
                     self.taken = solution
                     return arm, grasp
         for arm, grasp, _, _, legs in viable:
-            failure = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
-            attempts[arm, grasp] = str(failure) if failure is not None else "its ways are blocked"
+            why = legs.get("pre") if legs.get("pre") is not True else legs.get("rest")
+            attempts[arm, grasp] = str(why) if why is not None else "its ways are blocked"
         self.attempts = [(arm, grasp, attempts[arm, grasp]) for arm in arms for grasp in grasps
                          if (arm, grasp) in attempts]
         return _missed(blocked, holdable, obj, bool(viable) and not self.searching)
@@ -177,13 +176,14 @@ class ArmTests:
             try:
                 if legs.get("pre") is not True:
                     move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the pre-grasp pose",
-                              straight=legs.get("pre"), **tier)
+                              straight=legs.get("pre"), around=tier["around"], search=tier["search"])
                     legs["pre"] = True
                 if rest is not None and legs.get("rest") is not True:
                     body.reset_joints(solution.joint_positions)  # holding it as grasped: the way to rest holding it so
                     move_over(robot, arm, rest_configuration(robot, arm, holding=True) or {},
                               f"the {arm_words(arm)}'s motion to its {rest} pose", down_onto_goal=False, ignore=[obj],
-                              straight=legs.get("rest"), **tier)
+                              straight=legs.get("rest"), around=tier["around"],
+                              search=tier["search"])
                     legs["rest"] = True
             except ManipulationFailure as failure:  # move_over raises its straight path's failure
                 legs["pre" if legs.get("pre") is not True else "rest"] = failure

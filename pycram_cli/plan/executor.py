@@ -336,6 +336,7 @@ class Exec:
         return self.run_group(nodes, tn)
 
     # -- concurrency ---------------------------------------------------------------------------
+    # long: starting, scheduling and deciding the branches share their state (see the docstring)
     def concurrent(self, nodes: list[Node], tn: Record, composite: Decider) -> Any:
         """Run steps in threads of their own; `composite` (par, pursue, try_all) decides the outcome.
 

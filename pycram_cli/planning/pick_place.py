@@ -74,6 +74,7 @@ def offset_along(position: Sequence[float], direction: np.ndarray, distance: flo
     return (float(p[0]), float(p[1]), float(p[2]))
 
 
+# long: its attempt callback collects three kinds of failure the end turns into the one to report
 def plan_grasp(robot: Robot, arm: str, obj: Object,
                grasp: str | Sequence[float]) -> tuple[Grasp, IKSolution, IKSolution]:
     """The first way to hold `obj` with `grasp` whose pre-grasp pose and grasp pose the arm reaches, the arm with its

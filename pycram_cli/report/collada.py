@@ -63,6 +63,7 @@ def _node_transform(node: ET.Element) -> np.ndarray:
     return m
 
 
+# long: COLLADA's sources, vertices and primitives index each other: read in one pass
 def _geometry(mesh: ET.Element) -> tuple[np.ndarray, np.ndarray]:
     """A <mesh>'s positions (n, 3) and triangles (m, 3)."""
     sources = {}

@@ -189,6 +189,7 @@ class Replayer:
         self.failures: list[dict[str, Any]] = []
         self._placed: dict[str, dict[int, list[float]]] = {}  # step path -> body -> its poses as physics began
 
+    # long: one walk over the replay's steps, the scene's state carried from step to step
     def frames(self) -> list[dict[str, Any]]:
         scene, world = self.scene, self.scene.world
         _detach_all(scene)

@@ -318,6 +318,7 @@ class _Reader:
                               palm_link=self.name(data, "palm_link"), gripper=self.gripper(data, str(name)),
                               links=self.names(data, "links"), poses=self.poses(data, str(name), joints))
 
+    # long: every key of a description read in turn, all problems collected at once
     def read(self) -> RobotDescription:
         data = load_yaml(self.path)
         if not isinstance(data, LMap):

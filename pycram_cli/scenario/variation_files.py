@@ -69,6 +69,7 @@ def read_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None
     return variations
 
 
+# long: every key of the file checked in turn, all problems collected at once
 def parse_variations(path: str | Path, world: WorldSpec, plan: Plan | None = None) -> Variations:
     """Read and check a variation file against the world (and the plan's parameters); all problems at once."""
     path = Path(path)
@@ -327,6 +328,7 @@ def _no_such_object(declared: Param, value: Any, objects: list[str] | None) -> s
     return f"parameter '{declared.name}' is an object: the world has no object '{value}'"
 
 
+# long: every parameter entry checked in turn, all problems collected at once
 def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots,
                   errors: list[InputError], objects: list[str] | None = None) -> list[ParamDraw]:
     if not isinstance(value, LMap):

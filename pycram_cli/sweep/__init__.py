@@ -106,6 +106,7 @@ def parse_compare(text: str, scenario: Scenario, variations: Variations) -> tupl
     return name, alternatives
 
 
+# long: every setting checked before anything opens, all problems collected at once
 def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
     """Check everything (every problem together, as InputErrors) and open the results folder."""
     import_extensions(settings.imports)

@@ -81,6 +81,7 @@ class RayWorker:
         return self.worker.run(task), self.worker.retire
 
 
+# long: the scheduling loop: submitting, waiting, timeouts and cancelling share its state
 def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable[[dict[str, Any]], None],
         address: str | None = None, grace: float | None = None) -> None:
     ray = load_ray()

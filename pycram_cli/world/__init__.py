@@ -6,7 +6,8 @@ with silenced():  # PyBullet prints its build banner from C when first imported
 from .bullet_world import BulletWorld, ClosestPoint, RayHit, WorldError, current_world
 from .events import Event
 from .display import NoDisplayError
-from .object import Attachment, JointLimitError, MissingMeshWarning, Object, VisualShape
+from .object import Object
+from .parts import Attachment, JointLimitError, MissingMeshWarning, VisualShape
 from .state import StateError, WorldState
 
 __all__ = ["BulletWorld", "ClosestPoint", "RayHit", "Object", "Attachment", "Event", "WorldState", "WorldError", "StateError",

@@ -71,6 +71,7 @@ class Mesh:
             point_normals.append(np.repeat(normals[chosen], len(weights), axis=0))
         return np.concatenate(points), np.concatenate(point_normals)
 
+    # long: one numpy pipeline (sample, cut, merge) whose steps share a dozen arrays
     def convex_pieces(self, cell: float = PIECE_CELL, spread: float = PIECE_SPREAD) -> list[np.ndarray]:
         """The mesh cut into convex pieces for collision, each the points of a patch of its surface.
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 import contextlib
 import math
 import warnings
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping, Sequence
 
@@ -15,6 +14,8 @@ from ..errors import did_you_mean
 from .bullet_world import BulletWorld, WorldError
 from .meshes import read_mesh
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, find_model_file, mesh_urdf, prepare_urdf
+from .parts import (JOINT_TYPES, SHAPE_KINDS, Attachment, Joint, JointLimitError, MissingMeshWarning,
+                    VisualShape)
 from .pose import UP_TURNS, Quat, Vec3, check_position, check_quaternion, compose, invert, up_axis
 from ..quiet import silenced
 
@@ -22,90 +23,10 @@ KINEMATIC_TYPES = ("robot", "environment")
 HOLD_FORCE = 1e5  # N or N·m: what holds a fixed object's joints (see parking.py)
 
 
-class MissingMeshWarning(UserWarning):
-    """A URDF names mesh files that do not exist; it was loaded without them."""
-
-
-class JointLimitError(ValueError):
-    """A joint value outside the joint's limits."""
-
-
-@dataclass(frozen=True)
-class Attachment:
-    """`child` follows `parent`: the child link keeps `transform` relative to the parent link."""
-
-    parent: "Object"
-    child: "Object"
-    parent_link: int
-    child_link: int
-    transform: tuple[Vec3, Quat]
-
-
-_IDENTITY: tuple[Vec3, Quat] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-
-
-@dataclass(frozen=True)
-class Joint:
-    """A joint as PyBullet indexed it: the joint's index is also its child link's index.
-
-    The constants a kinematic chain of this body needs, read once when the model is indexed, in
-    PyBullet's convention (it chains centre-of-mass frames): `parent_frame` leads from the parent
-    link's centre of mass to the joint origin, turned like the child's centre-of-mass frame at
-    joint position 0; `axis` is given in that frame, as PyBullet reports it (not normalised);
-    `inertial_frame` is the child's centre-of-mass frame in its URDF link frame.
-    """
-
-    index: int
-    name: str
-    type: str  # revolute, prismatic, continuous, fixed, ...
-    lower: float
-    upper: float
-    child_link: str
-    parent_index: int = -1  # the parent link's index (-1: the base)
-    axis: Vec3 = (0.0, 0.0, 0.0)
-    parent_frame: tuple[Vec3, Quat] = _IDENTITY
-    inertial_frame: tuple[Vec3, Quat] = _IDENTITY
-
-    @property
-    def movable(self) -> bool:
-        return self.type in ("revolute", "prismatic", "continuous")
-
-    @property
-    def limited(self) -> bool:
-        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
-
-
-@dataclass(frozen=True)
-class VisualShape:
-    """One visual shape of a link, as drawn: kind, size, colour, and pose in the link's URDF frame.
-
-    `kind` is box (`size`: full extents), sphere (`radius`), cylinder or capsule (`radius`, `length`
-    along the z axis), mesh (`mesh_file`, `scale`) or plane.
-    """
-
-    link: int  # -1: the base
-    kind: str
-    origin: tuple[Vec3, Quat]
-    rgba: tuple[float, float, float, float]
-    size: Vec3 = (0.0, 0.0, 0.0)
-    radius: float = 0.0
-    length: float = 0.0
-    mesh_file: Path | None = None
-    scale: Vec3 = (1.0, 1.0, 1.0)
-
-
-_SHAPE_KINDS = {p.GEOM_SPHERE: "sphere", p.GEOM_BOX: "box", p.GEOM_CYLINDER: "cylinder", p.GEOM_MESH: "mesh",
-                p.GEOM_PLANE: "plane", p.GEOM_CAPSULE: "capsule"}
-
-
-_JOINT_TYPES = {p.JOINT_REVOLUTE: "revolute", p.JOINT_PRISMATIC: "prismatic", p.JOINT_FIXED: "fixed",
-                p.JOINT_SPHERICAL: "spherical", p.JOINT_PLANAR: "planar", p.JOINT_POINT2POINT: "point2point",
-                p.JOINT_GEAR: "gear"}
-
-
 class Object:
     """A body in a BulletWorld, addressed by name; links and joints by their URDF names."""
 
+    # long: loading a model: find the file, load it into PyBullet, index it, colour and fix it, in that order
     def __init__(
         self,
         name: str,
@@ -188,7 +109,7 @@ class Object:
         for index in range(p.getNumJoints(self.id, physicsClientId=cid)):
             info = p.getJointInfo(self.id, index, physicsClientId=cid)
             name, kind, lower, upper, link = info[1].decode(), info[2], info[8], info[9], info[12].decode()
-            type_name = _JOINT_TYPES.get(kind, "unknown")
+            type_name = JOINT_TYPES.get(kind, "unknown")
             if type_name == "revolute" and (lower > upper or getattr(declared.get(name), "type", "") == "continuous"):
                 type_name, lower, upper = "continuous", -math.inf, math.inf
             dyn = p.getDynamicsInfo(self.id, index, physicsClientId=cid)
@@ -318,7 +239,7 @@ class Object:
             link, geometry, dimensions, file_name = row[1], row[2], tuple(row[3]), row[4]
             origin = (tuple(float(v) for v in row[5]), tuple(float(v) for v in row[6]))
             rgba = tuple(float(v) for v in row[7])
-            kind = _SHAPE_KINDS.get(geometry, "unknown")
+            kind = SHAPE_KINDS.get(geometry, "unknown")
             fields: dict[str, object] = {}
             if kind == "box":
                 fields["size"] = tuple(float(v) for v in dimensions[:3])

@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import pybullet as p
 
 from .bullet_world import BulletWorld
-from .object import Attachment, Object
+from .object import Object
+from .parts import Attachment
 
 
 @dataclass(frozen=True)

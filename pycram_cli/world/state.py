@@ -22,7 +22,7 @@ import pybullet as p
 
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
-    from .object import Attachment
+    from .parts import Attachment
 
 
 class StateError(RuntimeError):

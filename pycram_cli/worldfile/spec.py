@@ -188,6 +188,7 @@ def _robot_description(robot: ObjectSpec, model: ModelInfo | None, errors: list[
         return None
 
 
+# long: every key of an object entry checked in turn, all problems collected at once
 def _parse_object(item: Any, where: Location, base: Path, errors: list[InputError],
                   models: dict[str, ModelInfo]) -> ObjectSpec | None:
     if not isinstance(item, LMap):

@@ -3,4 +3,5 @@ from __future__ import annotations
 
 from .files import main
 
-raise SystemExit(main())
+if __name__ == "__main__":
+    raise SystemExit(main())
