@@ -354,8 +354,7 @@ MODULE_LINES = 600
 FUNCTION_LINES = 60
 #: long functions in modules other branches of issue 25 are reshaping (reasoning/ik.py: ik; planning/paths.py:
 #: perf); each goes from this list once it is split or says why
-LONG_PENDING = {"reasoning/ik.py:_search_groups", "reasoning/ik.py:solve_link_each", "planning/paths.py:move_over",
-                "planning/paths.py:_search"}
+LONG_PENDING = {"reasoning/ik.py:_search_groups", "reasoning/ik.py:solve_link_each"}
 
 
 def long_functions(path: Path, limit: int = FUNCTION_LINES) -> list[str]:

@@ -259,6 +259,13 @@ class Motion:
         apart_k, apart_o = np.nonzero(near & (gaps > 0.0))
         if not len(apart_k):
             return np.array(lows), found
+        return self._refined(lows, gaps, apart_k, apart_o, rates), found
+
+    def _refined(self, lows: list[float], gaps: np.ndarray, apart_k: np.ndarray, apart_o: np.ndarray,
+                 rates: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
+        """Each mover's bound (see `clearances`), its pairs whose boxes are apart but near (`apart_k`, `apart_o`)
+        measured as far as they matter; `lows` holds what is known of each mover so far."""
+        count = len(lows)
         apart = gaps[apart_k, apart_o]
         order = np.argsort(apart, kind="stable")
         pending: list[list[tuple[float, int]]] = [[] for _ in range(count)]  # each mover's pairs, nearest last
@@ -277,11 +284,14 @@ class Motion:
         def bound(k: int) -> float:
             return min(lows[k], pending[k][-1][0]) if pending[k] else lows[k]
 
+        def settled(k: int) -> bool:
+            return not pending[k] or lows[k] <= SPACING or pending[k][-1][0] >= lows[k]
+
         if rates is None:
             for k in range(count):
-                while pending[k] and lows[k] > SPACING and pending[k][-1][0] < lows[k]:
+                while not settled(k):
                     measure(k)
-            return np.array([bound(k) for k in range(count)]), found
+            return np.array([bound(k) for k in range(count)])
         base, weight = rates[0].tolist(), rates[1].tolist()
 
         def step(k: int) -> float:
@@ -292,11 +302,11 @@ class Motion:
         heapq.heapify(heap)
         while heap:
             _, k = heapq.heappop(heap)
-            if not pending[k] or lows[k] <= SPACING or pending[k][-1][0] >= lows[k]:
+            if settled(k):
                 break  # the mover that limits the step is measured as far as it matters
             measure(k)
             heapq.heappush(heap, (step(k), k))
-        return np.array([bound(k) for k in range(count)]), found
+        return np.array([bound(k) for k in range(count)])
 
     def allow_current(self) -> None:
         """Contacts as they are now may stay (no deeper) along the motion."""
