@@ -262,8 +262,7 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
     return solution.joint_positions if solution is not None and solution.success else None
 
 
-# the ways are one list of recipes tried in order, each solved only when it is tried, all sharing where the arm
-# long: started and which pose each recipe gave (one loop, one bookkeeping)
+# long: the ways are recipes tried in order in one loop, each solved when tried, sharing one start and pose table
 def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down_onto_goal: bool = True,
               around: bool = True, search: bool = True, ignore: Sequence[Object] = (),
               straight: ManipulationFailure | None = None, edges: int = SEARCH_EDGES) -> None:
