@@ -17,6 +17,7 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 
 os.environ.setdefault("PYCRAM_CACHE_DIR", tempfile.mkdtemp(prefix="pycram-test-cache-"))
 
+import slow_first  # noqa: E402
 from pycram_cli import BulletWorld  # noqa: E402
 from pycram_cli.paths import default_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
@@ -24,6 +25,12 @@ from pycram_cli.worldfile.loader import load_world  # noqa: E402
 REPO = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
 SHARED_MODELS = REPO.parent / "shared" / "models"
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The longest tests first (tests/slow_first.py), after pytest's own ordering by shared fixtures."""
+    slow_first.order(items, slow_first.read())
 
 
 @pytest.fixture

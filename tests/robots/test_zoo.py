@@ -27,7 +27,9 @@ SEEDS = range(20)
 
 @pytest.fixture(scope="module")
 def zoo(tmp_path_factory) -> dict[int, tuple[ZooRobot, Path]]:
-    """Seeds 0..19: each robot and its kitchen world, written into one folder."""
+    """Seeds 0..19: each robot and its kitchen world, written into one folder. Generated once for the module (a
+    robot takes a second or two): the tests only read them, and a seed always gives the same robot (the first
+    test generates two of them twice to show it)."""
     folder = tmp_path_factory.mktemp("zoo")
     return {seed: (robot, write_world(robot, folder)) for seed in SEEDS for robot in [generate(seed)]}
 
@@ -113,17 +115,17 @@ def test_a_seed_gives_byte_identical_files(tmp_path: Path):
             assert ours.replace(b"/a/", b"/b/") == theirs, name
 
 
-def test_different_seeds_give_different_robots(tmp_path: Path):
-    texts = {write(generate(seed), tmp_path).read_text() for seed in (0, 1, 2, 3)}
+def test_different_seeds_give_different_robots(zoo, tmp_path: Path):
+    texts = {write(zoo[seed][0], tmp_path).read_text() for seed in (0, 1, 2, 3)}
     assert len(texts) == 4
-    assert len({generate(seed).name for seed in SEEDS}) == len(SEEDS)
+    assert len({zoo[seed][0].name for seed in SEEDS}) == len(SEEDS)
 
 
-def test_no_name_is_the_pr2s_or_the_fetchs():
+def test_no_name_is_the_pr2s_or_the_fetchs(zoo):
     bundled = Path(__file__).resolve().parents[2] / "resources" / "robots"
     theirs = "\n".join((bundled / name / f"{name}.urdf").read_text() for name in ("pr2", "fetch"))
     for seed in (0, 1, 2):
-        robot = generate(seed)
+        robot = zoo[seed][0]
         for name in [j.name for j in robot.joints] + [l.name for l in robot.links]:
             assert f'"{name}"' not in theirs, name
 
@@ -187,8 +189,8 @@ def test_the_wheels_touch_the_floor(loaded, seed):
     assert all(link != body.links[robot.root_link] for link in touching)  # the base body itself is clear
 
 
-def test_the_zoo_has_every_kind_of_camera_torso_arm_and_gripper():
-    robots = [generate(seed) for seed in SEEDS]
+def test_the_zoo_has_every_kind_of_camera_torso_arm_and_gripper(zoo):
+    robots = [zoo[seed][0] for seed in SEEDS]
     assert {r.camera.kind for r in robots} == set(CAMERA_KINDS)
     assert {r.torso_joint is not None for r in robots} == {True, False}
     assert {len(r.arm_joints) for r in robots} == {5, 6, 7}
@@ -216,17 +218,17 @@ def test_the_world_is_the_kitchen_with_the_robot_parked_in_place_of_the_pr2(zoo)
     assert {"milk", "cereal", "bowl", "spoon", "kitchen", "floor"} <= set(names)
 
 
-def test_the_command_line_writes_robots_and_worlds(tmp_path: Path, capsys):
+def test_the_command_line_writes_robots_and_worlds(zoo, tmp_path: Path, capsys):
     assert main(["3", "4", "--out", str(tmp_path)]) == 0
     for seed in (3, 4):
-        name = generate(seed).name
+        name = zoo[seed][0].name
         assert (tmp_path / f"{name}.urdf").is_file() and (tmp_path / f"{name}.yaml").is_file()
         assert (tmp_path / f"{name}_kitchen.yaml").is_file()
     assert "seed 3:" in capsys.readouterr().out
 
 
-def test_the_urdf_is_written_one_element_a_line_and_frames_have_no_geometry(tmp_path: Path):
-    robot = generate(5)
+def test_the_urdf_is_written_one_element_a_line_and_frames_have_no_geometry(zoo, tmp_path: Path):
+    robot = zoo[5][0]
     text = write(robot, tmp_path).read_text()
     assert text.count("\n") > 100
     frames = [link for link in robot.links if link.density is None]
