@@ -33,7 +33,6 @@ geometry comes from the world (`closest_points`, boxes); nothing here calls PyBu
 """
 from __future__ import annotations
 
-import heapq
 import math
 import weakref
 from collections import OrderedDict
@@ -53,7 +52,7 @@ PENETRATION = 0.001
 SPACING = 0.01
 #: boxes closer than this are measured exactly (closest points), so that a check near big boxes (a counter, a
 #: cabinet) steps as far as the parts' true distance allows, not only as far as their boxes' gap (m)
-NEAR = 0.15
+NEAR = 0.03
 #: the levers (see `walk`) are measured afresh after this much travel (m)
 LEVER_REFRESH = 0.1
 #: approaches stop this close to the first contact (m of travel)
@@ -256,57 +255,45 @@ class Motion:
             if depth > max(PENETRATION, self.allowed.get(key, -math.inf) + self.deepen):
                 hits[(k, obj.id, link)] = Hit(key[0], obj, obj.get_link_name(link), depth)
         found = sorted(hits.values(), key=lambda h: -h.depth)
-        apart_k, apart_o = np.nonzero(near & (gaps > 0.0))
-        if not len(apart_k):
-            return np.array(lows), found
-        return self._refined(lows, gaps, apart_k, apart_o, rates), found
+        apart = np.where(near & (gaps > 0.0), gaps, math.inf)  # the near pairs whose boxes are apart
+        return self._refined(np.array(lows), apart, rates), found
 
-    def _refined(self, lows: list[float], gaps: np.ndarray, apart_k: np.ndarray, apart_o: np.ndarray,
-                 rates: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
-        """Each mover's bound (see `clearances`), its pairs whose boxes are apart but near (`apart_k`, `apart_o`)
-        measured as far as they matter; `lows` holds what is known of each mover so far."""
-        count = len(lows)
-        apart = gaps[apart_k, apart_o]
-        order = np.argsort(apart, kind="stable")
-        pending: list[list[tuple[float, int]]] = [[] for _ in range(count)]  # each mover's pairs, nearest last
-        for k, o, box_gap in zip(apart_k[order].tolist(), apart_o[order].tolist(), apart[order].tolist()):
-            pending[k].append((box_gap, o))
-        for queue in pending:
-            queue.reverse()
-
-        def measure(k: int) -> None:
-            """The nearest unmeasured pair of mover k measured (its box gap below k's bound so far)."""
-            _, o = pending[k].pop()
-            within = min(lows[k], NEAR)
-            distance = self._distance(k, o, within)  # inf: not nearer than `within`
-            lows[k] = min(lows[k], within if distance == math.inf else max(distance, 0.0))
-
-        def bound(k: int) -> float:
-            return min(lows[k], pending[k][-1][0]) if pending[k] else lows[k]
-
-        def settled(k: int) -> bool:
-            return not pending[k] or lows[k] <= SPACING or pending[k][-1][0] >= lows[k]
-
+    def _refined(self, lows: np.ndarray, apart: np.ndarray, rates: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
+        """Each mover's bound (see `clearances`): the smaller of what is known of it (`lows`) and its nearest
+        unmeasured pair's box gap (`apart`, inf where there is none), pairs measured as far as they matter."""
+        nearest = apart.min(axis=1)
+        bound = np.minimum(lows, nearest)
         if rates is None:
-            for k in range(count):
-                while not settled(k):
-                    measure(k)
-            return np.array([bound(k) for k in range(count)])
-        base, weight = rates[0].tolist(), rates[1].tolist()
+            for k in range(len(lows)):
+                while nearest[k] < lows[k] and lows[k] > SPACING:
+                    self._measure(k, lows, apart, nearest, bound)
+            return bound
+        base, weight = rates
+        moving = (base + weight) > 0.0
+        while True:
+            travel = np.maximum(np.minimum(bound, 1.0), SPACING)
+            step = np.where(moving, travel / np.where(moving, base + travel * weight, 1.0), math.inf)
+            k = int(np.argmin(step))
+            if not moving[k] or nearest[k] >= lows[k] or lows[k] <= SPACING:
+                return bound  # the mover that limits the step is measured as far as it matters
+            # the clearance k needs to step as far as the next mover lets the path step: no farther is asked
+            following = float(np.partition(step, 1)[1]) if len(step) > 1 else math.inf
+            enough = math.inf
+            if following * weight[k] < 1.0:
+                enough = max(following * base[k] / (1.0 - following * weight[k]), SPACING)
+            self._measure(k, lows, apart, nearest, bound, enough)
 
-        def step(k: int) -> float:
-            travel = max(min(bound(k), 1.0), SPACING)
-            return travel / (base[k] + travel * weight[k])
-
-        heap = [(step(k), k) for k in range(count) if base[k] + weight[k] > 0.0]
-        heapq.heapify(heap)
-        while heap:
-            _, k = heapq.heappop(heap)
-            if settled(k):
-                break  # the mover that limits the step is measured as far as it matters
-            measure(k)
-            heapq.heappush(heap, (step(k), k))
-        return np.array([bound(k) for k in range(count)])
+    def _measure(self, k: int, lows: np.ndarray, apart: np.ndarray, nearest: np.ndarray, bound: np.ndarray,
+                 enough: float = math.inf) -> None:
+        """Mover k's nearest unmeasured pair measured (`_refined`'s arrays updated), up to `enough`: farther than
+        that it counts as `enough` (PyBullet's queries cost more the farther they look)."""
+        o = int(np.argmin(apart[k]))
+        apart[k, o] = math.inf
+        within = min(float(lows[k]), NEAR, enough)
+        distance = self._distance(k, o, within)  # inf: not nearer than `within`
+        lows[k] = min(float(lows[k]), within if distance == math.inf else max(distance, 0.0))
+        nearest[k] = apart[k].min()
+        bound[k] = min(lows[k], nearest[k])
 
     def allow_current(self) -> None:
         """Contacts as they are now may stay (no deeper) along the motion."""
