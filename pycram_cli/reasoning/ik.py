@@ -324,16 +324,17 @@ _V_MINUS = np.array([5, 6, 1])  # r12, r20, r01
 _DIAGONAL = np.array([0, 4, 8])
 
 
-def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
-    """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3) (or (S,3,3))."""
+def _rotation_errors(target: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3) (or (S,3,3)), and
+    their angles (S,): the vectors' lengths."""
     r = target @ current.transpose(0, 2, 1)
     flat = r.reshape(len(r), 9)
     cos = np.minimum(np.maximum((flat[:, _DIAGONAL].sum(axis=1) - 1.0) / 2.0, -1.0), 1.0)  # from the trace
     angle = np.arccos(cos)
-    v = flat[:, _V_PLUS] - flat[:, _V_MINUS]  # (r21 - r12, r02 - r20, r10 - r01)
+    v = flat[:, _V_PLUS] - flat[:, _V_MINUS]  # (r21 - r12, r02 - r20, r10 - r01): 2 sin(angle) times the axis
     sin = np.sin(angle)
     if sin.min() > 1e-6:  # every angle well inside (0, pi)
-        return v * (angle / (2.0 * sin))[:, None]
+        return v * (angle / (2.0 * sin))[:, None], angle
     small = angle < 1e-9
     regular = ~small & (sin > 1e-6)
     scale = np.where(small, 0.5, angle / (2.0 * np.where(regular, sin, 1.0)))
@@ -342,7 +343,7 @@ def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
         m = r[k] + np.eye(3)
         col = m[:, int(np.argmax(np.linalg.norm(m, axis=0)))]
         out[k] = col / np.linalg.norm(col) * angle[k]
-    return out
+    return out, angle
 
 
 def _angle(target: np.ndarray, current: np.ndarray) -> float:
@@ -429,8 +430,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         now = np.zeros((count, 3))  # cost, position error, angle error
         np.sqrt(np.einsum("ij,ij->i", dp, dp), out=now[:, 1])
         if oriented:
-            dr = _rotation_errors(target_rot, tool[:, :3, :3])
-            np.sqrt(np.einsum("ij,ij->i", dr, dr), out=now[:, 2])
+            dr, now[:, 2] = _rotation_errors(target_rot, tool[:, :3, :3])
             np.multiply(dr, ORIENTATION_WEIGHT, out=e[:, 3:])
         np.einsum("ij,ij->i", e, e, out=now[:, 0])
         better = now[:, 0] < best[:, 0]
