@@ -10,7 +10,9 @@ the parent's centre of mass) and solved here with a Levenberg–Marquardt loop:
 with joint limits enforced by clamping and a few deterministic restarts. The kinematics
 never touch the world; only the final answer is checked against PyBullet's own forward
 kinematics (joints set, link pose read, joints put back with their saved positions and
-velocities), so the errors reported are PyBullet's.
+velocities), so the errors reported are PyBullet's. An answer is a function of the robot's state (its base's pose, the
+chain's joint values) and the question: it is kept (per robot, the latest `MEMO_SIZE`), and the same question
+asked in the same state is answered again without a search (`forget_answers` for a benchmark of first questions).
 
 Only the requested joints move (by default the joints of the arm); the torso, head and base keep
 their current values. `solve(robot, arm, ...)` is the front door: the robot (robots/robot.py) says
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
@@ -251,6 +254,8 @@ class _Problem:
         base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
         current = robot.get_joint_positions(kin.read) if kin.read else {}
         lead, self._after, self._turned, self._turned2 = kin.layout(current)
+        #: everything of the robot's state the answers depend on: the base's pose and the chain's joint values
+        self.state = (tuple(base_pos), tuple(base_orn), tuple(current[name] for name in kin.read))
         start = _transform(base_pos, base_orn)
         for factor in lead:
             start = start @ factor
@@ -477,6 +482,34 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
     return answers
 
 
+#: how many answers `solve_link_each` keeps per robot (the latest used)
+MEMO_SIZE = 512
+#: answers already found, per robot: by the robot's state, the link, joints, settings and query (forgotten with the robot)
+_MEMO: "weakref.WeakKeyDictionary[Object, OrderedDict[tuple, IKSolution]]" = weakref.WeakKeyDictionary()
+
+
+def _recall(memo: "OrderedDict[tuple, IKSolution]", key: tuple) -> IKSolution | None:
+    found = memo.get(key)
+    if found is None:
+        return None
+    memo.move_to_end(key)
+    return IKSolution(found.success, dict(found.joint_positions), found.position_error, found.orientation_error)
+
+
+def _remember(memo: "OrderedDict[tuple, IKSolution]", key: tuple, answer: IKSolution) -> None:
+    memo[key] = IKSolution(answer.success, dict(answer.joint_positions), answer.position_error, answer.orientation_error)
+    if len(memo) > MEMO_SIZE:
+        memo.popitem(last=False)
+
+
+def forget_answers(robot: "Object | None" = None) -> None:
+    """Forget the answers kept for `robot` (None: for every robot): what a benchmark of a first query needs."""
+    if robot is None:
+        _MEMO.clear()
+    else:
+        _MEMO.pop(robot, None)
+
+
 def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
     desc = description_for(robot)
     if desc is not None:
@@ -594,11 +627,14 @@ def solve_link_each(
         if not problem.names:
             pos, orn = robot.get_link_position_and_orientation(link_index)
             return [_verdict({}, pos, orn, t, r, threshold, angle_threshold) for t, r in zip(targets, rotations)]
-        rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
-        union: list[np.ndarray] = []
-        row_target: list[int] = []
-        groups: list[np.ndarray] = []
-        for k, (position, orientation, start) in enumerate(queries):
+        answers: list[IKSolution | None] = [None] * len(queries)
+        # The answer to a query is a function of the robot's state (`problem.state`), the link, the joints, the
+        # settings and the query: asked again, it is the one already found (the same question, the same answer)
+        memo = _MEMO.setdefault(robot, OrderedDict())
+        asked = (problem.state, link_index, tuple(problem.names), threshold, angle_threshold, seeds, max_iterations)
+        keys: list[tuple] = []
+        starts: list[np.ndarray | None] = []
+        for k, (_, _, start) in enumerate(queries):
             current = None
             if start is not None:
                 unknown = sorted(set(start) - set(problem.names))
@@ -606,9 +642,26 @@ def solve_link_each(
                     raise ValueError(f"IK start: expected values of the joints that move ({', '.join(problem.names)}), "
                                      f"got {', '.join(unknown)}")
                 current = np.array([start.get(n, c) for n, c in zip(problem.names, problem.current)], dtype=float)
+            starts.append(current)
+            keys.append((asked, targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes(),
+                         None if current is None else current.tobytes()))
+        searched: list[int] = []
+        for k, key in enumerate(keys):
+            answers[k] = _recall(memo, key)
+            if answers[k] is None:
+                searched.append(k)
+            elif enough is not None and enough(k, answers[k]):
+                return answers
+        if not searched:
+            return answers
+        rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
+        union: list[np.ndarray] = []
+        row_target: list[int] = []
+        groups: list[np.ndarray] = []
+        for k in searched:
             aim = (targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes())
             group = []
-            for seed in _seeds(problem, max(1, seeds), current):
+            for seed in _seeds(problem, max(1, seeds), starts[k]):
                 key = (seed.tobytes(), aim)
                 if key not in rows:
                     rows[key] = len(union)
@@ -616,12 +669,13 @@ def solve_link_each(
                     row_target.append(k)
                 group.append(rows[key])
             groups.append(np.array(group))
-        answers: list[IKSolution | None] = [None] * len(queries)
 
-        def judged(k: int, found: Found) -> bool:
+        def judged(g: int, found: Found) -> bool:
+            k = searched[g]
             solution = {name: float(v) for name, v in zip(problem.names, found[0])}
             pos, orn = forward_pose(robot, tool_link, solution)
             answers[k] = _verdict(solution, pos, orn, targets[k], rotations[k], threshold, angle_threshold)
+            _remember(memo, keys[k], answers[k])
             return enough is not None and enough(k, answers[k])
 
         if len(set(row_target)) == 1:  # one target for all: broadcast it

@@ -181,3 +181,41 @@ def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_a
         solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
     with pytest.raises(ValueError, match="got torso_lift_joint"):
         solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])
+
+
+# -- the same question again -----------------------------------------------------------------------------------------
+
+
+def test_the_same_question_in_the_same_state_is_answered_without_searching_again(at_counter, monkeypatch):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    searches = []
+    search = ik._search_groups
+    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    ik.forget_answers(robot)
+    first = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    first.joint_positions.clear()  # what a caller does with its answer does not change the one kept
+    again = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    assert len(searches) == 1
+    ik.forget_answers(robot)
+    assert again == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT) and len(searches) == 2  # bitwise the same
+
+
+def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    searches = []
+    search = ik._search_groups
+    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    ik.forget_answers(robot)
+    before = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    with robot.joints_kept(["torso_lift_joint"]):
+        robot.reset_joints({"torso_lift_joint": 0.2})  # a joint of the chain that IK does not move
+        raised = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    x, y, z = robot.get_position()
+    robot.set_position_and_orientation((x + 0.05, y, z), robot.get_orientation())
+    moved = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    assert len(searches) == 3
+    assert before.joint_positions != raised.joint_positions and before.joint_positions != moved.joint_positions
