@@ -41,6 +41,9 @@ ORIENTATION_WEIGHT = 0.25
 CONVERGED_POSITION = 2e-5
 CONVERGED_ANGLE = 2e-4
 MAX_ITERATIONS = 60
+#: what the reach bound leaves to spare (m): PyBullet's forward kinematics, which judge an answer, and ours differ by
+#: about 1e-7 m
+REACH_SLACK = 1e-4
 RESTARTS = 6
 SEED = 20190923
 
@@ -192,14 +195,10 @@ class _Kinematics:
         self.K2 = self.K @ self.K
         self.prismatic = [int(i) for i in np.flatnonzero(~self.rev)]
         self.all_revolute = not self.prismatic
-        self._layouts: dict[tuple[float, ...], tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._layouts: dict[tuple[float, ...], _Layout] = {}
 
-    def layout(self, current: Mapping[str, float]) -> tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
-        """For the other joints' values in `current`: the factors from the base's centre of mass to the first
-        variable joint's frame (multiplied onto the base's pose in this order), and, per variable joint, the constant
-        transform from its moved frame to the next variable joint's frame (the last: to the tool link) — `after`
-        (n,4,4) — with its top rows turned by the joint's axis once and twice (`turned`, `turned2`: K·A, K²·A), so
-        that each joint's motion and the transform after it are one sum (Rodrigues' formula applied to A)."""
+    def layout(self, current: Mapping[str, float]) -> "_Layout":
+        """The chain's constant parts for the other joints' values in `current` (`_Layout`)."""
         key = tuple(current[name] for name in self.fixed)
         found = self._layouts.get(key)
         if found is not None:
@@ -226,11 +225,42 @@ class _Kinematics:
             segments.append(acc @ self.chain.tool_com_to_link)
         after = np.array(segments).reshape(len(segments), 4, 4)  # none when no joint varies
         top = after[:, :3, :]
-        found = (lead, after, self.K @ top, self.K2 @ top)
+        # how far each variable joint's origin is from the next one's (the last: from the tool), a prismatic joint's
+        # travel added: the chain's reach from its first variable joint, and the last joint's from the first's
+        lengths = np.linalg.norm(after[:, :3, 3], axis=1) if len(after) else np.zeros(0)
+        travel = np.where(self.rev, 0.0, np.maximum(np.abs(self.lo), np.abs(self.hi)))
+        links = lengths + travel
+        last = after[-1] if len(after) else np.eye(4)
+        found = _Layout(lead, after, self.K @ top, self.K2 @ top, float(links.sum()),
+                        float(links[:-1].sum() + travel[-1:].sum()), -(last[:3, :3].T @ last[:3, 3]),
+                        float(lengths[-1]) if len(lengths) else 0.0)
         if len(self._layouts) >= 64:  # a torso at many heights: keep the latest few
             self._layouts.pop(next(iter(self._layouts)))
         self._layouts[key] = found
         return found
+
+
+@dataclass
+class _Layout:
+    """A chain's constant parts, for given values of the joints that keep theirs.
+
+    `lead`: the factors from the base's centre of mass to the first variable joint's frame (multiplied onto the base's
+    pose in this order); `after` (n,4,4): per variable joint, the constant transform from its moved frame to the next
+    variable joint's frame (the last: to the tool link), with its top rows turned by the joint's axis once and twice
+    (`turned`, `turned2`: K·A, K²·A), so that each joint's motion and the transform after it are one sum (Rodrigues'
+    formula applied to A). For the reach bound (`_Problem.beyond_reach`): `reach`, the longest the chain reaches from
+    its first variable joint's origin (the distances between the variable joints' origins, each fixed by the rigid
+    link between them, a prismatic joint's travel added); `wrist_reach`, the same to the last variable joint's origin;
+    `wrist`, that origin seen from the tool frame (−Rᵀt of the last transform); `lever`, its distance from the tool."""
+
+    lead: list[np.ndarray]
+    after: np.ndarray
+    turned: np.ndarray
+    turned2: np.ndarray
+    reach: float
+    wrist_reach: float
+    wrist: np.ndarray
+    lever: float
 
 
 def _kinematics(chain: Chain, variable: Sequence[str]) -> _Kinematics:
@@ -253,7 +283,8 @@ class _Problem:
         kin = _kinematics(chain, variable)
         base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
         current = robot.get_joint_positions(kin.read) if kin.read else {}
-        lead, self._after, self._turned, self._turned2 = kin.layout(current)
+        layout = self.layout = kin.layout(current)
+        lead, self._after, self._turned, self._turned2 = layout.lead, layout.after, layout.turned, layout.turned2
         #: everything of the robot's state the answers depend on: the base's pose and the chain's joint values
         self.state = (tuple(base_pos), tuple(base_orn), tuple(current[name] for name in kin.read))
         start = _transform(base_pos, base_orn)
@@ -269,6 +300,21 @@ class _Problem:
         self._prismatic = kin.prismatic
         self._all_revolute = kin.all_revolute
         self._buffers: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # per number of configurations
+
+    def beyond_reach(self, target: np.ndarray, rotation: np.ndarray | None, threshold: float,
+                     angle_threshold: float) -> float:
+        """How far (m) the target lies beyond anything the joints can reach within the thresholds (≤ 0: it may be
+        reachable). Without an orientation, the tool can come no nearer the first variable joint's origin than
+        `reach`; with one, the tool's pose fixes where the last variable joint's origin must be (within the
+        thresholds), which can be no farther from the first's than `wrist_reach`. A necessary condition only, with
+        REACH_SLACK to spare for PyBullet's forward kinematics (which decide success) against ours."""
+        origin = self.start[:3, 3]
+        layout = self.layout
+        if rotation is None:
+            return float(np.linalg.norm(target - origin)) - layout.reach - threshold - REACH_SLACK
+        wrist = target + rotation @ layout.wrist
+        return float(np.linalg.norm(wrist - origin)) - layout.wrist_reach - threshold \
+            - angle_threshold * layout.lever - REACH_SLACK
 
     def _buffers_for(self, count: int) -> tuple[np.ndarray, np.ndarray]:
         found = self._buffers.get(count)
@@ -544,12 +590,13 @@ def solve(
     angle_threshold: float = 0.1,
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
+    best_effort: bool = True,
 ) -> IKSolution:
     """Joint positions of `arm` (or `joints`) that bring its tool frame (or `frame`, a link the arm moves: a camera on
     its wrist) to `position` (and `orientation`, a world quaternion): `solve_link` for the arm."""
     return solve_link(robot.body, frame or robot.arm(arm).tool_frame, position, orientation,
                       list(robot.arm(arm).joints) if joints is None else joints, threshold, angle_threshold, seeds,
-                      max_iterations)
+                      max_iterations, best_effort)
 
 
 def solve_each(
@@ -559,10 +606,11 @@ def solve_each(
     threshold: float = 0.01,
     angle_threshold: float = 0.1,
     enough: "Callable[[int, IKSolution], bool] | None" = None,
+    best_effort: bool = True,
 ) -> list[IKSolution | None]:
     """`solve` for several queries at once (`solve_link_each`), for the arm's tool frame and joints."""
     return solve_link_each(robot.body, robot.arm(arm).tool_frame, queries, list(robot.arm(arm).joints), threshold,
-                           angle_threshold, enough=enough)
+                           angle_threshold, enough=enough, best_effort=best_effort)
 
 
 def solve_link(
@@ -575,15 +623,17 @@ def solve_link(
     angle_threshold: float = 0.1,
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
+    best_effort: bool = True,
 ) -> IKSolution:
     """Joint positions that bring `tool_link` of `robot` to `position` (and `orientation`, a world quaternion).
 
     `joints` (default: the arm owning the link) are the only joints that move; limits are respected.
     The world is left untouched. Deterministic: the same world and inputs give the same answer, bitwise.
-    A failed search returns the best configuration found and its remaining errors.
+    A failed search returns the best configuration found and its remaining errors (`best_effort=False`: a target
+    out of reach by a distance bound fails at once, see `solve_link_each`).
     """
     found = solve_link_each(robot, tool_link, [(position, orientation, None)], joints, threshold, angle_threshold,
-                            seeds, max_iterations)[0]
+                            seeds, max_iterations, best_effort=best_effort)[0]
     assert found is not None
     return found
 
@@ -602,13 +652,17 @@ def solve_link_each(
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
     enough: Callable[[int, IKSolution], bool] | None = None,
+    best_effort: bool = True,
 ) -> list[IKSolution | None]:
     """`solve_link` for several queries (target position, orientation, start configuration: None for where the joints
     are, else values of the joints that move) in one batched search: answer `k` is exactly what `solve_link` gives for
     query `k` with the joints first set to its start, for not much more than the price of one (the pre-grasp poses
     of the ways to hold an object, tried in turn, cost one search when none is reachable). Either every query
     has an orientation or none has. `enough(k, answer)`, called as each answer is found, may end the search: the
-    answers not found by then are None."""
+    answers not found by then are None. `best_effort=False`, for a caller that needs only the verdict: a target
+    that a distance bound puts out of reach (`_Problem.beyond_reach`) fails at once, without the search for the
+    configuration nearest it (its `joint_positions` empty, its `position_error` how far beyond the bound it lies,
+    no `orientation_error`); every other answer is the one a best-effort search gives."""
     if not queries:
         return []
     oriented = {orientation is not None for _, orientation, _ in queries}
@@ -648,6 +702,10 @@ def solve_link_each(
         searched: list[int] = []
         for k, key in enumerate(keys):
             answers[k] = _recall(memo, key)
+            if answers[k] is None and not best_effort:
+                beyond = problem.beyond_reach(targets[k], rotations[k], threshold, angle_threshold)
+                if beyond > 0.0:
+                    answers[k] = IKSolution(False, {}, beyond + threshold + REACH_SLACK, None)
             if answers[k] is None:
                 searched.append(k)
             elif enough is not None and enough(k, answers[k]):
