@@ -28,6 +28,7 @@ sys.path.insert(0, str(REPO))
 from pycram_cli.failures import LocationFailure  # noqa: E402
 from pycram_cli.locations import locate  # noqa: E402
 from pycram_cli.locations import floor as floor_maps  # noqa: E402
+from pycram_cli.reasoning.ik import forget_answers  # noqa: E402
 from pycram_cli.robots.zoo import generate, write_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
@@ -42,6 +43,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
         times, found = [], True
         for _ in range(repeat):
             floor_maps._MAPS.pop(world, None)
+            forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
             with world.snapshot():
                 start = time.perf_counter()
                 try:

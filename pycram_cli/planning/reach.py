@@ -24,8 +24,13 @@ REACH = 0.01
 REACH_ANGLE = math.radians(2.0)
 
 
-def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None) -> IKSolution:
-    return solve(robot, arm, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE)
+def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
+          best_effort: bool = True) -> IKSolution:
+    """The arm's joints that bring its tool within REACH (and REACH_ANGLE) of a pose. `best_effort=False`, for a caller
+    that needs only whether: a pose out of the arm's reach by a distance bound fails at once, without the search for
+    the nearest configuration (`ik.solve_link_each`)."""
+    return solve(robot, arm, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE,
+                 best_effort=best_effort)
 
 
 #: an IK solution that turns some joint of the arm farther than this from where it is (rad) is compared with one
@@ -108,10 +113,11 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
 
 
 def reach_each(robot: Robot, arm: str, queries: Sequence[Query],
-               enough: Callable[[int, IKSolution], bool] | None = None) -> list[IKSolution | None]:
+               enough: Callable[[int, IKSolution], bool] | None = None, best_effort: bool = True) -> list[IKSolution | None]:
     """`reach` for each query (target position, orientation, start configuration), searched at once
     (`ik.solve_each`)."""
-    return solve_each(robot, arm, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough)
+    return solve_each(robot, arm, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough,
+                      best_effort=best_effort)
 
 
 def middle_of_ranges(robot: Robot, arm: str) -> dict[str, float]:
@@ -231,7 +237,7 @@ def back_off(robot: Robot, arm: str, what: str) -> float:
     approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
     for distance in BACK_OFF:
         target = tuple(float(v) for v in np.asarray(position) - approach * distance)
-        solution = reach(robot, arm, target, orientation)
+        solution = reach(robot, arm, target, orientation, best_effort=False)  # only whether
         if not solution.success:
             continue
         try:
@@ -280,7 +286,7 @@ def rest_configuration(robot: Robot, arm: str, holding: bool | None = None) -> d
         parked = body.get_link_position(tool)
     orientation = quat_multiply(body.get_orientation(), turned)
     for raise_ in CARRY_RAISE:
-        solution = reach(robot, arm, (parked[0], parked[1], parked[2] + raise_), orientation)
+        solution = reach(robot, arm, (parked[0], parked[1], parked[2] + raise_), orientation, best_effort=False)
         if solution.success:
             return {name: solution.joint_positions[name] for name in config}
     return config

@@ -10,7 +10,9 @@ the parent's centre of mass) and solved here with a Levenberg–Marquardt loop:
 with joint limits enforced by clamping and a few deterministic restarts. The kinematics
 never touch the world; only the final answer is checked against PyBullet's own forward
 kinematics (joints set, link pose read, joints put back with their saved positions and
-velocities), so the errors reported are PyBullet's.
+velocities), so the errors reported are PyBullet's. An answer is a function of the robot's state (its base's pose, the
+chain's joint values) and the question: it is kept (per robot, the latest `MEMO_SIZE`), and the same question
+asked in the same state is answered again without a search (`forget_answers` for a benchmark of first questions).
 
 Only the requested joints move (by default the joints of the arm); the torso, head and base keep
 their current values. `solve(robot, arm, ...)` is the front door: the robot (robots/robot.py) says
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Callable, Mapping, Sequence
 
@@ -38,6 +41,9 @@ ORIENTATION_WEIGHT = 0.25
 CONVERGED_POSITION = 2e-5
 CONVERGED_ANGLE = 2e-4
 MAX_ITERATIONS = 60
+#: what the reach bound leaves to spare (m): PyBullet's forward kinematics, which judge an answer, and ours differ by
+#: about 1e-7 m
+REACH_SLACK = 1e-4
 RESTARTS = 6
 SEED = 20190923
 
@@ -104,6 +110,8 @@ class Chain:
     body: int
     joints: list[_ChainJoint]
     tool_com_to_link: np.ndarray  # tool centre of mass -> tool link frame
+    #: what searches over its joints need, per tuple of variable joints (`_kinematics`)
+    kinematics: "dict[tuple[str, ...], _Kinematics]" = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
     def build(cls, robot: "Object", link_index: int) -> "Chain":
@@ -166,109 +174,218 @@ def _skew(v: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
+class _Kinematics:
+    """What a search needs of a chain and its variable joints that does not depend on where the robot stands: made
+    once per chain and joints (`_kinematics`), the constant transforms between the variable joints once per value of
+    the chain's other joints (a torso raised or lowered), so that a search only reads the base's pose."""
+
+    def __init__(self, chain: Chain, variable: Sequence[str]) -> None:
+        wanted = set(variable)
+        self.chain = chain
+        self.variable = [j for j in chain.joints if j.name in wanted and j.movable]
+        self.names = [j.name for j in self.variable]
+        self.read = [j.name for j in chain.joints if j.movable]  # the joints whose values the chain's pose needs
+        self.fixed = [name for name in self.read if name not in wanted]  # those that keep their values
+        n = len(self.variable)
+        self.rev = np.array([j.revolute for j in self.variable], dtype=bool)
+        self.lo = np.array([j.lower for j in self.variable])
+        self.hi = np.array([j.upper for j in self.variable])
+        self.axes = np.array([j.axis for j in self.variable]).reshape(n, 3)
+        self.K = np.array([_skew(a) for a in self.axes]).reshape(n, 3, 3)
+        self.K2 = self.K @ self.K
+        self.prismatic = [int(i) for i in np.flatnonzero(~self.rev)]
+        self.all_revolute = not self.prismatic
+        self._layouts: dict[tuple[float, ...], _Layout] = {}
+
+    def layout(self, current: Mapping[str, float]) -> "_Layout":
+        """The chain's constant parts for the other joints' values in `current` (`_Layout`)."""
+        key = tuple(current[name] for name in self.fixed)
+        found = self._layouts.get(key)
+        if found is not None:
+            return found
+        wanted = set(self.names)
+        lead: list[np.ndarray] = []
+        segments: list[np.ndarray] = []
+        acc: np.ndarray | None = None
+        for joint in self.chain.joints:
+            if acc is None:  # before the first variable joint: the factors themselves, multiplied onto the base's pose
+                lead.append(joint.parent_to_joint)
+                if joint.name in wanted and joint.movable:
+                    acc = joint.link_to_com
+                else:
+                    lead.extend((_motion(joint, current.get(joint.name, 0.0)), joint.link_to_com))
+                continue
+            acc = acc @ joint.parent_to_joint
+            if joint.name in wanted and joint.movable:
+                segments.append(acc)
+                acc = joint.link_to_com
+            else:
+                acc = acc @ _motion(joint, current.get(joint.name, 0.0)) @ joint.link_to_com
+        if acc is not None:
+            segments.append(acc @ self.chain.tool_com_to_link)
+        after = np.array(segments).reshape(len(segments), 4, 4)  # none when no joint varies
+        top = after[:, :3, :]
+        # how far each variable joint's origin is from the next one's (the last: from the tool), a prismatic joint's
+        # travel added: the chain's reach from its first variable joint, and the last joint's from the first's
+        lengths = np.linalg.norm(after[:, :3, 3], axis=1) if len(after) else np.zeros(0)
+        travel = np.where(self.rev, 0.0, np.maximum(np.abs(self.lo), np.abs(self.hi)))
+        links = lengths + travel
+        last = after[-1] if len(after) else np.eye(4)
+        found = _Layout(lead, after, self.K @ top, self.K2 @ top, float(links.sum()),
+                        float(links[:-1].sum() + travel[-1:].sum()), -(last[:3, :3].T @ last[:3, 3]),
+                        float(lengths[-1]) if len(lengths) else 0.0)
+        if len(self._layouts) >= 64:  # a torso at many heights: keep the latest few
+            self._layouts.pop(next(iter(self._layouts)))
+        self._layouts[key] = found
+        return found
+
+
+@dataclass
+class _Layout:
+    """A chain's constant parts, for given values of the joints that keep theirs.
+
+    `lead`: the factors from the base's centre of mass to the first variable joint's frame (multiplied onto the base's
+    pose in this order); `after` (n,4,4): per variable joint, the constant transform from its moved frame to the next
+    variable joint's frame (the last: to the tool link), with its top rows turned by the joint's axis once and twice
+    (`turned`, `turned2`: K·A, K²·A), so that each joint's motion and the transform after it are one sum (Rodrigues'
+    formula applied to A). For the reach bound (`_Problem.beyond_reach`): `reach`, the longest the chain reaches from
+    its first variable joint's origin (the distances between the variable joints' origins, each fixed by the rigid
+    link between them, a prismatic joint's travel added); `wrist_reach`, the same to the last variable joint's origin;
+    `wrist`, that origin seen from the tool frame (−Rᵀt of the last transform); `lever`, its distance from the tool."""
+
+    lead: list[np.ndarray]
+    after: np.ndarray
+    turned: np.ndarray
+    turned2: np.ndarray
+    reach: float
+    wrist_reach: float
+    wrist: np.ndarray
+    lever: float
+
+
+def _kinematics(chain: Chain, variable: Sequence[str]) -> _Kinematics:
+    key = tuple(variable)
+    found = chain.kinematics.get(key)
+    if found is None:
+        found = chain.kinematics[key] = _Kinematics(chain, variable)
+    return found
+
+
 class _Problem:
     """Forward kinematics and Jacobian of the tool frame over the variable joints only.
 
     Everything is batched over a set of configurations (one per restart), so all the
-    restarts advance together for the price of about one.
+    restarts advance together for the price of about one. Arrays of every joint's frames
+    are laid out joint-major ((n, S, ...)), so that each joint's slice is contiguous.
     """
 
     def __init__(self, robot: "Object", chain: Chain, variable: Sequence[str]) -> None:
+        kin = _kinematics(chain, variable)
         base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
-        current = robot.get_joint_positions([j.name for j in chain.joints])
-        wanted = set(variable)
-        # Collapse everything between two variable joints into one constant transform.
-        segments: list[np.ndarray] = []  # segments[i] precedes the motion of variable joint i
-        axes: list[np.ndarray] = []
-        self.revolute: list[bool] = []
-        self.names: list[str] = []
-        lower: list[float] = []
-        upper: list[float] = []
-        acc = _transform(base_pos, base_orn)
-        for joint in chain.joints:
-            acc = acc @ joint.parent_to_joint
-            if joint.name in wanted and joint.movable:
-                segments.append(acc)
-                axes.append(joint.axis)
-                self.revolute.append(joint.revolute)
-                self.names.append(joint.name)
-                lower.append(joint.lower)
-                upper.append(joint.upper)
-                acc = joint.link_to_com
-            else:
-                acc = acc @ _motion(joint, current[joint.name]) @ joint.link_to_com
-        self.tail = acc @ chain.tool_com_to_link
-        self.segments = segments
-        self.axes = axes
-        self.K = [_skew(a) for a in axes]
-        self.K2 = [k @ k for k in self.K]
+        current = robot.get_joint_positions(kin.read) if kin.read else {}
+        layout = self.layout = kin.layout(current)
+        lead, self._after, self._turned, self._turned2 = layout.lead, layout.after, layout.turned, layout.turned2
+        #: everything of the robot's state the answers depend on: the base's pose and the chain's joint values
+        self.state = (tuple(base_pos), tuple(base_orn), tuple(current[name] for name in kin.read))
+        start = _transform(base_pos, base_orn)
+        for factor in lead:
+            start = start @ factor
+        self.start = start  # the first variable joint's frame in the world, before its motion
+        self.names = kin.names
+        self.revolute = [bool(r) for r in kin.rev]
         self.current = np.array([current[n] for n in self.names])
-        self.lo = np.array(lower)
-        self.hi = np.array(upper)
-        self.rev = np.array(self.revolute, dtype=bool)
-        # the same, stacked over the variable joints, so that every joint's motion is computed at once
-        n = len(self.names)
-        self._axes = np.array(axes).reshape(n, 3)
-        self._K = np.array(self.K).reshape(n, 3, 3)
-        self._K2 = np.array(self.K2).reshape(n, 3, 3)
-        self._prismatic = np.flatnonzero(~self.rev)
-        self._all_revolute = bool(self.rev.all())
-        self._buffers: dict[int, np.ndarray] = {}  # the joints' motions, per number of configurations
+        self.lo, self.hi, self.rev = kin.lo, kin.hi, kin.rev
+        self._axes = kin.axes
+        self._axes_col = kin.axes[:, None, :, None]  # (n,1,3,1): each joint's axis, for every configuration
+        self._prismatic = kin.prismatic
+        self._all_revolute = kin.all_revolute
+        self._buffers: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # per number of configurations
+
+    def beyond_reach(self, target: np.ndarray, rotation: np.ndarray | None, threshold: float,
+                     angle_threshold: float) -> float:
+        """How far (m) the target lies beyond anything the joints can reach within the thresholds (≤ 0: it may be
+        reachable). Without an orientation, the tool can come no nearer the first variable joint's origin than
+        `reach`; with one, the tool's pose fixes where the last variable joint's origin must be (within the
+        thresholds), which can be no farther from the first's than `wrist_reach`. A necessary condition only, with
+        REACH_SLACK to spare for PyBullet's forward kinematics (which decide success) against ours."""
+        origin = self.start[:3, 3]
+        layout = self.layout
+        if rotation is None:
+            return float(np.linalg.norm(target - origin)) - layout.reach - threshold - REACH_SLACK
+        wrist = target + rotation @ layout.wrist
+        return float(np.linalg.norm(wrist - origin)) - layout.wrist_reach - threshold \
+            - angle_threshold * layout.lever - REACH_SLACK
+
+    def _buffers_for(self, count: int) -> tuple[np.ndarray, np.ndarray]:
+        found = self._buffers.get(count)
+        if found is None:
+            n = len(self.names)
+            steps = np.zeros((n, count, 4, 4))
+            steps[:, :, 3, 3] = 1.0
+            frames = np.empty((n + 1, count, 4, 4))
+            frames[0] = self.start
+            found = self._buffers[count] = (steps, frames)
+        return found
 
     def forward(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Tool poses (S,4,4) for configurations q (S,n), with the world origin and axis of every joint (S,n,3)."""
+        """Tool poses (S,4,4) for configurations q (S,n), with the world origin and axis of every joint (n,S,3)."""
         count, n = q.shape
-        # every joint's motion (S,n,4,4) at once: a rotation about its axis (Rodrigues), or a shift along it
-        motions = self._buffers.get(count)
-        if motions is None:
-            motions = self._buffers[count] = np.zeros((count, n, 4, 4))
-            motions[:, :, 3, 3] = 1.0
+        steps, frames = self._buffers_for(count)
+        # each joint's motion times the constant transform after it, all at once: R·A = A + sin·K·A + (1 - cos)·K²·A
+        qt = q.T[:, :, None, None]
         if self._all_revolute:
-            sin, versin = np.sin(q)[:, :, None, None], (1.0 - np.cos(q))[:, :, None, None]
+            sin, versin = np.sin(qt), 1.0 - np.cos(qt)
         else:
-            sin = np.where(self.rev, np.sin(q), 0.0)[:, :, None, None]
-            versin = np.where(self.rev, 1.0 - np.cos(q), 0.0)[:, :, None, None]
-        motions[:, :, :3, :3] = _EYE3 + sin * self._K + versin * self._K2
-        for i in self._prismatic:
-            motions[:, i, :3, 3] = q[:, i:i + 1] * self._axes[i]
-        frames = np.empty((count, n, 4, 4))  # each joint's frame in the world, before its own motion
-        t = np.broadcast_to(self.segments[0] if n else np.eye(4), (count, 4, 4))
+            rev = self.rev[:, None, None, None]
+            sin, versin = np.where(rev, np.sin(qt), 0.0), np.where(rev, 1.0 - np.cos(qt), 0.0)
+        top = steps[:, :, :3, :]
+        np.multiply(sin, self._turned[:, None], out=top)
+        top += versin * self._turned2[:, None]
+        top += self._after[:, None, :3, :]
+        for i in self._prismatic:  # a shift along the axis: the transform after it moves with it
+            steps[i, :, :3, 3] += q[:, i:i + 1] * self._axes[i]
         for i in range(n):
-            if i:
-                t = t @ self.segments[i]
-            frames[:, i] = t
-            t = t @ motions[:, i]
-        origins = frames[:, :, :3, 3]
-        axes = np.einsum("snij,nj->sni", frames[:, :, :3, :3], self._axes)
-        return t @ self.tail, origins, axes
+            np.matmul(frames[i], steps[i], out=frames[i + 1])
+        joints = frames[:n]
+        axes = (joints[:, :, :3, :3] @ self._axes_col)[..., 0]
+        return frames[n].copy(), joints[:, :, :3, 3], axes
 
-    def jacobian(self, tool: np.ndarray, origins: np.ndarray, axes: np.ndarray) -> np.ndarray:
-        """(S,6,n): linear rows, then angular rows, in the world frame."""
-        count, n, _ = origins.shape
-        jac = np.zeros((count, 6, n))
-        lever = tool[:, None, :3, 3] - origins
-        a0, a1, a2 = axes[..., 0], axes[..., 1], axes[..., 2]
-        l0, l1, l2 = lever[..., 0], lever[..., 1], lever[..., 2]
-        rev = self.rev[None, :]
-        jac[:, 0, :] = np.where(rev, a1 * l2 - a2 * l1, a0)  # axis x lever for revolute joints, the axis for prismatic
-        jac[:, 1, :] = np.where(rev, a2 * l0 - a0 * l2, a1)
-        jac[:, 2, :] = np.where(rev, a0 * l1 - a1 * l0, a2)
-        jac[:, 3:, :] = (axes * self.rev[None, :, None]).transpose(0, 2, 1)
-        return jac
-
-
-_EYE3 = np.eye(3)
-_ROWS = np.array([2, 0, 1])
-_COLS = np.array([1, 2, 0])
+    def jacobian_t(self, tool: np.ndarray, origins: np.ndarray, axes: np.ndarray, weight: float | None) -> np.ndarray:
+        """The transposed Jacobian (S,n,3) or, with an orientation `weight`, (S,n,6): per joint, the tool's linear
+        velocity (axis × lever for a revolute joint, the axis for a prismatic one), then its weighted angular one."""
+        n, count, _ = origins.shape
+        lever = tool[None, :, :3, 3] - origins
+        out = np.empty((count, n, 3 if weight is None else 6))
+        joint_major = out.transpose(1, 0, 2)
+        linear = joint_major[:, :, :3]
+        np.subtract(axes[:, :, _NEXT] * lever[:, :, _AFTER], axes[:, :, _AFTER] * lever[:, :, _NEXT], out=linear)
+        if weight is not None:
+            np.multiply(axes, weight, out=joint_major[:, :, 3:])
+        for i in self._prismatic:
+            linear[i] = axes[i]
+            if weight is not None:
+                joint_major[i, :, 3:] = 0.0
+        return out
 
 
-def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
-    """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3)."""
+_NEXT = np.array([1, 2, 0])
+_AFTER = np.array([2, 0, 1])
+_V_PLUS = np.array([7, 2, 3])  # r21, r02, r10 of a flattened 3×3
+_V_MINUS = np.array([5, 6, 1])  # r12, r20, r01
+_DIAGONAL = np.array([0, 4, 8])
+
+
+def _rotation_errors(target: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation vectors (S,3), world frame, that turn each `current` (S,3,3) into `target` (3,3) (or (S,3,3)), and
+    their angles (S,): the vectors' lengths."""
     r = target @ current.transpose(0, 2, 1)
-    cos = np.minimum(np.maximum((r[:, 0, 0] + r[:, 1, 1] + r[:, 2, 2] - 1.0) / 2.0, -1.0), 1.0)  # the trace
+    flat = r.reshape(len(r), 9)
+    cos = np.minimum(np.maximum((flat[:, _DIAGONAL].sum(axis=1) - 1.0) / 2.0, -1.0), 1.0)  # from the trace
     angle = np.arccos(cos)
-    v = r[:, _ROWS, _COLS] - r[:, _COLS, _ROWS]  # (r21 - r12, r02 - r20, r10 - r01)
+    v = flat[:, _V_PLUS] - flat[:, _V_MINUS]  # (r21 - r12, r02 - r20, r10 - r01): 2 sin(angle) times the axis
     sin = np.sin(angle)
+    if sin.min() > 1e-6:  # every angle well inside (0, pi)
+        return v * (angle / (2.0 * sin))[:, None], angle
     small = angle < 1e-9
     regular = ~small & (sin > 1e-6)
     scale = np.where(small, 0.5, angle / (2.0 * np.where(regular, sin, 1.0)))
@@ -277,7 +394,7 @@ def _rotation_errors(target: np.ndarray, current: np.ndarray) -> np.ndarray:
         m = r[k] + np.eye(3)
         col = m[:, int(np.argmax(np.linalg.norm(m, axis=0)))]
         out[k] = col / np.linalg.norm(col) * angle[k]
-    return out
+    return out, angle
 
 
 def _angle(target: np.ndarray, current: np.ndarray) -> float:
@@ -325,13 +442,9 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
     end the search early: the groups not finished yet are then None."""
     q = seeds.copy()
     count, n = q.shape
-    rows = 6 if target_rot is not None else 3
-    eye = np.eye(n)
-    best_cost = np.full(count, np.inf)
+    best = np.full((count, 3), np.inf)  # per seed, the best so far: weighted cost, position error, angle error
     best_q = q.copy()
-    best_pos = np.full(count, np.inf)
-    best_ang = np.full(count, np.inf)
-    history: list[np.ndarray] = []
+    history: list[np.ndarray] = []  # the best costs, per iteration
     active = np.ones(count, dtype=bool)
     answers: list[Found | None] = [None] * len(groups)
     todo = list(range(len(groups)))
@@ -341,45 +454,46 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         member[g, idx] = True
     pending = np.ones(len(groups), dtype=bool)
     per_seed_target = target_pos.ndim == 2
+    oriented = target_rot is not None
+    converged_below = np.array([CONVERGED_POSITION, CONVERGED_ANGLE])
+    good_below = np.array([threshold * 0.5, angle_threshold * 0.5])
 
     def finish(g: int) -> bool:
         idx = groups[g]
-        pos, ang, cost = best_pos[idx], best_ang[idx], best_cost[idx]
+        cost, pos, ang = best[idx, 0], best[idx, 1], best[idx, 2]
         converged = (pos < CONVERGED_POSITION) & (ang < CONVERGED_ANGLE)
-        within = (pos <= threshold) & (ang <= (angle_threshold if target_rot is not None else np.inf))
+        within = (pos <= threshold) & (ang <= (angle_threshold if oriented else np.inf))
         if converged.any():
             pick = int(np.argmax(converged))
         else:
             pick = int(np.argmin(np.where(within, cost, np.inf))) if within.any() else int(np.argmin(cost))
-        answers[g] = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if target_rot is not None else None)
+        answers[g] = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if oriented else None)
         todo.remove(g)
         pending[g] = False
         return enough is not None and enough(g, answers[g])
 
+    rows = 6 if oriented else 3
+    diagonal = slice(None, None, n + 1)  # the diagonal of a flattened n×n matrix
     for _ in range(iterations + 1):
         tool, origins, axes = problem.forward(q)
-        dp = target_pos - tool[:, :3, 3]
-        pos_err = np.sqrt(np.einsum("ij,ij->i", dp, dp))
-        if target_rot is not None:
-            dr = _rotation_errors(target_rot, tool[:, :3, :3])
-            ang_err = np.sqrt(np.einsum("ij,ij->i", dr, dr))
-            e = np.concatenate([dp, ORIENTATION_WEIGHT * dr], axis=1)
-        else:
-            ang_err = np.zeros(count)
-            e = dp
-        cost = np.einsum("ij,ij->i", e, e)
-        better = cost < best_cost
-        best_cost = np.where(better, cost, best_cost)
-        best_q[better] = q[better]
-        best_pos = np.where(better, pos_err, best_pos)
-        best_ang = np.where(better, ang_err, best_ang)
-        converged = (best_pos < CONVERGED_POSITION) & (best_ang < CONVERGED_ANGLE)
-        history.append(best_cost)  # a new array every iteration (np.where): never changed in place
+        e = np.empty((count, rows))  # the weighted error: position, then ORIENTATION_WEIGHT × rotation vector
+        dp = np.subtract(target_pos, tool[:, :3, 3], out=e[:, :3])
+        now = np.zeros((count, 3))  # cost, position error, angle error
+        np.sqrt(np.einsum("ij,ij->i", dp, dp), out=now[:, 1])
+        if oriented:
+            dr, now[:, 2] = _rotation_errors(target_rot, tool[:, :3, :3])
+            np.multiply(dr, ORIENTATION_WEIGHT, out=e[:, 3:])
+        np.einsum("ij,ij->i", e, e, out=now[:, 0])
+        better = now[:, 0] < best[:, 0]
+        best = np.where(better[:, None], now, best)  # a new array every iteration: `history` keeps its costs
+        np.copyto(best_q, q, where=better[:, None])
+        converged = (best[:, 1:] < converged_below).all(axis=1)
+        history.append(best[:, 0])
         stalled = len(history) > 8
         if stalled:
-            active &= best_cost < 0.98 * history[-9]
+            active &= history[-1] < 0.98 * history[-9]
             # a seed already within the thresholds that stopped improving is good enough
-            good = (best_pos <= threshold * 0.5) & (best_ang <= angle_threshold * 0.5) & ~active
+            good = (best[:, 1:] <= good_below).all(axis=1) & ~active
         done = (member & converged).any(axis=1)  # per group: a seed converged, or (stalled) one is good or none active
         if stalled:
             done |= (member & good).any(axis=1) | ~(member & active).any(axis=1)
@@ -396,27 +510,50 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
                 renumber[keep] = np.arange(len(keep))
                 groups = [renumber[idx] if pending[g] else idx for g, idx in enumerate(groups)]
                 member = member[:, keep]
-                q, best_q, best_cost = q[keep], best_q[keep], best_cost[keep]
-                best_pos, best_ang = best_pos[keep], best_ang[keep]
-                active, cost, e = active[keep], cost[keep], e[keep]
-                tool, origins, axes = tool[keep], origins[keep], axes[keep]
+                q, best_q, best, active, now, e = q[keep], best_q[keep], best[keep], active[keep], now[keep], e[keep]
+                tool, origins, axes = tool[keep], origins[:, keep], axes[:, keep]
                 history = [h[keep] for h in history]
                 if per_seed_target:
                     target_pos = target_pos[keep]
-                    target_rot = target_rot[keep] if target_rot is not None else None
+                    target_rot = target_rot[keep] if oriented else None
                 count = len(keep)
-        jac = problem.jacobian(tool, origins, axes)[:, :rows]
-        if target_rot is not None:
-            jac[:, 3:] *= ORIENTATION_WEIGHT
-        jt = jac.transpose(0, 2, 1)
-        damping = 0.5 * cost + 1e-4
-        lhs = jt @ jac + damping[:, None, None] * eye
-        step = np.linalg.solve(lhs, (jt @ e[:, :, None]))[:, :, 0]
+        jt = problem.jacobian_t(tool, origins, axes, ORIENTATION_WEIGHT if oriented else None)  # (S,n,rows)
+        lhs = jt @ jt.transpose(0, 2, 1)
+        lhs.reshape(count, n * n)[:, diagonal] += (0.5 * now[:, 0] + 1e-4)[:, None]  # the damping
+        step = np.linalg.solve(lhs, jt @ e[:, :, None])[:, :, 0]
         q = np.minimum(np.maximum(q + step, problem.lo), problem.hi)
     for g in list(todo):
         if finish(g):
             break
     return answers
+
+
+#: how many answers `solve_link_each` keeps per robot (the latest used)
+MEMO_SIZE = 512
+#: answers already found, per robot: by the robot's state, the link, joints, settings and query (forgotten with the robot)
+_MEMO: "weakref.WeakKeyDictionary[Object, OrderedDict[tuple, IKSolution]]" = weakref.WeakKeyDictionary()
+
+
+def _recall(memo: "OrderedDict[tuple, IKSolution]", key: tuple) -> IKSolution | None:
+    found = memo.get(key)
+    if found is None:
+        return None
+    memo.move_to_end(key)
+    return IKSolution(found.success, dict(found.joint_positions), found.position_error, found.orientation_error)
+
+
+def _remember(memo: "OrderedDict[tuple, IKSolution]", key: tuple, answer: IKSolution) -> None:
+    memo[key] = IKSolution(answer.success, dict(answer.joint_positions), answer.position_error, answer.orientation_error)
+    if len(memo) > MEMO_SIZE:
+        memo.popitem(last=False)
+
+
+def forget_answers(robot: "Object | None" = None) -> None:
+    """Forget the answers kept for `robot` (None: for every robot): what a benchmark of a first query needs."""
+    if robot is None:
+        _MEMO.clear()
+    else:
+        _MEMO.pop(robot, None)
 
 
 def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
@@ -453,12 +590,13 @@ def solve(
     angle_threshold: float = 0.1,
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
+    best_effort: bool = True,
 ) -> IKSolution:
     """Joint positions of `arm` (or `joints`) that bring its tool frame (or `frame`, a link the arm moves: a camera on
     its wrist) to `position` (and `orientation`, a world quaternion): `solve_link` for the arm."""
     return solve_link(robot.body, frame or robot.arm(arm).tool_frame, position, orientation,
                       list(robot.arm(arm).joints) if joints is None else joints, threshold, angle_threshold, seeds,
-                      max_iterations)
+                      max_iterations, best_effort)
 
 
 def solve_each(
@@ -468,10 +606,11 @@ def solve_each(
     threshold: float = 0.01,
     angle_threshold: float = 0.1,
     enough: "Callable[[int, IKSolution], bool] | None" = None,
+    best_effort: bool = True,
 ) -> list[IKSolution | None]:
     """`solve` for several queries at once (`solve_link_each`), for the arm's tool frame and joints."""
     return solve_link_each(robot.body, robot.arm(arm).tool_frame, queries, list(robot.arm(arm).joints), threshold,
-                           angle_threshold, enough=enough)
+                           angle_threshold, enough=enough, best_effort=best_effort)
 
 
 def solve_link(
@@ -484,15 +623,17 @@ def solve_link(
     angle_threshold: float = 0.1,
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
+    best_effort: bool = True,
 ) -> IKSolution:
     """Joint positions that bring `tool_link` of `robot` to `position` (and `orientation`, a world quaternion).
 
     `joints` (default: the arm owning the link) are the only joints that move; limits are respected.
     The world is left untouched. Deterministic: the same world and inputs give the same answer, bitwise.
-    A failed search returns the best configuration found and its remaining errors.
+    A failed search returns the best configuration found and its remaining errors (`best_effort=False`: a target
+    out of reach by a distance bound fails at once, see `solve_link_each`).
     """
     found = solve_link_each(robot, tool_link, [(position, orientation, None)], joints, threshold, angle_threshold,
-                            seeds, max_iterations)[0]
+                            seeds, max_iterations, best_effort=best_effort)[0]
     assert found is not None
     return found
 
@@ -511,13 +652,17 @@ def solve_link_each(
     seeds: int = RESTARTS,
     max_iterations: int = MAX_ITERATIONS,
     enough: Callable[[int, IKSolution], bool] | None = None,
+    best_effort: bool = True,
 ) -> list[IKSolution | None]:
     """`solve_link` for several queries (target position, orientation, start configuration: None for where the joints
     are, else values of the joints that move) in one batched search: answer `k` is exactly what `solve_link` gives for
     query `k` with the joints first set to its start, for not much more than the price of one (the pre-grasp poses
     of the ways to hold an object, tried in turn, cost one search when none is reachable). Either every query
     has an orientation or none has. `enough(k, answer)`, called as each answer is found, may end the search: the
-    answers not found by then are None."""
+    answers not found by then are None. `best_effort=False`, for a caller that needs only the verdict: a target
+    that a distance bound puts out of reach (`_Problem.beyond_reach`) fails at once, without the search for the
+    configuration nearest it (its `joint_positions` empty, its `position_error` how far beyond the bound it lies,
+    no `orientation_error`); every other answer is the one a best-effort search gives."""
     if not queries:
         return []
     oriented = {orientation is not None for _, orientation, _ in queries}
@@ -536,11 +681,14 @@ def solve_link_each(
         if not problem.names:
             pos, orn = robot.get_link_position_and_orientation(link_index)
             return [_verdict({}, pos, orn, t, r, threshold, angle_threshold) for t, r in zip(targets, rotations)]
-        rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
-        union: list[np.ndarray] = []
-        row_target: list[int] = []
-        groups: list[np.ndarray] = []
-        for k, (position, orientation, start) in enumerate(queries):
+        answers: list[IKSolution | None] = [None] * len(queries)
+        # The answer to a query is a function of the robot's state (`problem.state`), the link, the joints, the
+        # settings and the query: asked again, it is the one already found (the same question, the same answer)
+        memo = _MEMO.setdefault(robot, OrderedDict())
+        asked = (problem.state, link_index, tuple(problem.names), threshold, angle_threshold, seeds, max_iterations)
+        keys: list[tuple] = []
+        starts: list[np.ndarray | None] = []
+        for k, (_, _, start) in enumerate(queries):
             current = None
             if start is not None:
                 unknown = sorted(set(start) - set(problem.names))
@@ -548,9 +696,30 @@ def solve_link_each(
                     raise ValueError(f"IK start: expected values of the joints that move ({', '.join(problem.names)}), "
                                      f"got {', '.join(unknown)}")
                 current = np.array([start.get(n, c) for n, c in zip(problem.names, problem.current)], dtype=float)
+            starts.append(current)
+            keys.append((asked, targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes(),
+                         None if current is None else current.tobytes()))
+        searched: list[int] = []
+        for k, key in enumerate(keys):
+            answers[k] = _recall(memo, key)
+            if answers[k] is None and not best_effort:
+                beyond = problem.beyond_reach(targets[k], rotations[k], threshold, angle_threshold)
+                if beyond > 0.0:
+                    answers[k] = IKSolution(False, {}, beyond + threshold + REACH_SLACK, None)
+            if answers[k] is None:
+                searched.append(k)
+            elif enough is not None and enough(k, answers[k]):
+                return answers
+        if not searched:
+            return answers
+        rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
+        union: list[np.ndarray] = []
+        row_target: list[int] = []
+        groups: list[np.ndarray] = []
+        for k in searched:
             aim = (targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes())
             group = []
-            for seed in _seeds(problem, max(1, seeds), current):
+            for seed in _seeds(problem, max(1, seeds), starts[k]):
                 key = (seed.tobytes(), aim)
                 if key not in rows:
                     rows[key] = len(union)
@@ -558,12 +727,13 @@ def solve_link_each(
                     row_target.append(k)
                 group.append(rows[key])
             groups.append(np.array(group))
-        answers: list[IKSolution | None] = [None] * len(queries)
 
-        def judged(k: int, found: Found) -> bool:
+        def judged(g: int, found: Found) -> bool:
+            k = searched[g]
             solution = {name: float(v) for name, v in zip(problem.names, found[0])}
             pos, orn = forward_pose(robot, tool_link, solution)
             answers[k] = _verdict(solution, pos, orn, targets[k], rotations[k], threshold, angle_threshold)
+            _remember(memo, keys[k], answers[k])
             return enough is not None and enough(k, answers[k])
 
         if len(set(row_target)) == 1:  # one target for all: broadcast it

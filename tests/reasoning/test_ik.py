@@ -181,3 +181,81 @@ def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_a
         solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
     with pytest.raises(ValueError, match="got torso_lift_joint"):
         solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])
+
+
+# -- the same question again -----------------------------------------------------------------------------------------
+
+
+def test_the_same_question_in_the_same_state_is_answered_without_searching_again(at_counter, monkeypatch):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    searches = []
+    search = ik._search_groups
+    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    ik.forget_answers(robot)
+    first = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    first.joint_positions.clear()  # what a caller does with its answer does not change the one kept
+    again = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
+    assert len(searches) == 1
+    ik.forget_answers(robot)
+    assert again == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT) and len(searches) == 2  # bitwise the same
+
+
+def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    searches = []
+    search = ik._search_groups
+    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    ik.forget_answers(robot)
+    before = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    with robot.joints_kept(["torso_lift_joint"]):
+        robot.reset_joints({"torso_lift_joint": 0.2})  # a joint of the chain that IK does not move
+        raised = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    x, y, z = robot.get_position()
+    robot.set_position_and_orientation((x + 0.05, y, z), robot.get_orientation())
+    moved = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
+    assert len(searches) == 3
+    assert before.joint_positions != raised.joint_positions and before.joint_positions != moved.joint_positions
+
+
+# -- only whether: the reach bound ------------------------------------------------------------------------------------
+
+
+def test_a_target_beyond_the_arms_reach_fails_at_once_when_only_the_verdict_is_asked(at_counter, monkeypatch):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    searches = []
+    search = ik._search_groups
+    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    ik.forget_answers(robot)
+    far = solve_link(robot, LEFT, (3.0, 0.7, 1.0), best_effort=False)
+    assert not far and far.joint_positions == {} and far.position_error > 1.0 and searches == []
+    assert not solve_link(robot, LEFT, (3.0, 0.7, 1.0)).success and len(searches) == 1  # the best effort searches
+
+
+def test_the_reach_bound_never_refuses_what_the_search_reaches(at_counter):
+    import pycram_cli.reasoning.ik as ik
+
+    robot = at_counter.robot
+    rng = np.random.default_rng(5)
+    refused = reached = 0
+    for i in range(40):
+        target = tuple(float(v) for v in np.array(robot.get_position()) + rng.uniform((-1.5, -1.5, 0.0), (1.5, 1.5, 2.0)))
+        orientation = None if i % 2 else tuple(float(v) for v in rng.normal(size=4) / 2.0)
+        norm = None if orientation is None else math.sqrt(sum(v * v for v in orientation))
+        orientation = None if orientation is None else tuple(v / norm for v in orientation)
+        for tool in (LEFT, RIGHT):
+            for threshold, angle in ((0.01, 0.035), (0.3, 0.6)):
+                ik.forget_answers(robot)
+                full = solve_link(robot, tool, target, orientation, threshold=threshold, angle_threshold=angle)
+                ik.forget_answers(robot)
+                quick = solve_link(robot, tool, target, orientation, threshold=threshold, angle_threshold=angle,
+                                   best_effort=False)
+                assert quick.success == full.success
+                refused += not quick.joint_positions
+                reached += full.success
+    assert refused > 20 and reached > 5  # both kinds were asked
