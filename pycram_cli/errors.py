@@ -6,8 +6,8 @@ input; the CLI prints them without a traceback and exits with code 2.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 
 def closest(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | None:

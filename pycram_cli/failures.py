@@ -12,6 +12,9 @@ from .errors import InputError, InputErrors
 class Failure(Exception):
     """Base of every plan failure; a handler for `Failure` catches them all."""
 
+    plan_path: str | None = None  # the step that raised it (the executor sets it where it is raised)
+    failures: list[Failure]  # a failure that gave up after several (a try_all, an action's choices): theirs
+
     def __init__(self, message: str, **details: Any) -> None:
         super().__init__(message)
         self.message = message

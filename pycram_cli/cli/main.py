@@ -7,15 +7,13 @@ command runs, so `pycram --help` and light commands start without loading PyBull
 from __future__ import annotations
 
 import importlib
-import sys
 import warnings
 from typing import Any
 
 import click
 
-from .. import interrupts
+from .. import interrupts, quiet
 from ..errors import InputError, InputErrors, PycramError, as_list
-from .. import quiet
 from . import console
 
 EXIT_INPUT = 2
@@ -25,7 +23,8 @@ EXIT_INTERNAL = 3
 #: every command: name -> (its module in pycram_cli.cli, the click command's name there, its one-line help)
 COMMANDS: dict[str, tuple[str, str, str]] = {
     "run": ("run_cmd", "run", "Validate and run PLAN (a plan file, or the name of a bundled plan)."),
-    "sweep": ("sweep_cmd", "sweep", "Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails."),
+    "sweep": ("sweep_cmd", "sweep",
+              "Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails."),
     "validate": ("validate_cmd", "validate",
                  "Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every "
                  "problem with file, line and key."),
@@ -98,10 +97,10 @@ class PycramGroup(click.Group):
         except KeyboardInterrupt as exc:
             console.error("interrupted")
             ctx.exit(getattr(exc, "exit_code", None) or interrupts.exit_code() or 130)
-        except Exception as exc:  # noqa: BLE001 - last line of defence
+        except Exception as exc:  # last line of defence
             if interrupts.exit_code() is not None:  # a signal interrupted something that reported it otherwise
                 console.error("interrupted")
-                ctx.exit(interrupts.exit_code())
+                ctx.exit(interrupts.exit_code() or 130)
             if quiet.is_verbose():
                 raise
             console.error(f"internal error: {exc.__class__.__name__}: {exc} (run with --verbose for the traceback)")
@@ -131,4 +130,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    main()

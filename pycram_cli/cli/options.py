@@ -3,8 +3,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Callable, Iterator, TypeVar
+from typing import Any, TypeVar
 
 import click
 
@@ -26,10 +27,10 @@ class Number(click.ParamType):
     def __init__(self, low: float, high: float) -> None:
         self.low, self.high = low, high
 
-    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> float:
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
         option = param.opts[0] if param is not None and param.opts else "value"
         try:
-            number = float(value)  # type: ignore[arg-type]
+            number = float(value)
         except (TypeError, ValueError):
             raise InputError(f"expected a number, got '{value}'", Location(option)) from None
         if not math.isfinite(number) or not self.low <= number <= self.high:
@@ -39,14 +40,14 @@ class Number(click.ParamType):
 
 
 def json_option(func: F) -> F:
-    return click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")(func)  # type: ignore[return-value]
+    return click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")(func)
 
 
 def gui_option(func: F) -> F:
-    return click.option("--gui", is_flag=True, help="Open PyBullet's window (needs a display, e.g. xvfb-run).")(func)  # type: ignore[return-value]
+    return click.option("--gui", is_flag=True, help="Open PyBullet's window (needs a display, e.g. xvfb-run).")(func)
 
 
-def wait_for_window(world: "BulletWorld") -> None:
+def wait_for_window(world: BulletWorld) -> None:
     """Keep a GUI world open until its window is closed (or Ctrl-C)."""
     import time
 
@@ -87,7 +88,7 @@ def is_number(text: str) -> bool:
 
 def world_option(func: F) -> F:
     return click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
-                        help="World file or bundled world name (default: kitchen).")(func)  # type: ignore[return-value]
+                        help="World file or bundled world name (default: kitchen).")(func)
 
 
 @contextlib.contextmanager
@@ -107,12 +108,12 @@ def camera_option(func: F) -> F:
         "--camera", metavar="VIEW|EYE:TARGET",
         help="Camera of the image: a view (overview: the whole scene; robot: the robot over its shoulder; "
              "target: the objects worked on) or EYE:TARGET, each x,y,z, e.g. -1.5,-1.5,2.5:1,0.8,0.9. "
-             "Default: overview.")(func)  # type: ignore[return-value]
+             "Default: overview.")(func)
 
 
 def size_option(func: F) -> F:
     return click.option("--size", metavar="WxH", default="960x720", show_default=True,
-                        help="Image size in pixels (16 to 4096 each way).")(func)  # type: ignore[return-value]
+                        help="Image size in pixels (16 to 4096 each way).")(func)
 
 
 def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
@@ -127,7 +128,7 @@ def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
     return width, height
 
 
-def parse_view(text: str | None, option: str = "--camera") -> "str | Camera":
+def parse_view(text: str | None, option: str = "--camera") -> str | Camera:
     """A named view (overview, robot, target) or a Camera from EYE:TARGET; an InputError otherwise."""
     if text is None:
         return "overview"
@@ -140,8 +141,8 @@ def parse_view(text: str | None, option: str = "--camera") -> "str | Camera":
         raise InputError(str(exc), Location(option), suggestion=hint) from None
 
 
-def image_camera(world: BulletWorld, view: "str | Camera", size: tuple[int, int],
-                 targets: "list[Object] | None" = None) -> Camera:
+def image_camera(world: BulletWorld, view: str | Camera, size: tuple[int, int],
+                 targets: list[Object] | None = None) -> Camera:
     """The camera of an image: a named view computed on `world` as it is now, or the given camera."""
     if isinstance(view, Camera):
         return view

@@ -1,6 +1,7 @@
 """`pycram run PLAN`: validate and run a plan, showing a live tree, and save its trace."""
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 from typing import Any
@@ -10,22 +11,31 @@ from rich.live import Live
 from rich.text import Text
 
 from .. import interrupts
-from ..files import check_writable
 from ..errors import InputError, Location
-from ..plan.trace import TraceNode, dumps, normalised
-from ..scenario import prepare
+from ..files import check_writable
 from ..limits import MAX_PROJECTED
-from ..scenario.starts import ImpossibleStart, possible_variant
-from ..sweep.projection import Projection, project
-from ..scenario.variations import read_variations, variation_file
+from ..plan.trace import TraceNode, dumps, normalised
 from ..report.failures import failure_camera
+from ..scenario import prepare
+from ..scenario.starts import ImpossibleStart, possible_variant
+from ..scenario.variations import read_variations, variation_file
+from ..sweep.projection import Projection, project
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
 from .files import MCAP_FORMATS, REPORT_FORMATS, check_outputs, distinct_outputs, write_mcap, write_output, write_report
 from .gui_view import GuiView
-from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
-                      wait_for_window)
+from .options import (
+    Number,
+    camera_option,
+    gui_option,
+    image_camera,
+    json_option,
+    parse_size,
+    parse_view,
+    size_option,
+    wait_for_window,
+)
 from .run_log import WIDTH, RunLog, clip
 from .trace_cmd import build_tree, find_node, short
 
@@ -45,13 +55,11 @@ class LiveView:
     def render(self) -> Any:
         if self.root is None:
             return ""
-        try:
+        with contextlib.suppress(RuntimeError):  # the tree changed while it was read: show the previous picture
             self._last = build_tree(self.root.to_dict(timing=True), collapse=True)
-        except RuntimeError:  # the tree changed while it was read: show the previous picture
-            pass
         return self._last
 
-    def __enter__(self) -> "LiveView":
+    def __enter__(self) -> LiveView:
         self.live.__enter__()
         return self
 
@@ -87,7 +95,7 @@ class Paced:
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
 
-    def __enter__(self) -> "Paced":
+    def __enter__(self) -> Paced:
         self.view.__enter__()
         return self
 
@@ -186,9 +194,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             console.emit_json({"status": "not run", "projection": summary})
         elif not as_json:
             _projected(summary, scenario.plan.path, vary_file, require)
-        if refused:
+        if refused and require is not None:  # (refused says it is not None; the type checker wants it said)
             console.error(f"not running {scenario.plan.path.name}: the projected success rate "
-                          f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")  # type: ignore[operator]
+                          f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")
             ctx.exit(EXIT_FAILED)
     if scenario_seed is not None:
         vary = variation_file(scenario.plan.path, vary_file, "--scenario", "running one scenario")

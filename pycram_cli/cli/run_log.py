@@ -19,8 +19,9 @@ cut to WIDTH characters.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 from ..plan.trace import TraceNode
 from . import console

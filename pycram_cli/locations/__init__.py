@@ -21,8 +21,18 @@ from typing import Any
 from ..robots import Robot
 from ..world import BulletWorld, Object
 from .floor import FloorMap
-from .resolve import (REASONS, BasePose, BasePoseResolution, Candidates, Spot, SpotResolution, floor_map, resolution,
-                      summary, take_from_here)
+from .resolve import (
+    REASONS,
+    BasePose,
+    BasePoseResolution,
+    Candidates,
+    Spot,
+    SpotResolution,
+    floor_map,
+    resolution,
+    summary,
+    take_from_here,
+)
 from .spec import Handle, LocationSpec, Surface, find_handle, find_surface, handle_of, opening_joint, parse_location
 
 

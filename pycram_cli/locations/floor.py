@@ -16,8 +16,9 @@ decide (`exact_collisions`), as the navigation process module does.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -122,15 +123,10 @@ class FloorMap:
                      0, self.shape[1] - 1)
         return self.core_occupied[ix, iy].any(axis=1)
 
-    def clearance_cells(self) -> np.ndarray:
-        """(nx, ny) bool: cells whose centre no obstacle covers at any height the robot has (for plots)."""
-        return ~self.any_occupied
-
-
 # -- building --------------------------------------------------------------------------------------------
 
 
-def _link_boxes(obj: "Object", skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
+def _link_boxes(obj: Object, skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
     boxes = []
     solid = obj.solid_links()
     for index in [-1, *range(len(obj.joints))]:
@@ -143,7 +139,7 @@ def _link_boxes(obj: "Object", skip: frozenset[int] = frozenset()) -> list[tuple
     return boxes
 
 
-def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Box]]:
+def robot_boxes(robot: Object, held: Sequence[Object]) -> list[tuple[str, Box]]:
     """The robot's links (and what it holds) as boxes in its base frame, read with the base at yaw 0.
 
     The robot is turned in place and put back (position, orientation and held objects as they were).
@@ -161,7 +157,7 @@ def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Bo
     return boxes
 
 
-def obstacle_boxes(robot: "Object", held: Sequence["Object"], extra_ignore: Iterable["Object"] = ()) -> list[tuple[str, Box]]:
+def obstacle_boxes(robot: Object, held: Sequence[Object], extra_ignore: Iterable[Object] = ()) -> list[tuple[str, Box]]:
     """The boxes of everything the base could hit: every object's links but the robot's, what it holds and the floor."""
     skip = {robot.id, *(o.id for o in held), *(o.id for o in extra_ignore)}
     ground = ground_z(robot)
@@ -207,8 +203,8 @@ def _rasterise(boxes: Sequence[Box], origin: np.ndarray, shape: tuple[int, int],
     return grid
 
 
-def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RESOLUTION,
-          ignore: Iterable["Object"] = ()) -> FloorMap:
+def build(robot: Object, held: Sequence[Object] = (), resolution: float = RESOLUTION,
+          ignore: Iterable[Object] = ()) -> FloorMap:
     """The floor map of the robot's world for its current configuration (the world is left as it was)."""
     own = robot_boxes(robot, held)
     obstacles = obstacle_boxes(robot, held, ignore)
@@ -249,17 +245,17 @@ def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RE
     # bands with the same footprint share one occupancy grid (the union of their obstacles): still exact
     by_footprint: dict[frozenset[int], set[int]] = {}
     heights: dict[frozenset[int], list[float]] = {}
-    for theirs, mine in by_obstacles.items():
-        key = frozenset(mine)
-        by_footprint.setdefault(key, set()).update(theirs)
-        span = heights.setdefault(key, list(spans[theirs]))
-        span[0], span[1] = min(span[0], spans[theirs][0]), max(span[1], spans[theirs][1])
+    for blocking, moving in by_obstacles.items():
+        key = frozenset(moving)
+        by_footprint.setdefault(key, set()).update(blocking)
+        span = heights.setdefault(key, list(spans[blocking]))
+        span[0], span[1] = min(span[0], spans[blocking][0]), max(span[1], spans[blocking][1])
     bands = []
-    for mine, theirs in sorted(by_footprint.items(), key=lambda kv: (heights[kv[0]][0], sorted(kv[0]))):
-        occupied = _rasterise([obstacles[i][1] for i in sorted(theirs)], lo, shape, resolution)
-        samples = _footprint_samples([own[i][1] for i in sorted(mine)], resolution)
-        bands.append(Band(heights[mine][0], heights[mine][1], occupied, samples,
-                          tuple(own[i][0] for i in sorted(mine)), tuple(obstacles[i][0] for i in sorted(theirs))))
+    for parts, blockers in sorted(by_footprint.items(), key=lambda kv: (heights[kv[0]][0], sorted(kv[0]))):
+        occupied = _rasterise([obstacles[i][1] for i in sorted(blockers)], lo, shape, resolution)
+        samples = _footprint_samples([own[i][1] for i in sorted(parts)], resolution)
+        bands.append(Band(heights[parts][0], heights[parts][1], occupied, samples,
+                          tuple(own[i][0] for i in sorted(parts)), tuple(obstacles[i][0] for i in sorted(blockers))))
     reachable_boxes = [b for _, b in obstacles if b[0][2] - floor_z < robot_top and b[1][2] - floor_z > low_limit]
     everything = _rasterise(reachable_boxes, lo, shape, resolution)
     footprint = _footprint_samples([b for _, b in own], resolution) if own else np.zeros((0, 2))
@@ -291,8 +287,8 @@ def _inside_samples(boxes: Sequence[Box], spacing: float) -> np.ndarray:
 # -- the exact test ------------------------------------------------------------------------------------------
 
 
-def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: float, yaw: float,
-                     ignore: Iterable["Object"] = ()) -> list[str]:
+def exact_collisions(robot: Object, held: Sequence[Object], x: float, y: float, yaw: float,
+                     ignore: Iterable[Object] = ()) -> list[str]:
     """Teleport the robot to (x, y, yaw) and name what it (or what it holds) penetrates; the caller restores the world.
 
     The robot's own test is the navigation process module's (`collisions`); held objects count too.

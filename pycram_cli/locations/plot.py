@@ -158,7 +158,7 @@ def _target(resolution: BasePoseResolution | SpotResolution) -> np.ndarray:
     return (np.asarray(lo) + np.asarray(hi)) / 2.0
 
 
-def _pose(canvas: "Canvas", boxes: list[tuple[np.ndarray, np.ndarray]], position: Any, yaw: float,
+def _pose(canvas: Canvas, boxes: list[tuple[np.ndarray, np.ndarray]], position: Any, yaw: float,
           thick: bool) -> None:
     """The robot's base outline at a pose, and an arrow for its heading."""
     c, s = math.cos(yaw), math.sin(yaw)
@@ -179,7 +179,7 @@ def _pose(canvas: "Canvas", boxes: list[tuple[np.ndarray, np.ndarray]], position
     canvas.put(canvas.to_px(np.array([position[:2]])), colour, radius=3 if thick else 2)
 
 
-def _legend(canvas: "Canvas", resolution: BasePoseResolution | SpotResolution) -> None:
+def _legend(canvas: Canvas, resolution: BasePoseResolution | SpotResolution) -> None:
     counts = resolution.counts()
     rows = [("found", COLOURS["ok"], len(resolution.found))]
     if isinstance(resolution, BasePoseResolution):

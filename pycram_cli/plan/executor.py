@@ -12,8 +12,9 @@ from __future__ import annotations
 import contextlib
 import threading
 import time
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Iterator, Mapping, Protocol, cast
+from typing import Any, Protocol, cast
 
 from .. import interrupts
 from ..failures import Failure
@@ -109,9 +110,8 @@ class Run:
         method = getattr(self.observer, event, None)  # `folded` is optional: live views need not know it
         if method is None:
             return
-        with self._observer_lock:
-            with contextlib.suppress(Exception):
-                method(node, *args)
+        with self._observer_lock, contextlib.suppress(Exception):
+            method(node, *args)
 
     def cancel(self, reason: str = "interrupted") -> None:
         self.token.cancel(reason)
@@ -130,7 +130,7 @@ class Run:
         except Failure as exc:
             status, failure = Status.FAILED, failure_record(exc, self.root.path)
         except Cancelled as exc:
-            status, failure = "cancelled", {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
+            status, failure = Status.CANCELLED, {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
             error = exc
         except LimitExceeded as exc:
             self.stop_for(exc)
@@ -180,8 +180,8 @@ class Exec:
     def globals(self) -> Frame:
         return self.run.globals
 
-    def derive(self, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
-               depth: int | None = None) -> "Exec":
+    def derive(self, *, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
+               depth: int | None = None) -> Exec:
         return Exec(self.run, frame if frame is not None else self.frame, token if token is not None else self.token,
                     key if key is not None else self.key, depth if depth is not None else self.depth)
 
@@ -215,9 +215,9 @@ class Exec:
             self.run.notify("folded", summary, _own(child))
 
     # -- one step ------------------------------------------------------------------------------
-    def step(self, node: Node, tn: Record) -> Any:
-        """Run one node, recording its status, bound value and failure in `tn`."""
-        tn = _own(tn)
+    def step(self, node: Node, record: Record) -> Any:
+        """Run one node, recording its status, bound value and failure in `record`."""
+        tn = _own(record)
         self.token.check()
         if node.LEAF:  # the turn passes between leaves (see scheduler.py)
             self.run.scheduler.before_leaf(self.key, self.token)
@@ -234,7 +234,7 @@ class Exec:
             return value
         except Failure as exc:
             if getattr(exc, "plan_path", None) is None:
-                exc.plan_path = tn.path  # type: ignore[attr-defined]
+                exc.plan_path = tn.path
             tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
             raise
         except Cancelled:
@@ -277,9 +277,9 @@ class Exec:
             close_pending(children, Status.SKIPPED)
         return value
 
-    def run_group(self, nodes: list[Node], tn: Record) -> Any:
+    def run_group(self, nodes: list[Node], record: Record) -> Any:
         """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
-        tn = _own(tn)
+        tn = _own(record)
         self.token.check()
         tn.status, tn.started = Status.RUNNING, self.run.now()
         self.run.notify("started", tn)
@@ -369,9 +369,10 @@ class Exec:
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
-    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome",
+    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: Outcome,
                 ended: threading.Semaphore | None = None) -> None:
         result: tuple[Status, Any] = (Status.CANCELLED, None)
+        error: BaseException | None = None
         try:
             self.run.scheduler.acquire(self.key, self.token)
             result = (Status.SUCCEEDED, self.step(node, tn))
@@ -381,10 +382,13 @@ class Exec:
             if tn.status == Status.PENDING:
                 tn.status = Status.CANCELLED
             result = (Status.CANCELLED, None)
-        except BaseException as exc:  # noqa: BLE001 - carried to the parent thread
-            result = ("error", exc)
+        except BaseException as exc:  # carried to the parent thread
+            error = exc
         finally:
-            outcome.report(index, result)
+            if error is not None:
+                outcome.report_error(index, error)
+            else:
+                outcome.report(index, result)
             self.run.scheduler.finish(self.key)
             self.run.thread_ended()
             if ended is not None:
@@ -412,26 +416,40 @@ class Outcome:
         self.composite = composite
         self.tokens = tokens
         self.results: dict[int, tuple[Status, Any]] = {}
+        self.errors: dict[int, BaseException] = {}  # branches that raised what is no plan failure (a bug, a limit)
         self.decided: int | None = None
         self._lock = threading.Lock()
 
     def report(self, index: int, result: tuple[Status, Any]) -> None:
-        cancel = False
         with self._lock:
             self.results[index] = result
-            status = result[0]
-            if self.decided is None and (status == "error" or self.composite.decides(status)):
-                self.decided = index
-                cancel = True
+            cancel = self._decides(index, self.composite.decides(result[0]))
         if cancel:
-            for i, token in enumerate(self.tokens):
-                if i != index:
-                    token.cancel(f"{self.composite.head} decided by branch {index}")
+            self._cancel_others(index)
+
+    def report_error(self, index: int, error: BaseException) -> None:
+        """A branch that raised what is no plan failure: it decides, and the node re-raises it."""
+        with self._lock:
+            self.errors[index] = error
+            cancel = self._decides(index, True)
+        if cancel:
+            self._cancel_others(index)
+
+    def _decides(self, index: int, decides: bool) -> bool:
+        """Whether branch `index` is the first to decide (under the lock)."""
+        if self.decided is None and decides:
+            self.decided = index
+            return True
+        return False
+
+    def _cancel_others(self, index: int) -> None:
+        for i, token in enumerate(self.tokens):
+            if i != index:
+                token.cancel(f"{self.composite.head} decided by branch {index}")
 
     def result(self, ex: Exec, children: list[TraceNode]) -> Any:
-        errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
-        if errors:
-            error = errors[0]
+        if self.errors:
+            error = self.errors[min(self.errors)]
             if isinstance(error, (InternalError, LimitExceeded)):
                 raise error
             raise InternalError(f"{type(error).__name__}: {error}")

@@ -14,8 +14,9 @@ runs the branches, the composite decides (see composites.py). `Cancelled` and
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any, Iterable, Iterator, Protocol, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ..errors import Location
 from ..status import Status

@@ -6,8 +6,8 @@ resolved designator slots, reasoning answers, bound values and failure (type, me
 and the path of the node where it arose). The final state of the world closes the trace.
 
 Wall-clock data lives only under `timing` keys (and `source` names the line in the plan
-file); `comparable()` drops them, and the replay record (`replay`, see replay.py) too. Everything else is a function of the plan and the
-world: the tree is built in declaration order (concurrent branches by index, never by
+file); `comparable()` drops them, and the replay record (`replay`, see replay.py) too. Everything else is a function
+of the plan and the world: the tree is built in declaration order (concurrent branches by index, never by
 finishing order), floats are rounded to 6 decimals and keys sorted, so the same plan on
 the same world gives byte-identical comparable traces.
 """
@@ -16,9 +16,10 @@ from __future__ import annotations
 import json
 import math
 import threading
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any, cast
 
 from ..errors import InputError, Location
 from ..files import read_text, write_atomic
@@ -30,6 +31,7 @@ from .runtime import LimitExceeded
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
+    from .runtime import Record
 
 FORMAT = "pycram-trace"
 VERSION = 1
@@ -83,7 +85,7 @@ class TraceNode:
         self._budget = budget if budget is not None else Budget()
         self._lock = threading.Lock()
 
-    def child(self, label: str, type: str, source: Location | None = None) -> "TraceNode":
+    def child(self, label: str, type: str, source: Location | None = None) -> TraceNode:
         path = f"{self.path}/{label}"
         if self.depth + 1 > MAX_STEP_DEPTH:
             raise LimitExceeded(f"steps nested more than {MAX_STEP_DEPTH} levels deep (the limit; endless "
@@ -94,8 +96,10 @@ class TraceNode:
             self.children.append(node)
         return node
 
-    def summarise(self, child: "TraceNode", label: str) -> "TraceNode | None":
-        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place; the summary."""
+    def summarise(self, entry: Record, label: str) -> TraceNode | None:
+        """Replace `entry` by a count in the summary node `label` ("folded"), made at the child's place; the summary.
+        (A `Record` for the runtime's protocol: the runtime only ever hands back the trace nodes it was given.)"""
+        child = cast(TraceNode, entry)
         with self._lock:
             if child not in self.children:
                 return None
@@ -126,7 +130,7 @@ class TraceNode:
     def label(self) -> str:
         return self.path.rsplit("/", 1)[-1]
 
-    def walk(self) -> Iterator["TraceNode"]:
+    def walk(self) -> Iterator[TraceNode]:
         yield self
         for child in list(self.children):
             yield from child.walk()
@@ -164,7 +168,7 @@ def canonical_quaternion(q: Any) -> list[float]:
     return [-v for v in values] if lead < 0 else values
 
 
-def final_state(world: "BulletWorld") -> dict[str, Any]:
+def final_state(world: BulletWorld) -> dict[str, Any]:
     """Object poses, attachments, and the joints of non-robot objects that are not at 0 (opened drawers)."""
     objects: dict[str, Any] = {}
     attachments: list[dict[str, Any]] = []

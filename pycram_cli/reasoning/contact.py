@@ -35,7 +35,7 @@ class ContactAnswer:
         return self.in_contact
 
 
-def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = False) -> ContactAnswer:
+def contact(a: Object, b: Object, tolerance: float = 0.005, links: bool = False) -> ContactAnswer:
     """Whether `a` and `b` are within `tolerance` metres of each other (touching)."""
     if a is b:
         raise ValueError(f"contact needs two different objects, got '{a.name}' twice")

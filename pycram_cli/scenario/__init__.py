@@ -13,9 +13,10 @@ it open, so any number of scenarios can run one after another, or side by side, 
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 from ..errors import InputError, PycramError, as_list, raise_if_any
 from ..kinds import NOTHING_KNOWN
@@ -64,11 +65,11 @@ class Scenario:
             raise
         return world
 
-    def varied(self, variant: Variant) -> "Scenario":
+    def varied(self, variant: Variant) -> Scenario:
         """This scenario with a variant's parameter values and world (checked when the variations were read)."""
         return replace(self, params={**self.params, **variant.params}, variant=variant)
 
-    def with_params(self, values: Mapping[str, Any]) -> "Scenario":
+    def with_params(self, values: Mapping[str, Any]) -> Scenario:
         """This scenario with some parameters set otherwise (values checked by `bind_params`)."""
         robots = WorldFacts.of_spec(self.world).robots
         return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values}, robots=robots)})

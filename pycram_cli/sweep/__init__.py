@@ -21,9 +21,10 @@ from __future__ import annotations
 import math
 import os
 import shlex
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import yaml
 
@@ -35,12 +36,12 @@ from ..plan import bind_params
 from ..plan.syntax import plain
 from ..scenario import Scenario, prepare
 from ..scenario.variations import Variations, beside, read_variations, scenario_seed, variation_file
+from ..yamlsource import load_yaml_text
 from . import ray_backend
 from .local import LocalPool, SweepError
 from .results import ResultsFile, file_digest
 from .summary import summarise
 from .worker import SweepJob, Task, import_extensions
-from ..yamlsource import load_yaml_text
 
 BACKENDS = ("local", "ray")
 
@@ -79,7 +80,12 @@ class PreparedSweep:
 
     @property
     def total(self) -> int:
-        return self.settings.n * len(self.alternatives or [None])
+        return self.settings.n * len(self.choices)
+
+    @property
+    def choices(self) -> list[dict[str, Any] | None]:
+        """The alternatives each scenario runs with: [None] when the sweep compares none."""
+        return [*self.alternatives] if self.alternatives else [None]
 
 
 def parse_compare(text: str, scenario: Scenario, variations: Variations) -> tuple[str, list[dict[str, Any]]]:
@@ -167,7 +173,7 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
                              results)
     for index in range(settings.n):
         seed = scenario_seed(settings.seed, index)
-        for alt, alternative in enumerate(prepared.alternatives or [None]):
+        for alt, alternative in enumerate(prepared.choices):
             task = Task(index, seed, alternative, alt)
             if task.key not in results.done:
                 prepared.tasks.append(task)
@@ -192,14 +198,14 @@ def run_sweep(sweep: PreparedSweep, on_outcome: Callable[[dict[str, Any]], None]
         else:
             LocalPool(sweep.job, workers).run(sweep.tasks, record)
     finally:
-        keys = [(i, a) for i in range(settings.n) for a in range(len(sweep.alternatives or [None]))]
+        keys = [(i, a) for i in range(settings.n) for a in range(len(sweep.choices))]
         sweep.results.finish(keys)
     return summary_of(sweep)
 
 
 def summary_of(sweep: PreparedSweep) -> dict[str, Any]:
     """The summary of the outcomes in the results file so far, with a command to replay each example."""
-    wanted = {(i, a) for i in range(sweep.settings.n) for a in range(len(sweep.alternatives or [None]))}
+    wanted = {(i, a) for i in range(sweep.settings.n) for a in range(len(sweep.choices))}
     records = [r for k, r in sorted(sweep.results.done.items()) if k in wanted]
     summary = summarise(records, sweep.meta)
     summary["results"] = str(sweep.results.path)

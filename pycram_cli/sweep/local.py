@@ -8,14 +8,16 @@ the same way. Workers ignore Ctrl-C: the parent stops them.
 """
 from __future__ import annotations
 
+import contextlib
 import multiprocessing as mp
 import os
 import signal
 import time
 from collections import deque
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from multiprocessing.connection import Connection, wait
-from typing import Any, Callable, Iterable
+from typing import Any
 
 from ..errors import PycramError
 from .worker import SweepJob, Task, Worker, error_record, timeout_record
@@ -34,7 +36,7 @@ def _worker_main(conn: Connection, job: SweepJob) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         worker = Worker(job)
-    except BaseException as exc:  # noqa: BLE001 - told to the parent, which stops the sweep
+    except BaseException as exc:  # told to the parent, which stops the sweep
         conn.send(("fatal", f"{type(exc).__name__}: {exc}"))
         return
     conn.send(("ready", os.getpid()))
@@ -146,16 +148,15 @@ class LocalPool:
         code = slot.process.exitcode
         if not slot.ready:
             raise SweepError(f"a sweep worker exited before it was ready (exit code {code})")
-        on_outcome(error_record(slot.task, f"the worker process died (exit code {code})"))
+        if slot.task is not None:  # it died running a scenario (an idle one has none to record)
+            on_outcome(error_record(slot.task, f"the worker process died (exit code {code})"))
         self._replace(slot)
 
     def close(self) -> None:
         for slot in self.slots:
             if slot.process.is_alive() and slot.task is None:
-                try:
+                with contextlib.suppress(OSError, BrokenPipeError):
                     slot.conn.send(None)
-                except (OSError, BrokenPipeError):
-                    pass
         deadline = time.monotonic() + 5.0
         for slot in self.slots:
             slot.process.join(max(0.0, deadline - time.monotonic()) if slot.task is None else 0.0)

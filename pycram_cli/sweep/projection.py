@@ -15,13 +15,12 @@ failures by type and node with an example each.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..scenario import prepare
 from ..scenario.variations import read_variations, scenario_seed, variation_file
-from ..errors import InputError, Location
 from .local import LocalPool
 from .summary import summarise
 from .worker import SweepJob, Task, Worker

@@ -16,7 +16,8 @@ import os
 import socket
 import time
 from collections import deque
-from typing import Any, Callable, Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
 from ..errors import InputError, Location
 from .local import GRACE, STARTUP, SweepError
@@ -38,7 +39,7 @@ def cluster_alive(ray: Any) -> bool:
     """Whether the cluster answers and has a node alive (a cluster that dropped after connecting does not)."""
     try:
         return any(node.get("Alive") for node in ray.nodes())
-    except Exception:  # noqa: BLE001 - whatever Ray raises for a lost cluster, it is lost
+    except Exception:  # whatever Ray raises for a lost cluster, it is lost
         return False
 
 
@@ -106,7 +107,7 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
         actors = [actor_class.remote(job) for _ in range(min(workers, len(pending)))]
         try:
             ray.get([a.ready.remote() for a in actors], timeout=STARTUP)
-        except Exception as exc:  # noqa: BLE001 - an actor that cannot start stops the sweep
+        except Exception as exc:  # an actor that cannot start stops the sweep
             raise SweepError(f"a Ray worker could not start: {exc}") from None
         running: dict[Any, tuple[Any, Task, float]] = {}
 
@@ -129,7 +130,7 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
                 actor, task, _ = running.pop(ref)
                 try:
                     outcome, retire = ray.get(ref)
-                except Exception as exc:  # noqa: BLE001 - the actor died: record, replace, go on
+                except Exception as exc:  # the actor died: record, replace, go on
                     outcome, retire = error_record(task, f"the Ray worker died: {type(exc).__name__}"), True
                 if retire:
                     ray.kill(actor)

@@ -13,8 +13,9 @@ import hashlib
 import json
 import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from ..errors import InputError, Location
 from ..files import probe, read_bytes, reason, write_atomic

@@ -26,8 +26,8 @@ from ..plan.trace import comparable, normalised
 from ..scenario import Scenario, prepare
 from ..scenario.starts import ImpossibleStart
 from ..scenario.variations import Variations, read_variations
-from .summary import INVALID
 from ..scenario.worlds import LoadedWorlds
+from .summary import INVALID
 
 
 @dataclass(frozen=True)
@@ -133,8 +133,8 @@ class Worker:
         previous = signal.signal(signal.SIGALRM, _alarm) if alarm else None
         variant = None
         try:
-            if alarm:
-                signal.setitimer(signal.ITIMER_REAL, float(self.job.timeout))  # type: ignore[arg-type]
+            if alarm and self.job.timeout:
+                signal.setitimer(signal.ITIMER_REAL, float(self.job.timeout))
             try:
                 variant, world = self.worlds.possible(self.variations, task.seed, task.index)
                 setup = time.perf_counter() - started
@@ -153,7 +153,7 @@ class Worker:
                 self.worlds.discard(variant)
             self.retire = threading.active_count() > self._threads
             return timeout_record(task, self.job.timeout, varied)
-        except Exception as exc:  # noqa: BLE001 - recorded, and the sweep goes on
+        except Exception as exc:  # recorded, and the sweep goes on
             varied = (variant or self.variations.sample(task.seed, task.index)).varied
             if variant is not None:
                 self.worlds.discard(variant)

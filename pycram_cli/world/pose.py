@@ -6,7 +6,8 @@ a ValueError that names the expected and the actual shape or norm.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Iterable, Sequence
+from typing import Any, cast
 
 import numpy as np
 
@@ -19,7 +20,7 @@ QUAT_TOLERANCE = 1e-3
 def _numbers(value: object, what: str, size: int) -> list[float]:
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
         raise ValueError(f"{what}: expected {size} numbers, got {type(value).__name__} {value!r}")
-    items = list(value)  # type: ignore[arg-type]
+    items = list(cast(Iterable[Any], value))  # it has a length and is no string: a sequence
     if len(items) != size:
         raise ValueError(f"{what}: expected {size} numbers, got {len(items)}: {items!r}")
     out = []
@@ -30,6 +31,12 @@ def _numbers(value: object, what: str, size: int) -> list[float]:
             raise ValueError(f"{what}: expected finite numbers, got {item!r}")
         out.append(float(item))
     return out
+
+
+def vec3(values: Iterable[Any]) -> Vec3:
+    """Three numbers as a float triple (a numpy row, a list): the `Vec3` the rest of the code passes around."""
+    x, y, z = (float(v) for v in values)
+    return (x, y, z)
 
 
 def check_position(value: object, what: str = "position") -> Vec3:
