@@ -72,7 +72,18 @@ class Location:
 
 
 class PycramError(Exception):
-    """Base of every error pycram raises on purpose."""
+    """Base of every error pycram raises on purpose. At run time, a step that meets one fails (a plan failure a
+    `retry` or `try` can handle); anything else a step raises is a bug in pycram: an internal error (exit 3)."""
+
+
+class BadValue(PycramError, ValueError):
+    """A value pycram cannot use (a pose of the wrong size, a threshold out of range, two objects where two
+    different ones are needed). A ValueError too, for callers of the library that catch those."""
+
+
+class UnknownName(PycramError, KeyError):
+    """A name the robot or the world does not have (an arm, a grasp), the message saying which ones it has.
+    A KeyError too, for callers of the library that catch those."""
 
 
 @dataclass

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .errors import InputError, InputErrors
+from .errors import InputError, InputErrors, PycramError
 
 
 class Failure(Exception):
@@ -73,15 +73,35 @@ PerceptionError = PerceptionFailure
 ReasoningError = ReasoningFailure
 
 
+class InternalError(Exception):
+    """A bug inside a step: anything a step raises that is not pycram's own (a `Failure`, a `PycramError` met as
+    one, a limit, a cancellation). Not a failure: no `retry` or `try` handles it; the run stops (`pycram run` exits
+    3, saying it is a bug). `record` is the failing step's failure record; `result` the run's `RunResult` with its
+    trace (status `error`), set when the run has ended (plan/executor.py)."""
+
+    def __init__(self, message: str, record: dict[str, Any] | None = None) -> None:
+        super().__init__(message)
+        self.record = record
+        self.result: Any = None
+
+
 def failure_class(name: str) -> type[Failure] | None:
     return FAILURES.get(ALIASES.get(name, name))
 
 
-def as_failure(exc: BaseException, what: str) -> Failure:
-    """A bad value met at run time (an unknown object, link, arm) as a plan failure that names it, never a traceback."""
+def as_failure(exc: PycramError, what: str) -> Failure:
+    """A bad value met at run time (an unknown object, link, arm) as a plan failure that names it, never a traceback.
+    Only pycram's own errors: anything else a step raises is a bug (an internal error, see plan/executor.py)."""
     if isinstance(exc, (InputError, InputErrors)):
         message = "; ".join(e.message + (f" ({e.suggestion})" if e.suggestion else "")
                             for e in (exc.errors if isinstance(exc, InputErrors) else [exc]))
     else:
-        message = f"{type(exc).__name__}: {exc}"
+        message = f"{_kind(exc)}: {exc}"
     return Failure(f"{what}: {message}")
+
+
+def _kind(exc: BaseException) -> str:
+    """The error's kind in a failure message: the built-in one it is (ValueError for a BadValue, KeyError for an
+    UnknownName: the words plans and traces have always shown), else its own name."""
+    builtin = next((c for c in type(exc).__mro__ if c.__module__ == "builtins" and c is not Exception), None)
+    return builtin.__name__ if builtin is not None and builtin is not BaseException else type(exc).__name__

@@ -7,6 +7,8 @@ command runs, so `pycram --help` and light commands start without loading PyBull
 from __future__ import annotations
 
 import importlib
+import sys
+import traceback
 import warnings
 from typing import Any
 
@@ -14,10 +16,12 @@ import click
 
 from .. import interrupts, quiet
 from ..errors import InputError, InputErrors, PycramError, as_list
+from ..failures import InternalError
 from . import console
 
 EXIT_INPUT = 2
-EXIT_INTERNAL = 3
+EXIT_INTERNAL = 3  # a bug in pycram (an internal error): said in one line, with where to report it
+BUGS = "on the issue tracker of pycram-cli's repository"
 
 
 #: every command: name -> (its module in pycram_cli.cli, the click command's name there, its one-line help)
@@ -102,9 +106,19 @@ class PycramGroup(click.Group):
                 console.error("interrupted")
                 ctx.exit(interrupts.exit_code() or 130)
             if quiet.is_verbose():
-                raise
-            console.error(f"internal error: {exc.__class__.__name__}: {exc} (run with --verbose for the traceback)")
+                traceback.print_exception(exc, file=sys.stderr)
+            console.error(internal_error_line(exc, quiet.is_verbose()))
+            if ctx.meta.get("pycram.json"):
+                console.emit_json({"status": "error", "exit_code": EXIT_INTERNAL, "errors": [{"message": str(exc)}]})
             ctx.exit(EXIT_INTERNAL)
+
+
+def internal_error_line(exc: BaseException, verbose: bool) -> str:
+    """The one line an internal error gets: what was raised (and at which step), that it is a bug, and where to
+    report it."""
+    what = str(exc) if isinstance(exc, InternalError) else f"{type(exc).__name__}: {exc}"
+    how = "with the traceback above" if verbose else "with the output of the same command run with --verbose"
+    return f"internal error: {what}. This is a bug in pycram, not in your files: please report it {how} {BUGS}"
 
 
 def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:

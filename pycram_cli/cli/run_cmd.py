@@ -12,6 +12,7 @@ from rich.text import Text
 
 from .. import interrupts
 from ..errors import InputError, Location
+from ..failures import InternalError
 from ..files import check_writable
 from ..limits import MAX_PROJECTED
 from ..plan.trace import TraceNode, dumps, normalised
@@ -237,12 +238,18 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         for output in (trace_file, render_file, report_file, mcap_file):
             if output is not None:
                 interrupts.owe(str(output))  # said on stderr if a signal's deadline ends the run before it is written
+        internal: InternalError | None = None
         try:
-            if isinstance(progress, LiveView):
-                with view:
+            try:
+                if isinstance(progress, LiveView):
+                    with view:
+                        result = scenario.run(world, observer, replay=replay)
+                else:
                     result = scenario.run(world, observer, replay=replay)
-            else:
-                result = scenario.run(world, observer, replay=replay)
+            except InternalError as exc:  # a bug stopped the run: its trace is still written, then main says it
+                if exc.result is None:
+                    raise
+                internal, result = exc, exc.result
         finally:
             if isinstance(observer, GuiView):
                 observer.close()
@@ -252,6 +259,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         interrupted = result.status == "interrupted"
         if trace_file is not None:
             write_output(trace_file, dumps(result.trace), "trace")
+        if internal is not None:
+            raise internal  # the one-line message and exit 3 (cli/main.py), the traceback under --verbose
         if render_file is not None and not interrupted:
             cam = None
             if not result.succeeded and (camera is None or view_name == "target"):  # a failure: what failed, where

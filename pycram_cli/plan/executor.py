@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol, cast
 
 from .. import interrupts
-from ..failures import Failure
+from ..failures import Failure, InternalError
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
 from ..status import Status
@@ -41,10 +41,6 @@ class Observer(Protocol):
     def log(self, node: TraceNode, message: str) -> None: ...
 
     # optional: `folded(summary, child)` when `child` (a repeated attempt) was folded into the summary node
-
-
-class InternalError(Exception):
-    """A bug inside a step (not a plan failure); carried out of branch threads and re-raised."""
 
 
 @dataclass
@@ -123,7 +119,8 @@ class Run:
 
     def execute(self) -> RunResult:
         ex = Exec(self, Frame(parent=self.globals), self.token, ())
-        status, failure, value, error = Status.SUCCEEDED, None, None, None
+        status, failure, value = Status.SUCCEEDED, None, None
+        error: BaseException | None = None
         try:
             with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
                 value = ex.run_body(self.plan.body, self.root, self.plan.where)
@@ -134,12 +131,16 @@ class Run:
             error = exc
         except LimitExceeded as exc:
             self.stop_for(exc)
+        except InternalError as exc:  # a bug: the run stops; its trace says where, and the error goes on up
+            status, failure, error = Status.ERROR, exc.record or _internal_record(exc.__cause__ or exc, "body"), exc
         if self.limit_error is not None:  # the run was stopped by a limit (whatever it then unwound with)
             status, failure, error = Status.FAILED, failure_record(self.limit_error, self.limit_error.path), None
             self.root.status = Status.FAILED
             _mark(self.root, Status.CANCELLED)
         elif self.interrupted is not None and status != Status.SUCCEEDED:
             status = Status.INTERRUPTED
+            if isinstance(error, InternalError):  # what a step raised as the signal came: the signal's doing
+                error = None
             failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
             _mark(self.root, Status.CANCELLED)
         duration = self.now()
@@ -155,7 +156,11 @@ class Run:
         if status == Status.INTERRUPTED:
             trace["interrupted"] = {"signal": self.interrupted}
         steps = sum(1 for n in self.root.walk() if not n.children and n.status in (Status.SUCCEEDED, Status.FAILED))
-        return RunResult(status, failure, trace, duration, value, steps, error)
+        result = RunResult(status, failure, trace, duration, value, steps, error)
+        if isinstance(error, InternalError):
+            error.result = result
+            raise error
+        return result
 
 
 class Exec:
@@ -253,8 +258,8 @@ class Exec:
             raise
         except Exception as exc:  # a bug in a node: never leave the trace half written
             tn.status = Status.FAILED
-            tn.failure = {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": tn.path}
-            raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}") from exc
+            tn.failure = _internal_record(exc, tn.path)
+            raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}", tn.failure) from exc
         finally:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
@@ -398,6 +403,11 @@ class Exec:
 def _own(tn: Record) -> TraceNode:
     """The runtime only ever gets back the trace nodes it made: a TraceNode (for the type checker)."""
     return cast(TraceNode, tn)
+
+
+def _internal_record(exc: BaseException, path: str) -> dict[str, Any]:
+    """The failure record of an internal error raised at `path`."""
+    return {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": path}
 
 
 def _mark(tn: TraceNode, status: Status) -> None:

@@ -92,7 +92,7 @@ class DesignatorStep(Node):
                 performed = perform(ex.world, self.head, values)
             except Failure:
                 raise
-            except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+            except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
                 raise as_failure(exc, self.head) from exc
             tn.info["designator"] = {**tn.info["designator"], "resolved": jsonable(performed.resolved)}
         return performed.result
@@ -117,7 +117,7 @@ def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
             answer = run_query(ex.world, name, values)
         except Failure:
             raise
-        except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+        except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
             raise as_failure(exc, name) from exc
     record = {"name": name, "args": jsonable(answer.args), "result": jsonable(answer.result),
               "details": jsonable(answer.details)}

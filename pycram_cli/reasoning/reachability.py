@@ -19,6 +19,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from ..errors import BadValue
 from ..kinds import arm_phrase
 from ..robots import description_for
 from ..signature import Param
@@ -105,7 +106,7 @@ def grasp_orientation(robot: Object, grasp: Any) -> tuple[float, float, float, f
         grasps = desc.grasps if desc is not None else {}
         if grasp not in grasps:
             known = ", ".join(grasps) or "none: the robot has no description"
-            raise ValueError(f"unknown grasp '{grasp}' for robot '{robot.name}' (grasps: {known})")
+            raise BadValue(f"unknown grasp '{grasp}' for robot '{robot.name}' (grasps: {known})")
         return quat_multiply(robot.get_orientation(), grasps[grasp])
     return check_quaternion(grasp, "grasp orientation")
 
@@ -122,7 +123,7 @@ def reachable(target: Any, robot: Object, gripper_link: str, grasp: Any = None, 
               angle_threshold: float = 0.1) -> ReachableAnswer:
     """Whether IK brings `gripper_link` within `threshold` m (and `angle_threshold` rad of the grasp) of `target`."""
     if not (threshold > 0 and math.isfinite(threshold)):
-        raise ValueError(f"threshold must be a positive distance in metres, got {threshold!r}")
+        raise BadValue(f"threshold must be a positive distance in metres, got {threshold!r}")
     with robot.world.lock:
         sol = _solve(target, robot, gripper_link, grasp, threshold, angle_threshold)
     return ReachableAnswer(sol.success, sol.joint_positions, sol.position_error, sol.orientation_error)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..errors import did_you_mean
+from ..errors import BadValue, did_you_mean
 from ..signature import Param
 from ._common import same_world
 from .query import Call, QueryAnswer, QuerySpec, declare_query, parameters
@@ -32,7 +32,7 @@ TOLERANCE = 0.001
 def support_points(a: Object, b: Object, tolerance: float = TOLERANCE) -> list[tuple[str, tuple[float, float, float]]]:
     """The contact points where `a` holds `b` up: (a's link name, point on a)."""
     if a is b:
-        raise ValueError(f"supporting needs two different objects, got '{a.name}' twice")
+        raise BadValue(f"supporting needs two different objects, got '{a.name}' twice")
     world = same_world(a, b)
     with world.lock:
         # b first, a second: the normal on the second points from a towards b (up, when b rests on a)

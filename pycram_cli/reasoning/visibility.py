@@ -34,6 +34,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import BadValue
 from ..robots import description_for
 from ..signature import Param
 from ..world.camera import projection_matrix, view_matrix
@@ -104,11 +105,11 @@ def look_at(eye: Sequence[float] | np.ndarray, target: Sequence[float] | np.ndar
 def _robot_camera(world: BulletWorld) -> tuple[Object, Any]:
     robot = world.robot
     if robot is None:
-        raise ValueError("no camera given and the world has no robot to take it from")
+        raise BadValue("no camera given and the world has no robot to take it from")
     desc = description_for(robot)
     if desc is None or desc.camera is None:
         why = "has no description naming its camera" if desc is None else "has no camera in its description"
-        raise ValueError(f"no camera given and robot '{robot.name}' {why}")
+        raise BadValue(f"no camera given and robot '{robot.name}' {why}")
     return robot, desc.camera
 
 
@@ -128,7 +129,7 @@ def resolve_camera(obj: Object, camera: Any = None) -> CameraPose:
     if isinstance(camera, str):
         body = world.robot
         if body is None:
-            raise ValueError(f"camera link '{camera}': the world has no robot")
+            raise BadValue(f"camera link '{camera}': the world has no robot")
         desc = description_for(body)
         if desc is not None and desc.camera is not None and camera == desc.camera.frame:
             return _frame_camera(body, desc.camera)
@@ -317,7 +318,7 @@ def visible(obj: Object, camera: Any = None, world: BulletWorld | None = None,
     """Whether at least `threshold` (default 80 %) of `obj`'s pixels are seen from `camera`."""
     world = world_of(obj, world)
     if not 0.0 <= threshold <= 1.0:
-        raise ValueError(f"threshold must be a fraction between 0 and 1, got {threshold!r}")
+        raise BadValue(f"threshold must be a fraction between 0 and 1, got {threshold!r}")
     with world.lock:
         cam = resolve_camera(obj, camera)
         views = _render(world, obj, cam)

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..errors import InputError, Location, UnknownName, did_you_mean, raise_if_any
 from ..files import probe
 from ..paths import resources_dir
 from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
@@ -124,7 +124,7 @@ class RobotDescription:
         try:
             return self.arms[name]
         except KeyError:
-            raise KeyError(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
+            raise UnknownName(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
 
     def resource(self, role: str) -> str:
         """The physical resource a role drives (`base`, `head`, `arm:<name>`); roles share one when the description says
@@ -141,7 +141,7 @@ class RobotDescription:
         """World orientation of the tool frame for a named grasp (relative to the base) or a world quaternion."""
         if isinstance(grasp, str):
             if grasp not in self.grasps:
-                raise KeyError(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps) or 'none'})")
+                raise UnknownName(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps) or 'none'})")
             return quat_multiply(base_orientation, self.grasps[grasp])
         return check_quaternion(grasp, "grasp")
 

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import InputError, PycramError, as_list, raise_if_any
+from ..failures import InternalError
 from ..kinds import NOTHING_KNOWN
 from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
@@ -94,6 +95,10 @@ class Scenario:
         try:
             result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
                               bound=True)
+        except InternalError as exc:  # a bug stopped the run: its trace (exc.result) gets the replay too
+            if recorder is not None and exc.result is not None:
+                exc.result.trace[REPLAY_KEY] = recorder.record()
+            raise
         finally:
             if recorder is not None:
                 recorder.close()

@@ -32,7 +32,7 @@ from ..performing import perform
 from .declaration import ACTIONS
 
 #: errors of values met while acting that are reported as failures (never tracebacks)
-VALUE_ERRORS = (PycramError, ValueError, KeyError, LookupError, TypeError)
+VALUE_ERRORS = (PycramError,)  # what a step turns into a failure: pycram's own errors (anything else is a bug)
 
 
 class Finder:
