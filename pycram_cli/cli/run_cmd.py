@@ -12,9 +12,10 @@ from rich.text import Text
 
 from .. import interrupts
 from ..errors import InputError, Location
-from ..failures import InternalError
+from ..failures import FailureRecord, InternalError
 from ..files import check_writable
 from ..limits import MAX_PROJECTED
+from ..plan.observer import Observing
 from ..plan.trace import TraceNode, dumps, normalised
 from ..report.failures import failure_camera
 from ..scenario import prepare
@@ -44,7 +45,7 @@ EXIT_FAILED = 1
 
 
 # -- progress views (observers of a run) ------------------------------------------------------------
-class LiveView:
+class LiveView(Observing):
     """A live tree of the plan on a terminal: each node with its status, finished subtrees folded."""
 
     def __init__(self) -> None:
@@ -72,14 +73,11 @@ class LiveView:
         if self.root is None and "/" not in node.path:
             self.root = node
 
-    def finished(self, node: TraceNode) -> None:
-        pass
-
     def log(self, node: TraceNode, message: str) -> None:
         self.live.console.print(Text.assemble(("log", "cyan"), " ", (node.path, "dim"), ": ", message))
 
 
-class Paced:
+class Paced(Observing):
     """Wraps a view: pauses after each motion designator so that a person can follow it in the window."""
 
     def __init__(self, view: Any, seconds: float) -> None:
@@ -96,6 +94,9 @@ class Paced:
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
 
+    def folded(self, summary: TraceNode, child: TraceNode) -> None:
+        self.view.folded(summary, child)
+
     def __enter__(self) -> Paced:
         self.view.__enter__()
         return self
@@ -104,15 +105,8 @@ class Paced:
         self.view.__exit__(*exc)
 
 
-class QuietView:
-    def started(self, node: TraceNode) -> None:
-        pass
-
-    def finished(self, node: TraceNode) -> None:
-        pass
-
-    def log(self, node: TraceNode, message: str) -> None:
-        pass
+class QuietView(Observing):
+    """Shows nothing (`--quiet`, `--json`)."""
 
 
 # -- the command -----------------------------------------------------------------------------------------
@@ -273,7 +267,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if mcap_file is not None and not interrupted:
             write_mcap(mcap_file, result.trace, scenario.world_path)
         if as_json:
-            console.emit_json(normalised({"status": result.status, "failure": result.failure,
+            failure = result.failure.to_json() if result.failure is not None else None
+            console.emit_json(normalised({"status": result.status, "failure": failure,
                                           "duration": round(duration, 3), "trace": result.trace,
                                           **({"projection": summary} if project_runs is not None else {})}))
         else:
@@ -323,16 +318,16 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = 
     if result.succeeded:
         console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
     elif result.status == "interrupted":
-        console.error(f"plan {name} {(result.failure or {}).get('message', 'interrupted')} after {duration:.2f} s"
+        console.error(f"plan {name} {result.failure.message if result.failure else 'interrupted'} after {duration:.2f} s"
                       + (" (the trace records where)" if trace_file is not None else ""))
     else:
-        failure = result.failure or {}
-        node = find_node(result.trace["root"], failure.get("path", ""))
+        failure = result.failure or FailureRecord("Failure", "", None)
+        node = find_node(result.trace["root"], failure.path or "")
         where = f" ({plan.path}:{node['source']})" if node and node.get("source") else ""
-        message = (f"plan {name} {result.status} after {duration:.2f} s: {failure.get('type')} at "
-                   f"{failure.get('path')}{where}: {failure.get('message')}")
-        for nested in failure.get("failures") or []:
-            message += f"\n  - {nested.get('type')} at {nested.get('path')}: {nested.get('message')}"
+        message = (f"plan {name} {result.status} after {duration:.2f} s: {failure.type} at "
+                   f"{failure.path}{where}: {failure.message}")
+        for nested in failure.failures:
+            message += f"\n  - {nested.type} at {nested.path}: {nested.message}"
         if console.out.is_terminal:
             console.out.print(Text.assemble(("✗", "bold red"), " ", message))
         else:

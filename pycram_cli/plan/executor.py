@@ -14,39 +14,28 @@ import threading
 import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Protocol, cast
+from typing import Any, cast
 
 from .. import interrupts
-from ..failures import Failure, InternalError
+from ..failures import Failure, FailureRecord, InternalError
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
 from ..status import Status
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable, size_problem
+from .observer import Observer
 from .params import bind_params
 from .resources import ResourceAnalysis
 from .runtime import Cancelled, Decider, LimitExceeded, Record, close_pending
 from .scheduler import CancelToken, Key, Scheduler
 from .syntax import Node, Plan
-from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
-
-
-class Observer(Protocol):
-    """Told about every node as it starts and ends (live views). Called from plan threads."""
-
-    def started(self, node: TraceNode) -> None: ...
-
-    def finished(self, node: TraceNode) -> None: ...
-
-    def log(self, node: TraceNode, message: str) -> None: ...
-
-    # optional: `folded(summary, child)` when `child` (a repeated attempt) was folded into the summary node
+from .trace import FORMAT, VERSION, TraceNode, final_state
 
 
 @dataclass
 class RunResult:
     status: Status                    # succeeded, failed, interrupted (by a signal) or cancelled
-    failure: dict[str, Any] | None
+    failure: FailureRecord | None  # reads as the trace's `failure` mapping too
     trace: dict[str, Any]
     duration: float
     value: Any = None
@@ -103,9 +92,7 @@ class Run:
     def notify(self, event: str, node: TraceNode, *args: Any) -> None:
         if self.observer is None:
             return
-        method = getattr(self.observer, event, None)  # `folded` is optional: live views need not know it
-        if method is None:
-            return
+        method = getattr(self.observer, event)
         with self._observer_lock, contextlib.suppress(Exception):
             method(node, *args)
 
@@ -125,30 +112,30 @@ class Run:
             with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
                 value = ex.run_body(self.plan.body, self.root, self.plan.where)
         except Failure as exc:
-            status, failure = Status.FAILED, failure_record(exc, self.root.path)
+            status, failure = Status.FAILED, FailureRecord.of(exc, self.root.path)
         except Cancelled as exc:
-            status, failure = Status.CANCELLED, {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
+            status, failure = Status.CANCELLED, FailureRecord("Cancelled", str(exc) or "cancelled", "body")
             error = exc
         except LimitExceeded as exc:
             self.stop_for(exc)
         except InternalError as exc:  # a bug: the run stops; its trace says where, and the error goes on up
             status, failure, error = Status.ERROR, exc.record or _internal_record(exc.__cause__ or exc, "body"), exc
         if self.limit_error is not None:  # the run was stopped by a limit (whatever it then unwound with)
-            status, failure, error = Status.FAILED, failure_record(self.limit_error, self.limit_error.path), None
+            status, failure, error = Status.FAILED, FailureRecord.of(self.limit_error, self.limit_error.path), None
             self.root.status = Status.FAILED
             _mark(self.root, Status.CANCELLED)
         elif self.interrupted is not None and status != Status.SUCCEEDED:
             status = Status.INTERRUPTED
             if isinstance(error, InternalError):  # what a step raised as the signal came: the signal's doing
                 error = None
-            failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
+            failure = FailureRecord("Interrupted", f"interrupted by {self.interrupted}", "body")
             _mark(self.root, Status.CANCELLED)
         duration = self.now()
         trace = {
             "format": FORMAT, "version": VERSION,
             "plan": self.plan.path.name, "world": self.world_name,
             "params": jsonable(self.params),
-            "status": str(status), "failure": failure,
+            "status": str(status), "failure": failure.to_json() if failure is not None else None,
             "root": self.root.to_dict(timing=True),
             "final_state": final_state(self.world),
             "timing": {"duration": duration},
@@ -240,7 +227,7 @@ class Exec:
         except Failure as exc:
             if getattr(exc, "plan_path", None) is None:
                 exc.plan_path = tn.path
-            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
+            tn.status, tn.failure = Status.FAILED, FailureRecord.of(exc, tn.path)
             raise
         except Cancelled:
             tn.status = Status.CANCELLED
@@ -250,7 +237,7 @@ class Exec:
             tn.status = Status.FAILED
             exc.path = exc.path or tn.path  # a value too large is found where it is evaluated, not knowing the step
             if tn.failure is None:
-                tn.failure = failure_record(exc, exc.path)
+                tn.failure = FailureRecord.of(exc, exc.path)
             self.run.stop_for(exc)
             raise
         except InternalError:
@@ -293,7 +280,7 @@ class Exec:
             tn.status = Status.SUCCEEDED
             return value
         except Failure as exc:
-            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
+            tn.status, tn.failure = Status.FAILED, FailureRecord.of(exc, tn.path)
             raise
         except Cancelled:
             tn.status = Status.CANCELLED
@@ -405,9 +392,9 @@ def _own(tn: Record) -> TraceNode:
     return cast(TraceNode, tn)
 
 
-def _internal_record(exc: BaseException, path: str) -> dict[str, Any]:
+def _internal_record(exc: BaseException, path: str) -> FailureRecord:
     """The failure record of an internal error raised at `path`."""
-    return {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": path}
+    return FailureRecord("InternalError", f"{type(exc).__name__}: {exc}", path)
 
 
 def _mark(tn: TraceNode, status: Status) -> None:

@@ -49,6 +49,7 @@ from ..limits import MAX_PHYSICS_FRAMES
 from ..locations.plot import MAP_KEY
 from ..status import Status
 from ..world.bullet_world import STEP_HZ
+from .observer import Observing
 from .trace import DIGITS, TraceNode, canonical_quaternion
 
 if TYPE_CHECKING:
@@ -106,7 +107,7 @@ def changes(before: State, after: State) -> State:
     return found
 
 
-class Recorder:
+class Recorder(Observing):
     """Observes a run, passing every event on to `inner`, and records the world after each leaf step."""
 
     def __init__(self, world: BulletWorld, inner: Observer | None = None,
@@ -160,9 +161,8 @@ class Recorder:
     def folded(self, summary: TraceNode, child: TraceNode) -> None:
         """`child` (an attempt of a retry, with its subtree) was folded into `summary`: fold its steps here too."""
         fold_steps(self.steps, self.initial, summary.path, child.path, _earlier_attempts(summary.path, child.path))
-        inner = getattr(self.inner, "folded", None)
-        if inner is not None:
-            inner(summary, child)
+        if self.inner is not None:
+            self.inner.folded(summary, child)
 
     def record(self) -> dict[str, Any]:
         """The replay record (see the module docstring), ready for the trace's `replay` key."""

@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, cast
 
 from ..errors import InputError, Location
+from ..failures import FailureRecord
 from ..files import read_text, write_atomic
 from ..limits import MAX_STEP_DEPTH, MAX_TRACE_BYTES, MAX_TRACE_NODES
 from ..status import Status
@@ -76,7 +77,7 @@ class TraceNode:
         self.type = type
         self.status = Status.PENDING
         self.info: dict[str, Any] = {}
-        self.failure: dict[str, Any] | None = None
+        self.failure: FailureRecord | None = None
         self.children: list[TraceNode] = []
         self.started: float | None = None
         self.duration: float | None = None
@@ -119,7 +120,7 @@ class TraceNode:
         if child.status != Status.SUCCEEDED:
             summary.status = Status.FAILED
         if child.failure is not None:
-            text = f"{child.failure.get('type')}: {child.failure.get('message')}"
+            text = f"{child.failure.type}: {child.failure.message}"
             failures = folded["failures"]
             if text not in failures and len(failures) >= FOLDED_MESSAGES:
                 text = "(other failures)"
@@ -139,7 +140,7 @@ class TraceNode:
         data: dict[str, Any] = {"path": self.path, "type": self.type, "status": str(self.status)}  # plain data
         data.update(self.info)
         if self.failure is not None:
-            data["failure"] = self.failure
+            data["failure"] = self.failure.to_json()
         children = list(self.children)
         if children:
             data["children"] = [c.to_dict(timing) for c in children]
@@ -149,15 +150,6 @@ class TraceNode:
             if self.started is not None:
                 data["timing"] = {"started": self.started, "duration": self.duration}
         return data
-
-
-def failure_record(error: BaseException, path: str) -> dict[str, Any]:
-    record: dict[str, Any] = {"type": type(error).__name__, "message": str(error),
-                              "path": getattr(error, "plan_path", None) or path}
-    nested = getattr(error, "failures", None)
-    if nested:
-        record["failures"] = [failure_record(f, path) for f in nested]
-    return record
 
 
 # -- the world's final state ---------------------------------------------------------------

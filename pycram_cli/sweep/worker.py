@@ -169,7 +169,7 @@ class Worker:
         duration = time.perf_counter() - started - setup
         failure = None
         if result.failure is not None:
-            failure = {k: result.failure.get(k) for k in ("type", "path", "message")}
+            failure = {"type": result.failure.type, "path": result.failure.path, "message": result.failure.message}
         return outcome(task, result.status, failure, variant.varied, result.steps, trace_digest(result.trace),
                        duration, setup)
 

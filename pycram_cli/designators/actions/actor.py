@@ -20,7 +20,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from ...errors import PycramError
-from ...failures import Failure, LocationFailure, as_failure
+from ...failures import Failure, FailureRecord, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
 from ...locations.plot import MAP_KEY, candidate_map
@@ -161,7 +161,7 @@ class DirectActor(Actor):
             child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, FailureRecord(exc.type_name, exc.message).to_json()
             raise
         finally:
             child.update(info)
@@ -174,5 +174,5 @@ class DirectActor(Actor):
             child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, FailureRecord(exc.type_name, exc.message).to_json()
             raise
