@@ -28,6 +28,12 @@ def did_you_mean(word: object, candidates: Iterable[str]) -> str | None:
     return f"did you mean '{match}'?" if match is not None and match != word else None
 
 
+def setting(name: str) -> str:
+    """How an error names a field or parameter its caller set (a sweep's `out`, a query's `from`): in backticks.
+    The library knows no command line; the CLI shows the option that sets it instead (cli/flags.py)."""
+    return f"`{name}`"
+
+
 def key_text(key: object) -> str:
     """How a mapping key reads in a message: a name as it is, others as YAML writes them (null, true, 1, 2.5)."""
     if isinstance(key, str):

@@ -18,6 +18,7 @@ from .. import interrupts, quiet
 from ..errors import InputError, InputErrors, PycramError, as_list
 from ..failures import InternalError
 from . import console
+from .flags import as_options, options_of, with_options
 
 EXIT_INPUT = 2
 EXIT_INTERNAL = 3  # a bug in pycram (an internal error): said in one line, with where to report it
@@ -82,17 +83,22 @@ class PycramGroup(click.Group):
         ctx.meta["pycram.json"] = "--json" in head
         return super().parse_args(ctx, flags + [a for a in head if a not in GLOBAL_FLAGS] + sep + tail)
 
+    def _options(self, ctx: click.Context) -> dict[str, str]:
+        """The options of the command that ran, by the settings library errors name (cli/flags.py)."""
+        name = ctx.invoked_subcommand
+        return options_of(self.get_command(ctx, name) if name else None)
+
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except (InputError, InputErrors) as exc:
-            problems = as_list(exc)
+            problems = as_list(with_options(exc, self._options(ctx)))
             console.input_errors(problems)
             if ctx.meta.get("pycram.json"):
                 console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [p.to_json() for p in problems]})
             ctx.exit(EXIT_INPUT)
         except PycramError as exc:
-            console.error(str(exc))
+            console.error(as_options(str(exc), self._options(ctx)))
             if ctx.meta.get("pycram.json"):
                 console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [{"message": str(exc)}]})
             ctx.exit(EXIT_INPUT)

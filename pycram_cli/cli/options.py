@@ -10,9 +10,11 @@ from typing import Any, TypeVar
 import click
 
 from ..errors import InputError, Location, did_you_mean
+from ..kinds import parse_vector
+from ..limits import MAX_MAGNITUDE
 from ..paths import find_world
 from ..world import BulletWorld, Object
-from ..world.camera import VIEWS, Camera, named_camera, parse_camera
+from ..world.camera import VIEWS, Camera, named_camera
 from ..worldfile.loader import load_world
 from .complete import world_names
 
@@ -126,6 +128,27 @@ def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
         raise InputError(f"expected WIDTHxHEIGHT between 16 and 4096, e.g. 960x720, got '{text}'",
                          Location(option)) from None
     return width, height
+
+
+def _point(text: str, what: str) -> tuple[float, float, float]:
+    values = parse_vector(text, 3)
+    if values is None:
+        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
+    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
+        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
+    return (values[0], values[1], values[2])
+
+
+def parse_camera(text: str) -> Camera:
+    """`EYE:TARGET`, each `x,y,z`, e.g. `-1.5,-1.5,2.5:1,0.8,0.9`."""
+    eye, sep, target = text.partition(":")
+    if not sep:
+        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
+                         f"got {text!r}")
+    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
+        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
+    return camera
 
 
 def parse_view(text: str | None, option: str = "--camera") -> str | Camera:

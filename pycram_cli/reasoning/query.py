@@ -18,7 +18,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from ..errors import InputError, Location, did_you_mean
+from ..errors import InputError, Location, did_you_mean, setting
 from ..kinds import KINDS, NOTHING_KNOWN, Robots, parse_vector
 from ..robots import RobotDescription, description_for
 from ..schema import is_vector
@@ -252,7 +252,7 @@ class Call:
         if value is None:
             desc = self.description("camera", "from")
             if desc.camera is None:
-                raise self.error("from", f"robot '{desc.name}' has no camera", "give a camera with --from LINK|x,y,z")
+                raise self.error("from", f"robot '{desc.name}' has no camera", f"give a camera: {setting('from')} LINK|x,y,z")
             self.resolved["from"] = desc.camera.frame
             return None
         if isinstance(value, str):

@@ -19,6 +19,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..errors import setting
 from ..scenario import prepare
 from ..scenario.variations import read_variations, scenario_seed, variation_file
 from .local import LocalPool
@@ -45,7 +46,7 @@ class Projection:
 def project(projection: Projection, on_outcome: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """Run the projection; the sweep's summary of its outcomes (plus `runs_total` and `workers`)."""
     scenario = prepare(projection.plan, projection.world)
-    vary = variation_file(scenario.plan.path, projection.vary, "--project", "projecting the plan")
+    vary = variation_file(scenario.plan.path, projection.vary, setting("project"), "projecting the plan")
     read_variations(vary, scenario.world, scenario.plan)  # its problems now, as input errors
     job = SweepJob(str(scenario.plan.path), str(vary), str(scenario.world_path))
     given = dict(projection.params) or None

@@ -19,7 +19,7 @@ from collections import deque
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from ..errors import InputError, Location
+from ..errors import InputError, Location, setting
 from .local import GRACE, STARTUP, SweepError
 from .worker import SweepJob, Task, Worker, error_record, timeout_record
 
@@ -27,8 +27,8 @@ MISSING = ("the ray backend needs Ray, an optional extra: pip install 'pycram-cl
            "(in a checkout: pip install '.[ray]')")
 
 
-START = ("start one on this machine with `ray start --head` and give --address auto (or the address it prints), "
-         "or leave --address out for a Ray of this sweep's own")
+START = (f"start one on this machine with Ray's `ray start --head` and give {setting('address')} auto (or the address it "
+         f"prints), or leave {setting('address')} out for a Ray of this sweep's own")
 #: seconds to wait for a cluster's address to answer before Ray is asked to join it (Ray itself retries for minutes)
 CONNECT_TIMEOUT = 5.0
 #: seconds between two checks that the cluster is still there while scenarios run (Ray's own wait has no bound)
@@ -50,22 +50,22 @@ def reachable(address: str) -> None:
         return
     host, _, port = address.removeprefix("ray://").rpartition(":")
     if not host or not port.isdigit() or not 0 < int(port) < 65536:
-        raise InputError(f"expected HOST:PORT (or ray://HOST:PORT, or auto), got '{address}'", Location("--address"),
+        raise InputError(f"expected HOST:PORT (or ray://HOST:PORT, or auto), got '{address}'", Location(setting("address")),
                          suggestion=START)
     try:
         socket.create_connection((host.strip("[]"), int(port)), timeout=CONNECT_TIMEOUT).close()
     except OSError as exc:
         raise InputError(f"cannot join a Ray cluster at '{address}': nothing answers there ({exc.strerror or exc})",
-                         Location("--address"), suggestion=START) from None
+                         Location(setting("address")), suggestion=START) from None
 
 
 def load_ray() -> Any:
     """The `ray` module, or an input error saying how to install it."""
     try:
-        # why: Ray is optional and takes a second to import; only `--backend ray` needs it
+        # why: Ray is optional and takes a second to import; only the ray backend needs it
         return importlib.import_module("ray")
     except ImportError:
-        raise InputError(MISSING, Location("--backend")) from None
+        raise InputError(MISSING, Location(setting("backend"))) from None
 
 
 class RayWorker:
@@ -100,7 +100,7 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
         try:
             ray.init(**options)
         except (ConnectionError, TimeoutError) as exc:  # `auto` with no cluster running, a cluster gone
-            raise InputError(f"cannot join a Ray cluster at '{address}': {exc}", Location("--address"),
+            raise InputError(f"cannot join a Ray cluster at '{address}': {exc}", Location(setting("address")),
                              suggestion=START) from None
     actor_class = ray.remote(num_cpus=1, max_restarts=0)(RayWorker)
     try:
@@ -125,7 +125,7 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
             if not done and not cluster_alive(ray):
                 where = f"at '{address}'" if address is not None else "of this sweep"
                 raise SweepError(f"lost the Ray cluster {where} while {len(running)} scenario(s) ran: what finished "
-                                 "is kept (--resume runs the rest)")
+                                 f"is kept ({setting('resume')} runs the rest)")
             for ref in done:
                 actor, task, _ = running.pop(ref)
                 try:

@@ -21,9 +21,8 @@ import numpy as np
 import pybullet as p
 from PIL import Image
 
+from ..errors import BadValue
 from ..files import write_atomic
-from ..kinds import parse_vector
-from ..limits import MAX_MAGNITUDE
 from .pose import vec3
 
 if TYPE_CHECKING:
@@ -239,7 +238,7 @@ def named_camera(world: BulletWorld, name: str, targets: Sequence[Object] | None
         return robot_camera(world, aspect=aspect)
     if name == "target":
         return objects_camera(world, targets, aspect=aspect)
-    raise ValueError(f"unknown view {name!r} (expected one of {', '.join(VIEWS)}, or EYE:TARGET)")
+    raise BadValue(f"unknown view {name!r} (expected one of {', '.join(VIEWS)})")
 
 
 def view_matrix(eye: Sequence[float], target: Sequence[float], up: Sequence[float]) -> tuple[float, ...]:
@@ -363,24 +362,3 @@ def encode_image(rgb: np.ndarray, suffix: str = ".png") -> bytes:
 def write_png(path: Path | str, rgb: np.ndarray, key: str | None = None) -> None:
     """Write an RGB image as a PNG file, atomically (for pictures the program draws itself: sweep and location maps)."""
     write_atomic(path, encode_image(rgb, ".png"), key=key)
-
-
-def _point(text: str, what: str) -> tuple[float, float, float]:
-    values = parse_vector(text, 3)
-    if values is None:
-        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
-    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
-        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
-    return (values[0], values[1], values[2])
-
-
-def parse_camera(text: str) -> Camera:
-    """`EYE:TARGET`, each `x,y,z`, e.g. `-1.5,-1.5,2.5:1,0.8,0.9`."""
-    eye, sep, target = text.partition(":")
-    if not sep:
-        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
-                         f"got {text!r}")
-    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
-    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
-        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
-    return camera
