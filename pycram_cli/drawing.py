@@ -11,8 +11,8 @@ the package; the same Pillow draws the same pixels, so the maps stay reproducibl
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import lru_cache
-from typing import Sequence
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -50,7 +50,7 @@ class Picture:
         self._draw = ImageDraw.Draw(self.image, "RGBA")
 
     @classmethod
-    def of(cls, rgb: np.ndarray) -> "Picture":
+    def of(cls, rgb: np.ndarray) -> Picture:
         """A picture starting from an (height, width, 3) uint8 array (a rendering)."""
         picture = cls(1, 1)
         picture.image = Image.fromarray(np.ascontiguousarray(rgb[..., :3], dtype=np.uint8))

@@ -6,8 +6,8 @@ input; the CLI prints them without a traceback and exits with code 2.
 from __future__ import annotations
 
 import difflib
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 
 def closest(word: str, candidates: Iterable[str], cutoff: float = 0.6) -> str | None:
@@ -26,6 +26,12 @@ def did_you_mean(word: object, candidates: Iterable[str]) -> str | None:
         return None
     match = closest(word, candidates)
     return f"did you mean '{match}'?" if match is not None and match != word else None
+
+
+def setting(name: str) -> str:
+    """How an error names a field or parameter its caller set (a sweep's `out`, a query's `from`): in backticks.
+    The library knows no command line; the CLI shows the option that sets it instead (cli/flags.py)."""
+    return f"`{name}`"
 
 
 def key_text(key: object) -> str:
@@ -72,7 +78,18 @@ class Location:
 
 
 class PycramError(Exception):
-    """Base of every error pycram raises on purpose."""
+    """Base of every error pycram raises on purpose. At run time, a step that meets one fails (a plan failure a
+    `retry` or `try` can handle); anything else a step raises is a bug in pycram: an internal error (exit 3)."""
+
+
+class BadValue(PycramError, ValueError):
+    """A value pycram cannot use (a pose of the wrong size, a threshold out of range, two objects where two
+    different ones are needed). A ValueError too, for callers of the library that catch those."""
+
+
+class UnknownName(PycramError, KeyError):
+    """A name the robot or the world does not have (an arm, a grasp), the message saying which ones it has.
+    A KeyError too, for callers of the library that catch those."""
 
 
 @dataclass

@@ -24,7 +24,7 @@ import os
 import signal
 import threading
 import time
-from typing import Callable, Iterator
+from collections.abc import Callable, Iterator
 
 #: seconds after the first signal at which the process ends whatever it is doing
 DEADLINE = 3.0
@@ -49,11 +49,6 @@ _event = threading.Event()  # set (by the watcher) once a signal has been receiv
 _pipe: int | None = None
 _deferring = 0  # inside `deferred()`: note the signal, raise when the block ends
 _owed: list[str] = []  # output files the command has still to write (named if the watcher must end it)
-
-
-def received() -> int | None:
-    """The number of the first signal received, if any."""
-    return _received
 
 
 def exit_code() -> int | None:
@@ -150,9 +145,3 @@ def pause(seconds: float) -> None:
     """Sleep, but wake at once when a signal has been received."""
     _event.wait(max(0.0, seconds))
 
-
-def reset_for_tests() -> None:
-    """Forget a received signal (tests that simulate one)."""
-    global _received
-    _received = None
-    _event.clear()

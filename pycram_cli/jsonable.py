@@ -8,7 +8,8 @@ hold, become strings ("nan", "inf") in traces or null in command output.
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 _STRING = "string"
 

@@ -17,16 +17,20 @@ One set of kinds serves designator slots and query parameters alike. A kind know
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 from .errors import did_you_mean, not_a_name
 from .limits import MAX_MAGNITUDE
 from .schema import is_number, is_vector, number_problem
 
 
-def arm_words(name: str) -> str:
-    """An arm's name in a sentence, without the article: "left arm", and "arm" for an arm called `arm` (a Fetch)."""
+def arm_words(name: str | None) -> str:
+    """An arm's name in a sentence, without the article: "left arm", and "arm" for an arm called `arm` (a Fetch),
+    or none (None: the robot's only arm)."""
+    if name is None:
+        return "arm"
     return name if name == "arm" or name.endswith(("arm", "_arm", "-arm")) else f"{name} arm"
 
 
@@ -51,7 +55,7 @@ class Robots:
     no world), or nothing; with `known` false the robot-dependent checks are skipped.
     """
 
-    descriptions: tuple["RobotDescription", ...] = ()
+    descriptions: tuple[RobotDescription, ...] = ()
     known: bool = False
 
     @property
@@ -59,7 +63,7 @@ class Robots:
         names = [d.name for d in self.descriptions]
         return names[0] if len(names) == 1 else " or ".join(names) if names else "the robot"
 
-    def _union(self, values: Callable[["RobotDescription"], Iterable[str]]) -> list[str]:
+    def _union(self, values: Callable[[RobotDescription], Iterable[str]]) -> list[str]:
         seen: list[str] = []
         for desc in self.descriptions:
             for value in values(desc):
@@ -301,8 +305,9 @@ def _location(value: Any, robots: Robots) -> str | None:
         return ("expected a location mapping such as {reachable-for: milk}, {visible-for: milk}, "
                 "{on: kitchen_island_surface, for: milk} or {accessing: HANDLE_LINK}")
     for key in value:
-        if not isinstance(key, str):
-            return f"{not_a_name(key)[0]} in a location"  # type: ignore[index]
+        unnamed = not_a_name(key)
+        if unnamed is not None:
+            return f"{unnamed[0]} in a location"
         if key not in LOCATION_KEYS:
             return f"a location has no key '{key}' ({_hint(key, list(LOCATION_KEYS), 'key')})"
     goals = location_goals(value)
@@ -400,7 +405,7 @@ _ARM_CONFIG = _either(_NAME, {"type": "array", "items": _NUMBER, "minItems": 1},
                       {"type": "object", "additionalProperties": _NUMBER, "minProperties": 1})
 
 
-def _location_schema(kinds: Mapping[str, "Kind"]) -> JsonSchema:
+def _location_schema(kinds: Mapping[str, Kind]) -> JsonSchema:
     """A location mapping: its keys (each value of its kind, or a `$variable`), one goal, what goes with what."""
     variable = {"type": "string", "pattern": r"^\$"}  # a $variable, known when the step runs
     together = [[a, b] for i, a in enumerate(LOCATION_GOALS) for b in LOCATION_GOALS[i + 1:]

@@ -1,6 +1,7 @@
 """Where the bundled data lives, both in a source checkout and in an installed package."""
 from __future__ import annotations
 
+import contextlib
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -113,10 +114,8 @@ def _find(value: str, base: Path, bundled_folder: Path, what: str, where: Locati
     read (a pipe, a device, a name too long) is an input error, not a reason to look further."""
     path = Path(value)
     if "~" in value:
-        try:
+        with contextlib.suppress(RuntimeError):  # no home folder to expand into
             path = path.expanduser()
-        except RuntimeError:  # no home folder to expand into
-            pass
     candidates = [path]
     if not path.is_absolute():
         names = [value] if value.endswith((".yaml", ".yml")) else [value, f"{value}.yaml"]

@@ -11,7 +11,7 @@ import contextlib
 import os
 import sys
 import threading
-from typing import Iterator
+from collections.abc import Iterator
 
 _verbose = False
 _lock = threading.RLock()

@@ -5,7 +5,8 @@ Every problem becomes an `InputError` at the exact place, with the closest valid
 from __future__ import annotations
 
 import math
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 from .errors import InputError, Location, did_you_mean, key_text, not_a_name
 from .limits import MAX_MAGNITUDE

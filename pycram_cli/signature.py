@@ -13,8 +13,9 @@ unknown name gets the closest known one.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable, Iterator, Mapping, MutableMapping
 from dataclasses import dataclass
-from typing import Any, Callable, Iterator, Mapping, MutableMapping, Protocol, TypeVar
+from typing import Any, Protocol, TypeVar
 
 from .errors import did_you_mean
 from .kinds import KINDS, NOTHING_KNOWN, Robots

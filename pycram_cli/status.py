@@ -16,9 +16,10 @@ class Status(StrEnum):
     CANCELLED = "cancelled"  # stopped from outside (a concurrent sibling decided, a limit, a signal)
     SKIPPED = "skipped"  # never started: an earlier step decided the outcome
     INTERRUPTED = "interrupted"  # a whole run stopped by a signal (Ctrl-C); runs only
+    ERROR = "error"  # a whole run stopped by an internal error (a bug in pycram, not a plan failure); runs only
 
 
 #: what a step of a trace can be
 NODE_STATUSES = (Status.PENDING, Status.RUNNING, Status.SUCCEEDED, Status.FAILED, Status.CANCELLED, Status.SKIPPED)
 #: how a run can end
-RUN_STATUSES = (Status.SUCCEEDED, Status.FAILED, Status.CANCELLED, Status.INTERRUPTED)
+RUN_STATUSES = (Status.SUCCEEDED, Status.FAILED, Status.CANCELLED, Status.INTERRUPTED, Status.ERROR)

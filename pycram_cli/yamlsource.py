@@ -18,7 +18,6 @@ from .errors import InputError, Location
 from .files import read_text
 from .limits import MAX_NESTING, MAX_YAML_BYTES, MAX_YAML_NODES, size_text
 
-
 _WHOLE = object()
 
 
@@ -212,7 +211,8 @@ def _count_values(text: str, filename: str) -> None:
                 count += 1
                 if count > MAX_YAML_NODES:
                     mark = event.start_mark
-                    raise InputError(_too_many(), Location(filename, mark.line + 1, mark.column + 1))
+                    line, column = (mark.line + 1, mark.column + 1) if mark is not None else (None, None)
+                    raise InputError(_too_many(), Location(filename, line, column))
     except yaml.YAMLError:
         return
 
@@ -228,7 +228,7 @@ def load_yaml_text(text: str, filename: str) -> Any:
         raise InputError(f"too large: more than {size_text(MAX_YAML_BYTES)} of YAML", Location(filename))
     _count_values(text, filename)
     try:
-        return yaml.load(text, Loader=_make_loader(filename))  # noqa: S506 - SafeLoader subclass
+        return yaml.load(text, Loader=_make_loader(filename))  # a SafeLoader subclass: safe
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = Location(filename, mark.line + 1, mark.column + 1) if mark else Location(filename)

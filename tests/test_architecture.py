@@ -20,7 +20,7 @@ PLAN_PACKAGE = "pycram_cli.plan"
 
 PLAN_LANGUAGE_FLOOR = {"context", "runtime", "syntax", "resources", "composites", "leaves", "decorators",
                        "actions", "projecting", "scoring", "params", "validate", "language"}
-PLAN_RUNNING_FLOOR = {"scheduler", "trace", "trace_schema", "executor", "replay"}
+PLAN_RUNNING_FLOOR = {"scheduler", "trace", "trace_schema", "executor", "replay", "observer"}
 PLAN_ON_TOP = {"__init__"}  # tools and the package's own exports, above both floors
 PLAN_NODE_MODULES = {"composites", "decorators", "leaves", "actions", "projecting"}
 

@@ -9,8 +9,9 @@ any problem it completes nothing (or file names). Enable completion in a shell w
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 import click
 from click.shell_completion import CompletionItem

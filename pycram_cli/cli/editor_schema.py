@@ -27,23 +27,23 @@ import argparse
 import json
 import math
 import sys
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from ..designators import DESIGNATORS
 from ..designators.actions import ACTIONS
 from ..failures import ALIASES, FAILURES
 from ..kinds import KINDS
 from ..limits import MAX_MAGNITUDE, MAX_PROJECTED, MAX_RETRIES, MAX_SCENARIO_TIMEOUT, MAX_WAIT
-from ..paths import resources_dir
+from ..plan import projecting, scoring
 from ..plan.context import IDENTIFIER, NAME, REFERENCE
 from ..plan.language import NODE_TYPES
-from ..plan import projecting, scoring
 from ..plan.leaves import CONDITION_FORMS
 from ..plan.syntax import FAMILIES, PLAN_KEYS, PLAN_REQUIRED, SCOPES, SUBPLAN_KEYS, SUBPLAN_REQUIRED, all_heads
 from ..reasoning import QUERIES
+from ..scenario import variation_files as vary
 from ..signature import Param
-from ..scenario import variations as vary
 from ..worldfile import spec as world
 
 Schema = dict[str, Any]
@@ -52,11 +52,6 @@ DIALECT = "https://json-schema.org/draft/2020-12/schema"
 #: the file kinds `pycram schema` knows, and what each describes
 FILE_KINDS = {"world": "a world file (worlds/*.yaml)", "plan": "a plan file (plans/*.yaml)",
               "vary": "a variation file of a sweep (plans/*.vary.yaml)"}
-
-
-def shipped_schema(kind: str) -> Path:
-    """Where the generated schema of a file kind is shipped (the YAML files' modelines point there)."""
-    return resources_dir() / "schemas" / f"{kind}.schema.json"
 
 
 def ref(name: str) -> Schema:

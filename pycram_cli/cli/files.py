@@ -7,17 +7,18 @@ reported at once (exit 2, the file named) instead of after a whole plan has run.
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from .. import interrupts
 from ..errors import InputError, Location
-from ..report import MCAP_FORMATS, REPORT_FORMATS, build_mcap, build_report
 from ..files import check_writable, reason, write_atomic
+from ..report import MCAP_FORMATS, REPORT_FORMATS, build_mcap, build_report
 from . import console
 
-__all__ = ["MCAP_FORMATS", "PLOT_FORMATS", "REPORT_FORMATS", "check_output", "check_outputs", "check_plot", "distinct_outputs", "same_file",
-           "write_mcap", "write_output", "write_report"]
+__all__ = ["MCAP_FORMATS", "PLOT_FORMATS", "REPORT_FORMATS", "check_output", "check_outputs", "check_plot", "distinct_outputs",
+           "same_file", "write_mcap", "write_output", "write_report"]
 
 #: the maps `locate --plot` and `sweep --plot` draw
 PLOT_FORMATS = {".png": "PNG"}

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..plan.observer import Observing
 from ..plan.replay import focus_points
 from ..plan.trace import TraceNode
 from ..world import BulletWorld
@@ -35,16 +36,16 @@ def caption(node: TraceNode) -> str:
 def failure_text(node: TraceNode) -> str | None:
     """`Type: message` of the failure a node failed with itself (not one it passed on from below), else None."""
     failure = node.failure if node.status == "failed" else None
-    if not isinstance(failure, dict):
+    if failure is None:
         return None
-    return _clip(f"{failure.get('type')}: {failure.get('message')}")
+    return _clip(f"{failure.type}: {failure.message}")
 
 
 def _clip(text: str) -> str:
     return text if len(text) <= MAX_CHARS else text[: MAX_CHARS - 1] + "…"
 
 
-class GuiView:
+class GuiView(Observing):
     """Wraps a view of a run in a GUI world (see the module docstring).
 
     The window stops redrawing while steps execute (each PyBullet call would otherwise wait for a
@@ -96,9 +97,9 @@ class GuiView:
     def _note(self, node: TraceNode, leaf: bool, root: bool) -> None:
         """What the failure line says after `node` finished (see the module docstring)."""
         if root:
-            failure = node.failure if isinstance(node.failure, dict) else None
+            failure = node.failure
             if node.status == "failed" and failure is not None:
-                self._failure = (_clip(f"plan failed: {failure.get('type')}: {failure.get('message')}"), FAILED)
+                self._failure = (_clip(f"plan failed: {failure.type}: {failure.message}"), FAILED)
             elif node.status == "succeeded":
                 self._failure = ("plan succeeded", SUCCEEDED)
             return
@@ -110,6 +111,9 @@ class GuiView:
 
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
+
+    def folded(self, summary: TraceNode, child: TraceNode) -> None:
+        self.view.folded(summary, child)
 
     def close(self) -> None:
         """Make sure the window draws again (after the run, also when it failed or was interrupted)."""

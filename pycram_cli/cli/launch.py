@@ -7,6 +7,7 @@ signal handling, installs it, and only then loads the commands (see `interrupts.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 
@@ -24,9 +25,9 @@ def main() -> None:
         _say_interrupted()
         sys.exit(code)
     except SystemExit:
-        code = interrupts.exit_code()
-        if code is not None:  # whatever the command ended with, a signal decides the exit code
-            sys.exit(code)
+        signalled = interrupts.exit_code()
+        if signalled is not None:  # whatever the command ended with, a signal decides the exit code
+            sys.exit(signalled)
         raise
     except BaseException:
         if interrupts.exit_code() is None:
@@ -36,10 +37,8 @@ def main() -> None:
 
 
 def _say_interrupted() -> None:
-    try:
+    with contextlib.suppress(OSError):
         os.write(2, b"error: interrupted\n")
-    except OSError:
-        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -8,24 +8,28 @@ from __future__ import annotations
 
 import importlib
 import sys
+import traceback
 import warnings
 from typing import Any
 
 import click
 
-from .. import interrupts
+from .. import interrupts, quiet
 from ..errors import InputError, InputErrors, PycramError, as_list
-from .. import quiet
+from ..failures import InternalError
 from . import console
+from .flags import as_options, options_of, with_options
 
 EXIT_INPUT = 2
-EXIT_INTERNAL = 3
+EXIT_INTERNAL = 3  # a bug in pycram (an internal error): said in one line, with where to report it
+BUGS = "on the issue tracker of pycram-cli's repository"
 
 
 #: every command: name -> (its module in pycram_cli.cli, the click command's name there, its one-line help)
 COMMANDS: dict[str, tuple[str, str, str]] = {
     "run": ("run_cmd", "run", "Validate and run PLAN (a plan file, or the name of a bundled plan)."),
-    "sweep": ("sweep_cmd", "sweep", "Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails."),
+    "sweep": ("sweep_cmd", "sweep",
+              "Run PLAN over many scenarios varied as VARY.yaml says, in parallel; summarise where it fails."),
     "validate": ("validate_cmd", "validate",
                  "Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every "
                  "problem with file, line and key."),
@@ -79,17 +83,22 @@ class PycramGroup(click.Group):
         ctx.meta["pycram.json"] = "--json" in head
         return super().parse_args(ctx, flags + [a for a in head if a not in GLOBAL_FLAGS] + sep + tail)
 
+    def _options(self, ctx: click.Context) -> dict[str, str]:
+        """The options of the command that ran, by the settings library errors name (cli/flags.py)."""
+        name = ctx.invoked_subcommand
+        return options_of(self.get_command(ctx, name) if name else None)
+
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except (InputError, InputErrors) as exc:
-            problems = as_list(exc)
+            problems = as_list(with_options(exc, self._options(ctx)))
             console.input_errors(problems)
             if ctx.meta.get("pycram.json"):
                 console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [p.to_json() for p in problems]})
             ctx.exit(EXIT_INPUT)
         except PycramError as exc:
-            console.error(str(exc))
+            console.error(as_options(str(exc), self._options(ctx)))
             if ctx.meta.get("pycram.json"):
                 console.emit_json({"status": "error", "exit_code": EXIT_INPUT, "errors": [{"message": str(exc)}]})
             ctx.exit(EXIT_INPUT)
@@ -98,14 +107,24 @@ class PycramGroup(click.Group):
         except KeyboardInterrupt as exc:
             console.error("interrupted")
             ctx.exit(getattr(exc, "exit_code", None) or interrupts.exit_code() or 130)
-        except Exception as exc:  # noqa: BLE001 - last line of defence
+        except Exception as exc:  # last line of defence
             if interrupts.exit_code() is not None:  # a signal interrupted something that reported it otherwise
                 console.error("interrupted")
-                ctx.exit(interrupts.exit_code())
+                ctx.exit(interrupts.exit_code() or 130)
             if quiet.is_verbose():
-                raise
-            console.error(f"internal error: {exc.__class__.__name__}: {exc} (run with --verbose for the traceback)")
+                traceback.print_exception(exc, file=sys.stderr)
+            console.error(internal_error_line(exc, quiet.is_verbose()))
+            if ctx.meta.get("pycram.json"):
+                console.emit_json({"status": "error", "exit_code": EXIT_INTERNAL, "errors": [{"message": str(exc)}]})
             ctx.exit(EXIT_INTERNAL)
+
+
+def internal_error_line(exc: BaseException, verbose: bool) -> str:
+    """The one line an internal error gets: what was raised (and at which step), that it is a bug, and where to
+    report it."""
+    what = str(exc) if isinstance(exc, InternalError) else f"{type(exc).__name__}: {exc}"
+    how = "with the traceback above" if verbose else "with the output of the same command run with --verbose"
+    return f"internal error: {what}. This is a bug in pycram, not in your files: please report it {how} {BUGS}"
 
 
 def _show_warning(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
@@ -131,4 +150,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    main()

@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import os
 import re
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 import click
-
-from typing import Callable, TypeVar
 
 from ..errors import InputError, Location
 from ..files import check_writable
@@ -228,7 +228,8 @@ def new_world(name: str, base: str | None, output: Path | None, force: bool) -> 
         line = Path(line).stem
     movable = [o for o in spec.objects if o.type not in NOT_PICKED]
     changed = sorted(movable, key=lambda o: o.name != "milk")[:1]
-    change = "".join(CHANGE_TEMPLATE.format(object_pad=o.name.ljust(30), base=spec.path.stem, position=value_text(o.position).ljust(20))
+    change = "".join(CHANGE_TEMPLATE.format(object_pad=o.name.ljust(30), base=spec.path.stem,
+                                            position=value_text(o.position).ljust(20))
                      for o in changed)
     near = list(changed[0].position) if changed else [0.0, 0.0, 0.0]
     new_position = value_text([round(near[0], 3), round(near[1] + 0.2, 3), round(near[2], 3)]).ljust(20)

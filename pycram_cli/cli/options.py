@@ -3,15 +3,18 @@ from __future__ import annotations
 
 import contextlib
 import math
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Callable, Iterator, TypeVar
+from typing import Any, TypeVar
 
 import click
 
 from ..errors import InputError, Location, did_you_mean
+from ..kinds import parse_vector
+from ..limits import MAX_MAGNITUDE
 from ..paths import find_world
 from ..world import BulletWorld, Object
-from ..world.camera import VIEWS, Camera, named_camera, parse_camera
+from ..world.camera import VIEWS, Camera, named_camera
 from ..worldfile.loader import load_world
 from .complete import world_names
 
@@ -26,10 +29,10 @@ class Number(click.ParamType):
     def __init__(self, low: float, high: float) -> None:
         self.low, self.high = low, high
 
-    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> float:
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> float:
         option = param.opts[0] if param is not None and param.opts else "value"
         try:
-            number = float(value)  # type: ignore[arg-type]
+            number = float(value)
         except (TypeError, ValueError):
             raise InputError(f"expected a number, got '{value}'", Location(option)) from None
         if not math.isfinite(number) or not self.low <= number <= self.high:
@@ -39,14 +42,14 @@ class Number(click.ParamType):
 
 
 def json_option(func: F) -> F:
-    return click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")(func)  # type: ignore[return-value]
+    return click.option("--json", "as_json", is_flag=True, help="Machine-readable output on stdout.")(func)
 
 
 def gui_option(func: F) -> F:
-    return click.option("--gui", is_flag=True, help="Open PyBullet's window (needs a display, e.g. xvfb-run).")(func)  # type: ignore[return-value]
+    return click.option("--gui", is_flag=True, help="Open PyBullet's window (needs a display, e.g. xvfb-run).")(func)
 
 
-def wait_for_window(world: "BulletWorld") -> None:
+def wait_for_window(world: BulletWorld) -> None:
     """Keep a GUI world open until its window is closed (or Ctrl-C)."""
     import time
 
@@ -87,7 +90,7 @@ def is_number(text: str) -> bool:
 
 def world_option(func: F) -> F:
     return click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
-                        help="World file or bundled world name (default: kitchen).")(func)  # type: ignore[return-value]
+                        help="World file or bundled world name (default: kitchen).")(func)
 
 
 @contextlib.contextmanager
@@ -107,12 +110,12 @@ def camera_option(func: F) -> F:
         "--camera", metavar="VIEW|EYE:TARGET",
         help="Camera of the image: a view (overview: the whole scene; robot: the robot over its shoulder; "
              "target: the objects worked on) or EYE:TARGET, each x,y,z, e.g. -1.5,-1.5,2.5:1,0.8,0.9. "
-             "Default: overview.")(func)  # type: ignore[return-value]
+             "Default: overview.")(func)
 
 
 def size_option(func: F) -> F:
     return click.option("--size", metavar="WxH", default="960x720", show_default=True,
-                        help="Image size in pixels (16 to 4096 each way).")(func)  # type: ignore[return-value]
+                        help="Image size in pixels (16 to 4096 each way).")(func)
 
 
 def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
@@ -127,7 +130,28 @@ def parse_size(text: str, option: str = "--size") -> tuple[int, int]:
     return width, height
 
 
-def parse_view(text: str | None, option: str = "--camera") -> "str | Camera":
+def _point(text: str, what: str) -> tuple[float, float, float]:
+    values = parse_vector(text, 3)
+    if values is None:
+        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
+    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
+        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
+    return (values[0], values[1], values[2])
+
+
+def parse_camera(text: str) -> Camera:
+    """`EYE:TARGET`, each `x,y,z`, e.g. `-1.5,-1.5,2.5:1,0.8,0.9`."""
+    eye, sep, target = text.partition(":")
+    if not sep:
+        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
+                         f"got {text!r}")
+    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
+    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
+        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
+    return camera
+
+
+def parse_view(text: str | None, option: str = "--camera") -> str | Camera:
     """A named view (overview, robot, target) or a Camera from EYE:TARGET; an InputError otherwise."""
     if text is None:
         return "overview"
@@ -140,8 +164,8 @@ def parse_view(text: str | None, option: str = "--camera") -> "str | Camera":
         raise InputError(str(exc), Location(option), suggestion=hint) from None
 
 
-def image_camera(world: BulletWorld, view: "str | Camera", size: tuple[int, int],
-                 targets: "list[Object] | None" = None) -> Camera:
+def image_camera(world: BulletWorld, view: str | Camera, size: tuple[int, int],
+                 targets: list[Object] | None = None) -> Camera:
     """The camera of an image: a named view computed on `world` as it is now, or the given camera."""
     if isinstance(view, Camera):
         return view

@@ -16,14 +16,14 @@ from typing import Any
 import click
 from click.shell_completion import CompletionItem
 
+from .. import locations  # noqa: F401 - registers pick-up's planning, which reachable asks about objects
 from ..errors import InputError, Location, did_you_mean
 from ..jsonable import jsonable
-from .. import locations  # noqa: F401 - registers pick-up's planning, which reachable asks about objects
 from ..kinds import KINDS, POSITION_FORMS, looks_like_numbers, parse_vector
-from ..reasoning import QUERIES, QuerySpec, run_query
-from ..reasoning.query import unknown_query
 from ..limits import MAX_MAGNITUDE
 from ..planning.contacts import collisions
+from ..reasoning import QUERIES, QuerySpec, run_query
+from ..reasoning.query import unknown_query
 from ..signature import Param
 from ..world import BulletWorld
 from ..world.pose import yaw_quaternion

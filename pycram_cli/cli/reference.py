@@ -16,6 +16,7 @@ from ..designators.actions import ACTIONS
 from ..kinds import KIND_ALIASES, KINDS, LOCATION_KEYS
 from ..reasoning import QUERIES
 
+
 def _cell(text: object) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
@@ -23,7 +24,8 @@ def _cell(text: object) -> str:
 def render() -> str:
     """The whole reference as Markdown."""
     lines = ["# Reference: designators, queries and values", "",
-             "Generated from the declarations by `python -m pycram_cli.cli.reference --write docs/reference.md`; do not edit by hand.",
+             "Generated from the declarations by `python -m pycram_cli.cli.reference --write docs/reference.md`; "
+             "do not edit by hand.",
              "`pycram designators` and `pycram query --help` show the same.", "", "## Motion designators", ""]
     for spec in DESIGNATORS.values():
         needs = f" Needs a robot with: {', '.join(spec.needs)}." if spec.needs else ""

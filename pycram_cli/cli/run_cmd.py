@@ -1,6 +1,7 @@
 """`pycram run PLAN`: validate and run a plan, showing a live tree, and save its trace."""
 from __future__ import annotations
 
+import contextlib
 import time
 from pathlib import Path
 from typing import Any
@@ -10,22 +11,33 @@ from rich.live import Live
 from rich.text import Text
 
 from .. import interrupts
-from ..files import check_writable
 from ..errors import InputError, Location
-from ..plan.trace import TraceNode, dumps, normalised
-from ..scenario import prepare
+from ..failures import FailureRecord, InternalError
+from ..files import check_writable
 from ..limits import MAX_PROJECTED, MAX_WORKERS
-from ..scenario.starts import ImpossibleStart, possible_variant
-from ..sweep.projection import LocalProjector, Projection, project
-from ..scenario.variation_files import read_variations, variation_file
+from ..plan.observer import Observing
+from ..plan.trace import TraceNode, dumps, normalised
 from ..report.failures import failure_camera
+from ..scenario import prepare
+from ..scenario.starts import ImpossibleStart, possible_variant
+from ..scenario.variation_files import read_variations, variation_file
+from ..sweep.projection import LocalProjector, Projection, project
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, moved_since, poses, render
 from . import console
 from .complete import plan_names, world_names
 from .files import MCAP_FORMATS, REPORT_FORMATS, check_outputs, distinct_outputs, write_mcap, write_output, write_report
 from .gui_view import GuiView
-from .options import (Number, camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
-                      wait_for_window)
+from .options import (
+    Number,
+    camera_option,
+    gui_option,
+    image_camera,
+    json_option,
+    parse_size,
+    parse_view,
+    size_option,
+    wait_for_window,
+)
 from .run_log import WIDTH, RunLog, clip
 from .trace_cmd import build_tree, find_node, short
 
@@ -33,7 +45,7 @@ EXIT_FAILED = 1
 
 
 # -- progress views (observers of a run) ------------------------------------------------------------
-class LiveView:
+class LiveView(Observing):
     """A live tree of the plan on a terminal: each node with its status, finished subtrees folded."""
 
     def __init__(self) -> None:
@@ -45,13 +57,11 @@ class LiveView:
     def render(self) -> Any:
         if self.root is None:
             return ""
-        try:
+        with contextlib.suppress(RuntimeError):  # the tree changed while it was read: show the previous picture
             self._last = build_tree(self.root.to_dict(timing=True), collapse=True)
-        except RuntimeError:  # the tree changed while it was read: show the previous picture
-            pass
         return self._last
 
-    def __enter__(self) -> "LiveView":
+    def __enter__(self) -> LiveView:
         self.live.__enter__()
         return self
 
@@ -63,14 +73,11 @@ class LiveView:
         if self.root is None and "/" not in node.path:
             self.root = node
 
-    def finished(self, node: TraceNode) -> None:
-        pass
-
     def log(self, node: TraceNode, message: str) -> None:
         self.live.console.print(Text.assemble(("log", "cyan"), " ", (node.path, "dim"), ": ", message))
 
 
-class Paced:
+class Paced(Observing):
     """Wraps a view: pauses after each motion designator so that a person can follow it in the window."""
 
     def __init__(self, view: Any, seconds: float) -> None:
@@ -87,7 +94,10 @@ class Paced:
     def log(self, node: TraceNode, message: str) -> None:
         self.view.log(node, message)
 
-    def __enter__(self) -> "Paced":
+    def folded(self, summary: TraceNode, child: TraceNode) -> None:
+        self.view.folded(summary, child)
+
+    def __enter__(self) -> Paced:
         self.view.__enter__()
         return self
 
@@ -95,15 +105,8 @@ class Paced:
         self.view.__exit__(*exc)
 
 
-class QuietView:
-    def started(self, node: TraceNode) -> None:
-        pass
-
-    def finished(self, node: TraceNode) -> None:
-        pass
-
-    def log(self, node: TraceNode, message: str) -> None:
-        pass
+class QuietView(Observing):
+    """Shows nothing (`--quiet`, `--json`)."""
 
 
 # -- the command -----------------------------------------------------------------------------------------
@@ -191,9 +194,9 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             console.emit_json({"status": "not run", "projection": summary})
         elif not as_json:
             _projected(summary, scenario.plan.path, vary_file, require)
-        if refused:
+        if refused and require is not None:  # (refused says it is not None; the type checker wants it said)
             console.error(f"not running {scenario.plan.path.name}: the projected success rate "
-                          f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")  # type: ignore[operator]
+                          f"{_percent(summary['rate'])} is below the required {100 * require:.1f} %")
             ctx.exit(EXIT_FAILED)
     if scenario_seed is not None:
         vary = variation_file(scenario.plan.path, vary_file, "--scenario", "running one scenario")
@@ -235,12 +238,18 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
             if output is not None:
                 interrupts.owe(str(output))  # said on stderr if a signal's deadline ends the run before it is written
         projector = None if gui else LocalProjector(workers)  # `project` steps' runs on local workers (not under a window)
+        internal: InternalError | None = None
         try:
-            if isinstance(progress, LiveView):
-                with view:
+            try:
+                if isinstance(progress, LiveView):
+                    with view:
+                        result = scenario.run(world, observer, replay=replay, projector=projector)
+                else:
                     result = scenario.run(world, observer, replay=replay, projector=projector)
-            else:
-                result = scenario.run(world, observer, replay=replay, projector=projector)
+            except InternalError as exc:  # a bug stopped the run: its trace is still written, then main says it
+                if exc.result is None:
+                    raise
+                internal, result = exc, exc.result
         finally:
             if isinstance(observer, GuiView):
                 observer.close()
@@ -250,6 +259,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         interrupted = result.status == "interrupted"
         if trace_file is not None:
             write_output(trace_file, dumps(result.trace), "trace")
+        if internal is not None:
+            raise internal  # the one-line message and exit 3 (cli/main.py), the traceback under --verbose
         if render_file is not None and not interrupted:
             cam = None
             if not result.succeeded and (camera is None or view_name == "target"):  # a failure: what failed, where
@@ -262,7 +273,8 @@ def run(ctx: click.Context, plan_file: str, world_file: str | None, params: tupl
         if mcap_file is not None and not interrupted:
             write_mcap(mcap_file, result.trace, scenario.world_path)
         if as_json:
-            console.emit_json(normalised({"status": result.status, "failure": result.failure,
+            failure = result.failure.to_json() if result.failure is not None else None
+            console.emit_json(normalised({"status": result.status, "failure": failure,
                                           "duration": round(duration, 3), "trace": result.trace,
                                           **({"projection": summary} if project_runs is not None else {})}))
         else:
@@ -312,16 +324,16 @@ def _summary(plan: Any, result: Any, duration: float, trace_file: Path | None = 
     if result.succeeded:
         console.success(f"plan {name} succeeded in {duration:.2f} s ({result.steps} steps)")
     elif result.status == "interrupted":
-        console.error(f"plan {name} {(result.failure or {}).get('message', 'interrupted')} after {duration:.2f} s"
+        console.error(f"plan {name} {result.failure.message if result.failure else 'interrupted'} after {duration:.2f} s"
                       + (" (the trace records where)" if trace_file is not None else ""))
     else:
-        failure = result.failure or {}
-        node = find_node(result.trace["root"], failure.get("path", ""))
+        failure = result.failure or FailureRecord("Failure", "", None)
+        node = find_node(result.trace["root"], failure.path or "")
         where = f" ({plan.path}:{node['source']})" if node and node.get("source") else ""
-        message = (f"plan {name} {result.status} after {duration:.2f} s: {failure.get('type')} at "
-                   f"{failure.get('path')}{where}: {failure.get('message')}")
-        for nested in failure.get("failures") or []:
-            message += f"\n  - {nested.get('type')} at {nested.get('path')}: {nested.get('message')}"
+        message = (f"plan {name} {result.status} after {duration:.2f} s: {failure.type} at "
+                   f"{failure.path}{where}: {failure.message}")
+        for nested in failure.failures:
+            message += f"\n  - {nested.type} at {nested.path}: {nested.message}"
         if console.out.is_terminal:
             console.out.print(Text.assemble(("✗", "bold red"), " ", message))
         else:

@@ -19,9 +19,11 @@ cut to WIDTH characters.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
+from ..plan.observer import Observing
 from ..plan.trace import TraceNode
 from . import console
 from .trace_cmd import PLAIN, describe_node, saves_children, shown_status
@@ -48,7 +50,7 @@ def _record(node: TraceNode, timing: bool = True) -> dict[str, Any]:
     data: dict[str, Any] = {"path": node.path, "type": node.type, "status": node.status}
     data.update(node.info)
     if node.failure is not None:
-        data["failure"] = node.failure
+        data["failure"] = node.failure.to_json()
     if timing and node.duration is not None:
         data["timing"] = {"started": node.started, "duration": node.duration}
     return data
@@ -60,8 +62,8 @@ def clip(line: str, width: int = WIDTH) -> str:
     return line if len(line) <= width else line[: width - 1] + "…"
 
 
-class RunLog:
-    """An observer of a run (see executor.Observer) that prints the indented log described above."""
+class RunLog(Observing):
+    """An observer of a run (see plan/observer.py) that prints the indented log described above."""
 
     def __init__(self, write: Callable[[str], None] | None = None, width: int = WIDTH) -> None:
         self.write = write or (lambda line: console.err.print(line, markup=False, highlight=False))
@@ -79,8 +81,7 @@ class RunLog:
     def finished(self, node: TraceNode) -> None:
         self.flush()
 
-    def log(self, node: TraceNode, message: str) -> None:
-        pass  # the log step's own line shows the message
+    # log: the log step's own line shows the message (Observing's does nothing)
 
     def close(self) -> None:
         """The run is over: print whatever is left, as it stands (also after an interrupt or an error)."""
@@ -151,8 +152,7 @@ class RunLog:
 
     def _close(self, node: TraceNode, final: bool) -> bool:
         """After a step's children (its frame popped): its own failure, if it arose there and not in a child."""
-        failure = node.failure or {}
-        if node.status != "failed" or failure.get("path") != node.path:
+        if node.status != "failed" or node.failure is None or node.failure.path != node.path:
             return True
         return self._line(node, len(self.stack), final)
 

@@ -42,7 +42,7 @@ class _Progress:
         if self.bar is not None:
             self.bar.update(self.task, advance=1, rate=self._rate())
 
-    def __enter__(self) -> "_Progress":
+    def __enter__(self) -> _Progress:
         if self.bar is not None:
             self.bar.__enter__()
         return self

@@ -11,8 +11,8 @@ from rich.markup import escape
 from rich.tree import Tree
 
 from ..errors import InputError, Location
-from ..plan import trace as traces
 from ..files import check_writable
+from ..plan import trace as traces
 from ..report import MCAP_FORMATS, REPORT_FORMATS, build_comparison, report_world
 from . import console
 from .complete import world_names
@@ -176,7 +176,7 @@ def find_node(root: dict[str, Any], path: str) -> dict[str, Any] | None:
 
 
 def state_rows(state: dict[str, Any]) -> list[tuple[str, ...]]:
-    rows = []
+    rows: list[tuple[str, ...]] = []
     for name, obj in (state.get("objects") or {}).items():
         position = ", ".join(f"{v:.3f}" for v in obj.get("position", []))
         joints = ", ".join(f"{k}={v:.3f}" for k, v in (obj.get("joints") or {}).items())

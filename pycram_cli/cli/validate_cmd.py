@@ -19,8 +19,8 @@ from ..scenario import prepare
 from ..scenario.variation_files import SUFFIX, parse_variations
 from ..world import BulletWorld
 from ..worldfile.loader import load_spec
-from ..worldfile.starts import unsupported
 from ..worldfile.spec import WorldSpec, parse_world
+from ..worldfile.starts import unsupported
 from ..yamlsource import LMap, load_yaml
 from . import console
 from .complete import plan_or_world_names, world_names
@@ -100,11 +100,13 @@ def check_variations(path: Path, world_file: str | None, params: tuple[str, ...]
 
 @click.command()
 @click.argument("files", metavar="FILE|NAME...", nargs=-1, required=True, shell_complete=plan_or_world_names)
-@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names, help="Check plans against this world (default: each plan's own).")
+@click.option("--world", "world_file", metavar="WORLD", shell_complete=world_names,
+              help="Check plans against this world (default: each plan's own).")
 @click.option("-p", "--param", "params", multiple=True, metavar="NAME=VALUE",
               help="Check plans with this parameter value, as `run -p` sets it (read as YAML). Repeatable.")
 def validate(files: tuple[str, ...], world_file: str | None, params: tuple[str, ...]) -> None:
-    """Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every problem with file, line and key."""
+    """Check world, plan and variation FILES (or bundled names) as `run` and `sweep` would; report every problem
+    with file, line and key."""
     problems: list[InputError] = []
     kinds: list[str] = []
     for value in files:

@@ -8,16 +8,15 @@ from typing import Any
 import click
 from rich.text import Text
 
+from ..paths import find_world
 from ..world import Object
 from ..world.camera import IMAGE_FORMATS, encode_image, image_format, movable_objects, render, robot_camera
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import parse_world
 from . import console
 from .complete import world_names
-from ..paths import find_world
 from .files import check_output, write_output
-from .options import (camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option,
-                      wait_for_window)
+from .options import camera_option, gui_option, image_camera, json_option, parse_size, parse_view, size_option, wait_for_window
 
 
 @click.group()

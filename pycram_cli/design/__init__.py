@@ -17,7 +17,7 @@ and then run as written: `BulletWorld()`, `BulletWorld("DIRECT")`, `world.set_gr
 One difference stays: the design's `Object.get_pose()` was an alias of `get_position()`; pycram's
 returns (position, orientation) — write `get_position()` for the design's meaning.
 """
-from . import bullet_world, bullet_world_reasoning, designator, process_module  # noqa: F401
+from . import bullet_world, bullet_world_reasoning, designator, process_module  # noqa: F401  (the design's module names)
 from .bullet_world import BulletWorld, Event, Object
 from .designator import MotionDesignator
 from .process_module import ProcessModule

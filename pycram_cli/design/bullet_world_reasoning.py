@@ -9,11 +9,12 @@ orders and plain answers (True/False, lists of objects), over pycram's queries (
 """
 from __future__ import annotations
 
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 from ..failures import PerceptionError, ReasoningError
-from ..reasoning import contact as _contact
 from ..reasoning import blocking as _blocking
+from ..reasoning import contact as _contact
 from ..reasoning import occluding as _occluding
 from ..reasoning import reachable as _reachable
 from ..reasoning import stable as _stable

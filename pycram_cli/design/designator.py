@@ -3,7 +3,8 @@
 `ProcessModule.perform` (pycram's designators check, resolve and perform it)."""
 from __future__ import annotations
 
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 
 class MotionDesignator:

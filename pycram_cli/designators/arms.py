@@ -1,7 +1,8 @@
 """`move-tcp`, `move-arm-joints`, `opening-gripper` and `closing-gripper`: arms and grippers."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import ReachabilityFailure
 from ..kinds import KINDS, Robots

@@ -13,16 +13,16 @@ its defaults are filled in (`bind`) before `resolve` sees the slots.
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError, did_you_mean
 from ..kinds import NOTHING_KNOWN, Robots
 from ..signature import Param, Problem, Registry, Signature, Skip
 
 if TYPE_CHECKING:
-    from ..robots import Robot
-    from ..robots import RobotDescription
+    from ..robots import Robot, RobotDescription
 
 Resolver = Callable[["Robot", Mapping[str, Any]], dict[str, Any]]
 #: the roles a designator drives, from its literal slot values (None where a value is only known at run time)
@@ -95,7 +95,7 @@ def drives_arm(slot: str) -> Uses:
     return uses
 
 
-def robot_resources(roles: frozenset[str], description: "RobotDescription | None") -> frozenset[str]:
+def robot_resources(roles: frozenset[str], description: RobotDescription | None) -> frozenset[str]:
     """The robot's physical resources behind some roles (`arm:*` is every arm; shared roles map to one resource).
 
     Without a description every arm role is one resource (`arm:*`), so that arm steps never overlap.
@@ -111,7 +111,7 @@ def robot_resources(roles: frozenset[str], description: "RobotDescription | None
 # -- static checks ---------------------------------------------------------------------------------
 
 
-def lacks(need: str, desc: "RobotDescription") -> str | None:
+def lacks(need: str, desc: RobotDescription) -> str | None:
     """Why a robot lacks what a designator needs (`mobile base`, `head`, `camera`, `arms`), or None."""
     if need == "mobile base" and not desc.mobile:
         return "its base cannot move (mobile: false in its description)"
@@ -155,7 +155,7 @@ def slot_problems(spec: HasSlots, what: str, slots: Mapping[str, Any], skip: Ski
     return problems + spec.signature.check(slots, robots, what, skip, for_check)
 
 
-def process_module_problems(desc: "RobotDescription") -> list[InputError]:
+def process_module_problems(desc: RobotDescription) -> list[InputError]:
     """A description's `process_modules` keys that name no designator (each at its place, with the closest name)."""
     errors = []
     for designator in desc.process_modules:

@@ -1,7 +1,8 @@
 """What resolution infers for several designators: the object a slot names, and an arm and grasp that work."""
 from __future__ import annotations
 
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ReachabilityFailure
@@ -57,8 +58,8 @@ def choose_arm_and_grasp(robot: Robot, pose_of: Callable[[str, Any], Pose | None
         if not free_arms(robot, arm):
             raise GripperFailure(f"no free gripper to take {what}: every gripper holds something")
         if not holdable:
-            raise GripperFailure(f"no gripper can hold {what} with " + (f"a {grasp} grasp" if isinstance(grasp, str) else "any grasp")
-                                 + " (too wide between the fingers)")
+            with_grasp = f"a {grasp} grasp" if isinstance(grasp, str) else "any grasp"
+            raise GripperFailure(f"no gripper can hold {what} with {with_grasp} (too wide between the fingers)")
         raise ReachabilityFailure(f"no arm can reach {what}")
     grasp_text = f" with a {best[2]} grasp" if isinstance(best[2], str) else ""
     raise ReachabilityFailure(f"no arm can reach {what}: best is {arm_phrase(best[1])}{grasp_text}, "

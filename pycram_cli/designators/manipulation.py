@@ -1,7 +1,8 @@
 """`pick-up`, `place` and `accessing`: the designators that take, put down and pull with an arm."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..errors import InputError, Location, did_you_mean
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
@@ -10,8 +11,8 @@ from ..locations import take_from_here
 from ..planning.drawers import DISTANCE, handle_pose
 from ..robots import Robot
 from ..signature import Param, Signature
-from .declaration import Designator, declare_designator, drives_arm
 from ..world import Object
+from .declaration import Designator, declare_designator, drives_arm
 from .inference import choose_arm_and_grasp, free_arms, the_object
 
 

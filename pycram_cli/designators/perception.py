@@ -1,7 +1,8 @@
 """`looking`, `detecting` and `world-state-detecting`: the head, the camera and the belief state."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..robots import Robot
 from ..signature import Param, Signature
@@ -18,7 +19,8 @@ def _looking(robot: Robot, slots: Mapping[str, Any]) -> dict[str, Any]:
 
 
 declare_designator(Designator(
-    "looking", "Point the camera at a position or an object: the head turns (a camera on the wrist: the arm moves; fixed on the body: the base turns).",
+    "looking", "Point the camera at a position or an object: the head turns "
+    "(a camera on the wrist: the arm moves; fixed on the body: the base turns).",
     Signature((
         Param("target", "position", False, "the point to look at"),
         Param("object", "object", False, "the object to look at", default_doc="looks at its position"),

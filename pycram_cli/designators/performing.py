@@ -1,7 +1,8 @@
 """Performing one designator on a world: check its slots once, resolve them, run its process module."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..errors import InputError, Location, raise_if_any
 from ..jsonable import jsonable

@@ -1,7 +1,8 @@
 """`moving-torso`: raise or lower the robot's torso."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..robots import Robot
 from ..signature import Param, Signature

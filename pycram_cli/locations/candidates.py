@@ -46,7 +46,7 @@ class Candidates:
         self.order = np.lexsort((index, np.round(ys, 6), np.round(xs, 6), np.round(scores, 9), ~self.first,
                                  outcome != 0))
 
-    def extended(self, more: "Candidates") -> "Candidates":
+    def extended(self, more: Candidates) -> Candidates:
         """These candidates (their outcomes and details kept) and `more` after them, ordered anew."""
         joined = Candidates(*(np.concatenate([a, b]) for a, b in
                               ((self.xs, more.xs), (self.ys, more.ys), (self.yaws, more.yaws),

@@ -19,8 +19,9 @@ from __future__ import annotations
 import math
 import threading
 import weakref
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -126,15 +127,10 @@ class FloorMap:
                      0, self.shape[1] - 1)
         return self.core_occupied[ix, iy].any(axis=1)
 
-    def clearance_cells(self) -> np.ndarray:
-        """(nx, ny) bool: cells whose centre no obstacle covers at any height the robot has (for plots)."""
-        return ~self.any_occupied
-
-
 # -- building --------------------------------------------------------------------------------------------
 
 
-def _link_boxes(obj: "Object", skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
+def _link_boxes(obj: Object, skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
     boxes = []
     solid = obj.solid_links()
     for index in [-1, *range(len(obj.joints))]:
@@ -147,7 +143,7 @@ def _link_boxes(obj: "Object", skip: frozenset[int] = frozenset()) -> list[tuple
     return boxes
 
 
-def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Box]]:
+def robot_boxes(robot: Object, held: Sequence[Object]) -> list[tuple[str, Box]]:
     """The robot's links (and what it holds) as boxes in its base frame, read with the base at yaw 0.
 
     The robot is turned in place and put back (position, orientation and held objects as they were).
@@ -165,7 +161,7 @@ def robot_boxes(robot: "Object", held: Sequence["Object"]) -> list[tuple[str, Bo
     return boxes
 
 
-def obstacle_boxes(robot: "Object", held: Sequence["Object"], extra_ignore: Iterable["Object"] = ()) -> list[tuple[str, Box]]:
+def obstacle_boxes(robot: Object, held: Sequence[Object], extra_ignore: Iterable[Object] = ()) -> list[tuple[str, Box]]:
     """The boxes of everything the base could hit: every object's links but the robot's, what it holds and the floor."""
     skip = {robot.id, *(o.id for o in held), *(o.id for o in extra_ignore)}
     ground = ground_z(robot)
@@ -212,8 +208,8 @@ def _rasterise(boxes: Sequence[Box], origin: np.ndarray, shape: tuple[int, int],
 
 
 # long: one pass from boxes to bands to grids, each step's arrays feeding the next
-def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RESOLUTION,
-          ignore: Iterable["Object"] = ()) -> FloorMap:
+def build(robot: Object, held: Sequence[Object] = (), resolution: float = RESOLUTION,
+          ignore: Iterable[Object] = ()) -> FloorMap:
     """The floor map of the robot's world for its current configuration (the world is left as it was)."""
     own = robot_boxes(robot, held)
     obstacles = obstacle_boxes(robot, held, ignore)
@@ -254,17 +250,17 @@ def build(robot: "Object", held: Sequence["Object"] = (), resolution: float = RE
     # bands with the same footprint share one occupancy grid (the union of their obstacles): still exact
     by_footprint: dict[frozenset[int], set[int]] = {}
     heights: dict[frozenset[int], list[float]] = {}
-    for theirs, mine in by_obstacles.items():
-        key = frozenset(mine)
-        by_footprint.setdefault(key, set()).update(theirs)
-        span = heights.setdefault(key, list(spans[theirs]))
-        span[0], span[1] = min(span[0], spans[theirs][0]), max(span[1], spans[theirs][1])
+    for blocking, moving in by_obstacles.items():
+        key = frozenset(moving)
+        by_footprint.setdefault(key, set()).update(blocking)
+        span = heights.setdefault(key, list(spans[blocking]))
+        span[0], span[1] = min(span[0], spans[blocking][0]), max(span[1], spans[blocking][1])
     bands = []
-    for mine, theirs in sorted(by_footprint.items(), key=lambda kv: (heights[kv[0]][0], sorted(kv[0]))):
-        occupied = _rasterise([obstacles[i][1] for i in sorted(theirs)], lo, shape, resolution)
-        samples = _footprint_samples([own[i][1] for i in sorted(mine)], resolution)
-        bands.append(Band(heights[mine][0], heights[mine][1], occupied, samples,
-                          tuple(own[i][0] for i in sorted(mine)), tuple(obstacles[i][0] for i in sorted(theirs))))
+    for parts, blockers in sorted(by_footprint.items(), key=lambda kv: (heights[kv[0]][0], sorted(kv[0]))):
+        occupied = _rasterise([obstacles[i][1] for i in sorted(blockers)], lo, shape, resolution)
+        samples = _footprint_samples([own[i][1] for i in sorted(parts)], resolution)
+        bands.append(Band(heights[parts][0], heights[parts][1], occupied, samples,
+                          tuple(own[i][0] for i in sorted(parts)), tuple(obstacles[i][0] for i in sorted(blockers))))
     reachable_boxes = [b for _, b in obstacles if b[0][2] - floor_z < robot_top and b[1][2] - floor_z > low_limit]
     everything = _rasterise(reachable_boxes, lo, shape, resolution)
     footprint = _footprint_samples([b for _, b in own], resolution) if own else np.zeros((0, 2))
@@ -296,8 +292,8 @@ def _inside_samples(boxes: Sequence[Box], spacing: float) -> np.ndarray:
 # -- the exact test ------------------------------------------------------------------------------------------
 
 
-def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: float, yaw: float,
-                     ignore: Iterable["Object"] = ()) -> list[str]:
+def exact_collisions(robot: Object, held: Sequence[Object], x: float, y: float, yaw: float,
+                     ignore: Iterable[Object] = ()) -> list[str]:
     """Teleport the robot to (x, y, yaw) and name what it (or what it holds) penetrates; the caller restores the world.
 
     The robot's own test is the navigation process module's (`collisions`); held objects count too.
@@ -317,11 +313,11 @@ def exact_collisions(robot: "Object", held: Sequence["Object"], x: float, y: flo
 
 # -- the floor map, kept while the world stands still ----------------------------------------------------------
 
-_MAPS: "weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, FloorMap]]" = weakref.WeakKeyDictionary()
+_MAPS: weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, FloorMap]] = weakref.WeakKeyDictionary()
 _MAPS_LOCK = threading.Lock()  # worlds may resolve locations in threads of their own
 
 
-def _signature(robot: "Robot", held: Sequence["Object"]) -> tuple:
+def _signature(robot: Robot, held: Sequence[Object]) -> tuple:
     """What the floor map depends on, exactly (a map is reused only for the very same state): every object's
     pose and joints but the robot's base pose (the map is in world coordinates, the robot's footprint in its
     own frame), and what the robot holds, with how it holds it."""
@@ -337,7 +333,7 @@ def _signature(robot: "Robot", held: Sequence["Object"]) -> tuple:
     return tuple(parts)
 
 
-def floor_map(robot: "Robot", held: Sequence["Object"], saved: bool = False) -> FloorMap:
+def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> FloorMap:
     """The floor map for the world as it is (built again whenever anything has moved). `saved`: the caller
     restores the world afterwards (building turns the robot in place)."""
     world = robot.world

@@ -7,8 +7,8 @@ reach line through a point (an arm that cannot turn its tool freely reaches side
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence, Union
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from ..world.pose import compose, invert, quat_multiply, quat_to_matrix, yaw_qua
 #: candidate base positions: a lattice of the floor with this spacing (m); poses along a reach line are as far apart
 STEP = 0.05
 #: a point or direction: a sequence of floats or a numpy array
-Point = Union[Sequence[float], np.ndarray]
+Point = Sequence[float] | np.ndarray
 
 
 @dataclass(frozen=True)

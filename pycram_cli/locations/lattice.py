@@ -10,15 +10,14 @@ once the lattice has failed (deferred).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
 from ..planning.head import camera_yaw
 from ..robots import Robot
-from .geometry import (STEP, ArmGeometry, aligned_reach_line, line_poses, place_headings, pull_aligned_poses,
-                       straight_reach_line)
+from .geometry import STEP, ArmGeometry, aligned_reach_line, line_poses, place_headings, pull_aligned_poses, straight_reach_line
 from .scoring import VIEW_DISTANCE
 from .spec import LocationSpec
 

@@ -162,7 +162,7 @@ def _target(resolution: BasePoseResolution | SpotResolution) -> np.ndarray:
     return (np.asarray(lo) + np.asarray(hi)) / 2.0
 
 
-def _pose(canvas: "Canvas", boxes: list[tuple[np.ndarray, np.ndarray]], position: Any, yaw: float,
+def _pose(canvas: Canvas, boxes: list[tuple[np.ndarray, np.ndarray]], position: Any, yaw: float,
           thick: bool) -> None:
     """The robot's base outline at a pose, and an arrow for its heading."""
     c, s = math.cos(yaw), math.sin(yaw)

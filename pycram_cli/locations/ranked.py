@@ -7,7 +7,8 @@ continues where it stopped. When none is left, `LocationFailure` carries the cou
 from __future__ import annotations
 
 from collections import Counter
-from typing import Any, Iterator
+from collections.abc import Iterator
+from typing import Any
 
 from ..failures import LocationFailure
 from ..robots import Robot

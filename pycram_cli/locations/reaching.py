@@ -8,8 +8,9 @@ fails says why (`Miss`: out of reach, blocked by what, cannot hold it), which th
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Iterator, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 

@@ -11,8 +11,9 @@ become objects and links of the world, with suggestions for typos.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from ..errors import InputError, Location, did_you_mean
 from ..kinds import KINDS, Robots, location_mapping, parse_vector
@@ -111,7 +112,8 @@ class LocationSpec:
     def to_json(self) -> dict[str, Any]:
         data: dict[str, Any] = {}
         if self.reachable_for is not None:
-            data["reachable-for"] = self.reachable_for.name if isinstance(self.reachable_for, Object) else list(self.reachable_for)
+            target = self.reachable_for
+            data["reachable-for"] = target.name if isinstance(target, Object) else list(target)
         if self.visible_for is not None:
             data["visible-for"] = self.visible_for.name
         if self.arm is not None:
@@ -270,4 +272,4 @@ def parse_location(world: BulletWorld, value: Any, for_object: Object | None = N
     if surface is not None and obj_for is not None and surface.obj is obj_for:
         raise _error("on", f"'{obj_for.name}' cannot be placed on itself")
     return LocationSpec(reachable_for=reach, visible_for=visible, arm=value.get("arm"), grasp=value.get("grasp"),
-                        on=surface, for_object=obj_for, near=near, accessing=handle)  # type: ignore[arg-type]
+                        on=surface, for_object=obj_for, near=near, accessing=handle)  # type: ignore[arg-type]  # checked above

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import contextlib
 import math
-from typing import TYPE_CHECKING, Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,7 +28,7 @@ TOUCH = 0.001
 SUPPORT_NEIGHBOURS = 0.005
 
 
-def supports_of(world: "BulletWorld", obj: Object) -> set[tuple[int, str]]:
+def supports_of(world: BulletWorld, obj: Object) -> set[tuple[int, str]]:
     """(object id, link) of everything `obj` rests on: the supporting links, and the links of the same object
     right against them (a counter top's carcass, under it), which fingers closing around a flat object graze."""
     found = set()
@@ -77,7 +78,7 @@ def below(obj: Object, index: int, ancestor: int) -> bool:
     return False
 
 
-def allowed_contacts(world: "BulletWorld", spec: LocationSpec) -> tuple[set[int], set[tuple[int, str]]]:
+def allowed_contacts(world: BulletWorld, spec: LocationSpec) -> tuple[set[int], set[tuple[int, str]]]:
     """What the arm may touch at its final configuration (object ids, (object id, link) pairs): the target and what
     the target rests on."""
     target = spec.reachable_for

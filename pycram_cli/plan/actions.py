@@ -17,7 +17,8 @@ concurrent branches like any leaf; every action it performs in turn is a node of
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..designators import robot_resources
 from ..designators.actions import ACTIONS, Actor, check_action
@@ -92,7 +93,7 @@ class ActionStep(Node):
         known = {k: (None if is_reference(v) else v) for k, v in plain(self.slots).items()}
         return robot_resources(ACTIONS[self.name].uses(known), analysis.description)
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         for problem in check_action(self.name, plain(self.slots), is_reference, v.robots):
             where = self.slots.loc(problem.param, True) if problem.param in self.slots else self.where
             v.error(problem.message, where, key=problem.param or self.head, suggestion=problem.suggestion)
@@ -115,7 +116,7 @@ class ActionStep(Node):
                 self._known(v, key or slot.name, name, what, where, objects, origin)
         v.action_parts(self.slots, [(s.name, s.kind, s.of) for s in spec.slots])
 
-    def _known(self, v: "Validator", key: str, name: str, what: str, where: Location, objects: list[str],
+    def _known(self, v: Validator, key: str, name: str, what: str, where: Location, objects: list[str],
                origin: str = "") -> None:
         facts = v.facts
         assert facts is not None
@@ -154,7 +155,7 @@ class ActionStep(Node):
         return ACTIONS[self.name].perform(PlanActor(ex, tn, self.where), values)
 
 
-def _slot_names(v: "Validator", slot_name: str, kind: Kind, value: Any) -> list[tuple[str, str, str, str]]:
+def _slot_names(v: Validator, slot_name: str, kind: Kind, value: Any) -> list[tuple[str, str, str, str]]:
     """(key, name, what, origin) for every object or link name an action slot gives, literally or through a
     `$variable` whose values are known before the run (a parameter's, a `for_each` item); `origin` says which
     variable (` ($object)`), empty for a literal."""
@@ -172,7 +173,7 @@ def _slot_names(v: "Validator", slot_name: str, kind: Kind, value: Any) -> list[
     return found
 
 
-def _known_items(v: "Validator", value: Any) -> list[tuple[Any, str]]:
+def _known_items(v: Validator, value: Any) -> list[tuple[Any, str]]:
     """The values `value` has before the run, each with where it came from (` ($object)`, or '' for a literal)."""
     if not isinstance(value, str) or not references(value):
         return [(value, "")]

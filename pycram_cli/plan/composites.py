@@ -17,7 +17,8 @@ only runs the branches and asks.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Sequence
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 from ..failures import Failure
 from ..limits import MAX_BRANCHES
@@ -60,7 +61,7 @@ class Concurrent(Composite):
     binds stays in the branch, unless bound with `scope: plan`.
     """
 
-    def check(self, validator: "Validator") -> None:
+    def check(self, validator: Validator) -> None:
         validator.check_branches(self.steps)
 
     @classmethod
@@ -162,5 +163,5 @@ def combined_failure(failures: list[Failure], what: str, children: Sequence[Reco
             break
     parts = "; ".join(f"{f.type_name}: {f.message}" for f in failures)
     error = common(f"all {len(failures)} alternatives of {what} failed: {parts}")
-    error.failures = failures  # type: ignore[attr-defined]
+    error.failures = failures
     return error

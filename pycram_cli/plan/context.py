@@ -15,8 +15,9 @@ which writes into the invocation's own frame.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
-from typing import Any, Iterator, Mapping
+from typing import Any
 
 from ..failures import Failure
 from ..jsonable import jsonable  # noqa: F401  (plan modules take it from here)
@@ -38,7 +39,7 @@ class Ref:
     attrs: tuple[str, ...]
 
     @classmethod
-    def parse(cls, text: str) -> "Ref":
+    def parse(cls, text: str) -> Ref:
         head, *rest = text.split(".")
         return cls(head, tuple(rest))
 
@@ -95,20 +96,20 @@ class FailureInfo:
 class Frame:
     """Variables of one plan invocation (or of one branch of a concurrent step); what encloses it behind it."""
 
-    def __init__(self, values: Mapping[str, Any] | None = None, parent: "Frame | None" = None,
+    def __init__(self, values: Mapping[str, Any] | None = None, parent: Frame | None = None,
                  branch: bool = False) -> None:
         self.values: dict[str, Any] = dict(values or {})
         self.parent = parent
         self.branch = branch  # a branch's own bindings, on top of the invocation's frame
 
-    def plan_frame(self) -> "Frame":
+    def plan_frame(self) -> Frame:
         """The frame of the plan invocation this frame belongs to (itself, unless it is a branch's)."""
         frame = self
         while frame.branch and frame.parent is not None:
             frame = frame.parent
         return frame
 
-    def binder(self, scope: str | None) -> "Frame":
+    def binder(self, scope: str | None) -> Frame:
         """Where a step binds: here, or with `scope: plan` in the invocation's frame."""
         return self.plan_frame() if scope == "plan" else self
 
@@ -191,7 +192,7 @@ def size_problem(value: Any) -> str | None:
             return f"a value of more than {MAX_VALUE_ITEMS} items (the limit; a value that grows at each step?)"
         if isinstance(item, str):
             chars += len(item)
-        elif isinstance(item, Mapping) or isinstance(item, (list, tuple)):
+        elif isinstance(item, (Mapping, list, tuple)):
             if depth >= MAX_VALUE_NESTING:
                 return f"a value nested more than {MAX_VALUE_NESTING} levels deep (the limit)"
             if isinstance(item, Mapping):

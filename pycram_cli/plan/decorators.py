@@ -69,7 +69,7 @@ class Retry(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("body", self.body), ("recover", self.recover)]
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         for name, where in self.on:
             v.failure_type(name, where, "on")
         v.check_steps(self.body)
@@ -143,7 +143,7 @@ class Try(Node):
             found.append(("failure", self.handlers[0][1]))
         return found
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.check_steps(self.body)
         for name, where, steps in self.handlers:
             v.failure_type(name, where, "catch")
@@ -185,7 +185,7 @@ class Conditional(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [("then", self.then), ("else", self.otherwise)]
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         self.condition.check(v)
         v.check_steps(self.then)
         v.check_steps(self.otherwise)
@@ -245,7 +245,7 @@ class ForEach(Node):
             found.append((self.var, self.var_where))
         return found
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.refs(self.items, self.items_where)
         if self.var:  # over a literal list, the variable's values are known before the run
             v.define(self.var, self.var_where, self.items if isinstance(self.items, list) else None)

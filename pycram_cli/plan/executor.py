@@ -13,45 +13,31 @@ import contextlib
 import copy
 import threading
 import time
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Iterator, Mapping, Protocol, cast
+from typing import Any, cast
 
 from .. import interrupts
-from ..failures import Failure
+from ..failures import Failure, FailureRecord, InternalError
 from ..limits import MAX_RUNNING_BRANCHES, MAX_THREADS, MAX_WAIT
 from ..robots import description_for
 from ..status import Status
 from ..world import BulletWorld
 from .context import Frame, evaluate, jsonable, size_problem
+from .observer import Observer
 from .params import bind_params
 from .replay import Recorder
 from .resources import ResourceAnalysis
 from .runtime import Cancelled, Decider, LimitExceeded, Projector, Record, Token, close_pending
 from .scheduler import CancelToken, Key, Scheduler
 from .syntax import Node, Plan
-from .trace import FORMAT, VERSION, TraceNode, failure_record, final_state
-
-
-class Observer(Protocol):
-    """Told about every node as it starts and ends (live views). Called from plan threads."""
-
-    def started(self, node: TraceNode) -> None: ...
-
-    def finished(self, node: TraceNode) -> None: ...
-
-    def log(self, node: TraceNode, message: str) -> None: ...
-
-    # optional: `folded(summary, child)` when `child` (a repeated attempt) was folded into the summary node
-
-
-class InternalError(Exception):
-    """A bug inside a step (not a plan failure); carried out of branch threads and re-raised."""
+from .trace import FORMAT, VERSION, TraceNode, final_state
 
 
 @dataclass
 class RunResult:
     status: Status                    # succeeded, failed, interrupted (by a signal) or cancelled
-    failure: dict[str, Any] | None
+    failure: FailureRecord | None  # reads as the trace's `failure` mapping too
     trace: dict[str, Any]
     duration: float
     value: Any = None
@@ -110,12 +96,9 @@ class Run:
     def notify(self, event: str, node: TraceNode, *args: Any) -> None:
         if self.observer is None:
             return
-        method = getattr(self.observer, event, None)  # `folded` is optional: live views need not know it
-        if method is None:
-            return
-        with self._observer_lock:
-            with contextlib.suppress(Exception):
-                method(node, *args)
+        method = getattr(self.observer, event)
+        with self._observer_lock, contextlib.suppress(Exception):
+            method(node, *args)
 
     def cancel(self, reason: str = "interrupted") -> None:
         self.token.cancel(reason)
@@ -127,31 +110,36 @@ class Run:
 
     def execute(self) -> RunResult:
         ex = Exec(self, Frame(parent=self.globals), self.token, ())
-        status, failure, value, error = Status.SUCCEEDED, None, None, None
+        status, failure, value = Status.SUCCEEDED, None, None
+        error: BaseException | None = None
         try:
             with interrupts.on_signal(self.interrupt):  # Ctrl-C stops the run; its trace is still complete
                 value = ex.run_body(self.plan.body, self.root, self.plan.where)
         except Failure as exc:
-            status, failure = Status.FAILED, failure_record(exc, self.root.path)
+            status, failure = Status.FAILED, FailureRecord.of(exc, self.root.path)
         except Cancelled as exc:
-            status, failure = "cancelled", {"type": "Cancelled", "message": str(exc) or "cancelled", "path": "body"}
+            status, failure = Status.CANCELLED, FailureRecord("Cancelled", str(exc) or "cancelled", "body")
             error = exc
         except LimitExceeded as exc:
             self.stop_for(exc)
+        except InternalError as exc:  # a bug: the run stops; its trace says where, and the error goes on up
+            status, failure, error = Status.ERROR, exc.record or _internal_record(exc.__cause__ or exc, "body"), exc
         if self.limit_error is not None:  # the run was stopped by a limit (whatever it then unwound with)
-            status, failure, error = Status.FAILED, failure_record(self.limit_error, self.limit_error.path), None
+            status, failure, error = Status.FAILED, FailureRecord.of(self.limit_error, self.limit_error.path), None
             self.root.status = Status.FAILED
             _mark(self.root, Status.CANCELLED)
         elif self.interrupted is not None and status != Status.SUCCEEDED:
             status = Status.INTERRUPTED
-            failure = {"type": "Interrupted", "message": f"interrupted by {self.interrupted}", "path": "body"}
+            if isinstance(error, InternalError):  # what a step raised as the signal came: the signal's doing
+                error = None
+            failure = FailureRecord("Interrupted", f"interrupted by {self.interrupted}", "body")
             _mark(self.root, Status.CANCELLED)
         duration = self.now()
         trace = {
             "format": FORMAT, "version": VERSION,
             "plan": self.plan.path.name, "world": self.world_name,
             "params": jsonable(self.params),
-            "status": str(status), "failure": failure,
+            "status": str(status), "failure": failure.to_json() if failure is not None else None,
             "root": self.root.to_dict(timing=True),
             "final_state": final_state(self.world),
             "timing": {"duration": duration},
@@ -159,7 +147,11 @@ class Run:
         if status == Status.INTERRUPTED:
             trace["interrupted"] = {"signal": self.interrupted}
         steps = sum(1 for n in self.root.walk() if not n.children and n.status in (Status.SUCCEEDED, Status.FAILED))
-        return RunResult(status, failure, trace, duration, value, steps, error)
+        result = RunResult(status, failure, trace, duration, value, steps, error)
+        if isinstance(error, InternalError):
+            error.result = result
+            raise error
+        return result
 
 
 class Exec:
@@ -184,8 +176,8 @@ class Exec:
     def globals(self) -> Frame:
         return self.run.globals
 
-    def derive(self, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
-               depth: int | None = None) -> "Exec":
+    def derive(self, *, frame: Frame | None = None, token: CancelToken | None = None, key: Key | None = None,
+               depth: int | None = None) -> Exec:
         return Exec(self.run, frame if frame is not None else self.frame, token if token is not None else self.token,
                     key if key is not None else self.key, depth if depth is not None else self.depth)
 
@@ -193,7 +185,7 @@ class Exec:
     def projector(self) -> Projector | None:
         return self.run.projector
 
-    def projected(self, token: Token, record: bool = False) -> "Exec":
+    def projected(self, token: Token, record: bool = False) -> Exec:
         """A runtime for one projected run (see runtime.Runtime.projected): a quiet copy of the run — no
         observers, a scheduler of its own (nothing else takes turns in a projection; the `project` step holds
         the world), a limit stops only the projection — with a frame of its own below this thread's."""
@@ -245,9 +237,9 @@ class Exec:
             self.run.notify("folded", summary, _own(child))
 
     # -- one step ------------------------------------------------------------------------------
-    def step(self, node: Node, tn: Record) -> Any:
-        """Run one node, recording its status, bound value and failure in `tn`."""
-        tn = _own(tn)
+    def step(self, node: Node, record: Record) -> Any:
+        """Run one node, recording its status, bound value and failure in `record`."""
+        tn = _own(record)
         self.token.check()
         if node.LEAF:  # the turn passes between leaves (see scheduler.py)
             self.run.scheduler.before_leaf(self.key, self.token)
@@ -264,8 +256,8 @@ class Exec:
             return value
         except Failure as exc:
             if getattr(exc, "plan_path", None) is None:
-                exc.plan_path = tn.path  # type: ignore[attr-defined]
-            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
+                exc.plan_path = tn.path
+            tn.status, tn.failure = Status.FAILED, FailureRecord.of(exc, tn.path)
             raise
         except Cancelled:
             tn.status = Status.CANCELLED
@@ -275,7 +267,7 @@ class Exec:
             tn.status = Status.FAILED
             exc.path = exc.path or tn.path  # a value too large is found where it is evaluated, not knowing the step
             if tn.failure is None:
-                tn.failure = failure_record(exc, exc.path)
+                tn.failure = FailureRecord.of(exc, exc.path)
             self.run.stop_for(exc)
             raise
         except InternalError:
@@ -283,8 +275,8 @@ class Exec:
             raise
         except Exception as exc:  # a bug in a node: never leave the trace half written
             tn.status = Status.FAILED
-            tn.failure = {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}", "path": tn.path}
-            raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}") from exc
+            tn.failure = _internal_record(exc, tn.path)
+            raise InternalError(f"{tn.path}: {type(exc).__name__}: {exc}", tn.failure) from exc
         finally:
             tn.duration = self.run.now() - (tn.started or 0.0)
             self.run.notify("finished", tn)
@@ -307,9 +299,9 @@ class Exec:
             close_pending(children, Status.SKIPPED)
         return value
 
-    def run_group(self, nodes: list[Node], tn: Record) -> Any:
+    def run_group(self, nodes: list[Node], record: Record) -> Any:
         """Steps run in sequence under one trace node of their own (the body, an attempt, a handler)."""
-        tn = _own(tn)
+        tn = _own(record)
         self.token.check()
         tn.status, tn.started = Status.RUNNING, self.run.now()
         self.run.notify("started", tn)
@@ -318,7 +310,7 @@ class Exec:
             tn.status = Status.SUCCEEDED
             return value
         except Failure as exc:
-            tn.status, tn.failure = Status.FAILED, failure_record(exc, tn.path)
+            tn.status, tn.failure = Status.FAILED, FailureRecord.of(exc, tn.path)
             raise
         except Cancelled:
             tn.status = Status.CANCELLED
@@ -400,9 +392,10 @@ class Exec:
         scheduler.acquire(self.key, self.token)  # may raise Cancelled when this branch was cancelled meanwhile
         return outcome.result(self, children)
 
-    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: "Outcome",
+    def _branch(self, index: int, node: Node, tn: TraceNode, outcome: Outcome,
                 ended: threading.Semaphore | None = None) -> None:
         result: tuple[Status, Any] = (Status.CANCELLED, None)
+        error: BaseException | None = None
         try:
             self.run.scheduler.acquire(self.key, self.token)
             result = (Status.SUCCEEDED, self.step(node, tn))
@@ -412,10 +405,13 @@ class Exec:
             if tn.status == Status.PENDING:
                 tn.status = Status.CANCELLED
             result = (Status.CANCELLED, None)
-        except BaseException as exc:  # noqa: BLE001 - carried to the parent thread
-            result = ("error", exc)
+        except BaseException as exc:  # carried to the parent thread
+            error = exc
         finally:
-            outcome.report(index, result)
+            if error is not None:
+                outcome.report_error(index, error)
+            else:
+                outcome.report(index, result)
             self.run.scheduler.finish(self.key)
             self.run.thread_ended()
             if ended is not None:
@@ -425,6 +421,11 @@ class Exec:
 def _own(tn: Record) -> TraceNode:
     """The runtime only ever gets back the trace nodes it made: a TraceNode (for the type checker)."""
     return cast(TraceNode, tn)
+
+
+def _internal_record(exc: BaseException, path: str) -> FailureRecord:
+    """The failure record of an internal error raised at `path`."""
+    return FailureRecord("InternalError", f"{type(exc).__name__}: {exc}", path)
 
 
 def _mark(tn: TraceNode, status: Status) -> None:
@@ -443,26 +444,40 @@ class Outcome:
         self.composite = composite
         self.tokens = tokens
         self.results: dict[int, tuple[Status, Any]] = {}
+        self.errors: dict[int, BaseException] = {}  # branches that raised what is no plan failure (a bug, a limit)
         self.decided: int | None = None
         self._lock = threading.Lock()
 
     def report(self, index: int, result: tuple[Status, Any]) -> None:
-        cancel = False
         with self._lock:
             self.results[index] = result
-            status = result[0]
-            if self.decided is None and (status == "error" or self.composite.decides(status)):
-                self.decided = index
-                cancel = True
+            cancel = self._decides(index, self.composite.decides(result[0]))
         if cancel:
-            for i, token in enumerate(self.tokens):
-                if i != index:
-                    token.cancel(f"{self.composite.head} decided by branch {index}")
+            self._cancel_others(index)
+
+    def report_error(self, index: int, error: BaseException) -> None:
+        """A branch that raised what is no plan failure: it decides, and the node re-raises it."""
+        with self._lock:
+            self.errors[index] = error
+            cancel = self._decides(index, True)
+        if cancel:
+            self._cancel_others(index)
+
+    def _decides(self, index: int, decides: bool) -> bool:
+        """Whether branch `index` is the first to decide (under the lock)."""
+        if self.decided is None and decides:
+            self.decided = index
+            return True
+        return False
+
+    def _cancel_others(self, index: int) -> None:
+        for i, token in enumerate(self.tokens):
+            if i != index:
+                token.cancel(f"{self.composite.head} decided by branch {index}")
 
     def result(self, ex: Exec, children: list[TraceNode]) -> Any:
-        errors = [r[1] for _, r in sorted(self.results.items()) if r[0] == "error"]
-        if errors:
-            error = errors[0]
+        if self.errors:
+            error = self.errors[min(self.errors)]
             if isinstance(error, (InternalError, LimitExceeded)):
                 raise error
             raise InternalError(f"{type(error).__name__}: {error}")

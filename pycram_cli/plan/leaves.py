@@ -76,7 +76,7 @@ class DesignatorStep(Node):
     def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
         return analysis.designator(self.head, self.slots)
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         for problem in check_designator(self.head, plain(self.slots), is_reference, v.robots):
             v.error(problem.message, _problems_where(self.slots, problem.param, self.where),
                     key=problem.param or self.head, suggestion=problem.suggestion)
@@ -92,14 +92,14 @@ class DesignatorStep(Node):
                 performed = perform(ex.world, self.head, values)
             except Failure:
                 raise
-            except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+            except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
                 raise as_failure(exc, self.head) from exc
             tn.info["designator"] = {**tn.info["designator"], "resolved": jsonable(performed.resolved)}
         return performed.result
 
 
 # -- reasoning queries --------------------------------------------------------------------------------------
-def check_query(name: str, args: LMap, v: "Validator") -> None:
+def check_query(name: str, args: LMap, v: Validator) -> None:
     """Report a query call's problems, each at the argument it names (its key for an unknown one), else at the call."""
     spec = QUERIES.get(name)
     for problem in check_query_args(name, plain(args), is_reference, v.robots):
@@ -117,7 +117,7 @@ def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
             answer = run_query(ex.world, name, values)
         except Failure:
             raise
-        except (PycramError, ValueError, KeyError, LookupError, TypeError) as exc:
+        except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
             raise as_failure(exc, name) from exc
     record = {"name": name, "args": jsonable(answer.args), "result": jsonable(answer.result),
               "details": jsonable(answer.details)}
@@ -139,7 +139,7 @@ class QueryStep(Node):
         args = _mapping(step[head], step.loc(head, True), head, parser, "arguments")
         return None if args is None else cls(head, step.loc(head), args)
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         check_query(self.head, self.args, v)
         v.refs(self.args, self.args.where)
         v.query_objects(self.head, self.args)
@@ -161,11 +161,11 @@ class Condition:
     """`$variable`, true/false, a query mapping, {equal: [a, b]}, or {not: condition}."""
 
     def __init__(self, kind: str, where: Location, value: Any = None, name: str = "",
-                 inner: "Condition | None" = None) -> None:
+                 inner: Condition | None = None) -> None:
         self.kind, self.where, self.value, self.name, self.inner = kind, where, value, name, inner
 
     @classmethod
-    def parse(cls, value: Any, where: Location, key: str, parser: Parser) -> "Condition | None":
+    def parse(cls, value: Any, where: Location, key: str, parser: Parser) -> Condition | None:
         if isinstance(value, bool):
             return cls("literal", where, value)
         if isinstance(value, str) and value.startswith("$"):
@@ -195,7 +195,7 @@ class Condition:
                      f"{{equal: [a, b]}} or {{not: ...}}, got {describe(value)}", where, key=key)
         return None
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         if self.kind == "variable":
             v.refs(self.value, self.where)
         elif self.kind == "query":
@@ -274,7 +274,7 @@ class CallStep(Node):
     def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
         return analysis.subplan(self.name)
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.check_call(self.name, self.args, self.args_where, self.where)
         if self.args is not None:
             v.refs(self.args, self.args_where)
@@ -301,7 +301,7 @@ class CallStep(Node):
             raise LimitExceeded(f"call {self.name}: more than {MAX_CALL_DEPTH} nested calls (the limit; endless "
                                 "recursion?)", tn.path)
         inner = ex.derive(frame=Frame(values, parent=ex.globals), depth=ex.depth + 1)
-        value = inner.seq(sub.body, tn)
+        inner.seq(sub.body, tn)
         return inner.evaluate(sub.returns) if sub.has_returns else None
 
 
@@ -332,7 +332,7 @@ class FailStep(Node):
             parser.string(message, step.loc("message", True), "message")
         return cls(head, step.loc(head), kind, message, step.loc(head, True), step.loc("message", True))
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         if isinstance(self.kind, str) and not is_reference(self.kind):
             v.failure_type(self.kind, self.kind_where, "fail")
         v.refs(self.kind, self.kind_where)
@@ -373,7 +373,7 @@ class AssertStep(Node):
         return cls(head, step.loc(head), condition, kind, step.get("message"), step.loc("failure", True),
                    step.loc("message", True))
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         self.condition.check(v)
         v.failure_type(self.kind, self.kind_where, "failure")
         if self.message is not None:
@@ -401,7 +401,7 @@ class LogStep(Node):
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         return cls(head, step.loc(head), plain(step[head]), step.loc(head, True))
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.refs(self.message, self.message_where)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
@@ -433,7 +433,7 @@ class SetStep(Node):
     def bindings(self) -> list[tuple[str, Location]]:
         return [*super().bindings(), *((str(name), self.values.loc(name)) for name in self.values)]
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.refs(self.values, self.values.where)
         for name in self.values:
             v.define(str(name), self.values.loc(name))
@@ -477,7 +477,7 @@ class WaitStep(Node):
             return None
         return cls(head, step.loc(head), seconds, step.loc(head, True))
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         v.refs(self.seconds, self.value_where)
         if is_reference(self.seconds):  # a plan parameter's value (-p, else its default) is known before the run
             for value in v.possible(self.seconds) or []:

@@ -2,12 +2,13 @@
 types; and which world a plan runs in."""
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 import yaml
 
-from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..errors import InputError, Location, did_you_mean, raise_if_any, setting
 from ..kinds import NOTHING_KNOWN, Robots, param_kind
 from ..paths import find_world
 from ..schema import describe
@@ -103,9 +104,9 @@ def _article(word: str) -> str:
 
 
 def plan_world(plan: Plan, override: str | None = None) -> Path:
-    """The world a run uses: `--world` (relative to the current folder) or else the plan's own `world:`."""
+    """The world a run uses: `override` (relative to the current folder) or else the plan's own `world:`."""
     if override is not None:
-        return find_world(override, Path.cwd(), Location("--world"))
+        return find_world(override, Path.cwd(), Location(setting("world")))
     return find_world(plan.world, plan.path.parent, plan.world_where, naming=plan.path)
 
 

@@ -37,11 +37,12 @@ import hashlib
 import math
 import random
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any
 
 from ..errors import Location, did_you_mean
-from ..failures import Failure, ProjectionFailure
+from ..failures import Failure, FailureRecord, ProjectionFailure
 from ..limits import MAX_PROJECTED, MAX_PROJECTED_REPLAYS, MAX_SCENARIO_TIMEOUT
 from ..schema import describe, is_number
 from ..status import Status
@@ -49,7 +50,7 @@ from ..world.pose import quat_multiply, yaw_quaternion
 from ..worldfile.starts import start_problems
 from ..yamlsource import LList, LMap
 from .composites import Seq
-from .context import Frame, jsonable
+from .context import jsonable
 from .runtime import Cancelled, LimitExceeded, Record, Row, Runtime
 from .scoring import OUTCOMES, SENSES, Score, ScoreError, parse_score
 from .syntax import Node, Parser, node_type
@@ -168,7 +169,7 @@ class Project(Node):
     def parts(self) -> list[tuple[str, list[Node]]]:
         return [(name, steps) for name, _, steps in self.alternatives]
 
-    def check(self, v: "Validator") -> None:
+    def check(self, v: Validator) -> None:
         # each alternative sees what is bound before the node, and what it binds stays in it (as a branch's)
         v.check_branches([Seq("seq", where, steps) for _, where, steps in self.alternatives])
         if v.facts is not None:
@@ -215,7 +216,7 @@ class Project(Node):
         return {"name": choice, "value": value,
                 "table": {name: {k: v for k, v in row.items() if k != "outcomes"} for name, row in table.items()}}
 
-    def _project(self, ex: Runtime, tn: Record, world: "BulletWorld", state: Any, name: str, where: Location,
+    def _project(self, ex: Runtime, tn: Record, world: BulletWorld, state: Any, name: str, where: Location,
                  steps: list[Node], run: int) -> dict[str, Any]:
         """One projected run of one alternative: reset, vary, run quietly in a frame of its own; its row (with
         what its trace entry ended with under FOLD, for `_fold`). The same here and in a worker process."""
@@ -266,12 +267,14 @@ class Project(Node):
         if ended is None:  # a run that could not start has no entry
             return
         child = tn.child(f"projected {name} {row['run']}", "projection", where)
-        child.status, child.failure = Status(ended["status"]), ended["failure"]
+        failure = ended["failure"]  # a dict where a worker or a lost run made it
+        child.status = Status(ended["status"])
+        child.failure = FailureRecord(failure["type"], failure["message"]) if isinstance(failure, dict) else failure
         ex.fold(tn, child, f"projected {name}")
         if replay is not None:
             ex.keep_replay(tn, name, row["run"], replay)
 
-    def _vary(self, world: "BulletWorld", world_state: Any, path: str, run: int) -> list[str] | None:
+    def _vary(self, world: BulletWorld, world_state: Any, path: str, run: int) -> list[str] | None:
         """Move the varied objects for run `run` (drawn again while they cannot start); the rejected draws' reasons,
         or None when no draw of 1 + REDRAWS could start."""
         if not self.variations:
@@ -283,7 +286,7 @@ class Project(Node):
             if attempt:
                 world.reset_to(world_state)
             rng = random.Random(run_seed(self.seed, path, run, attempt))
-            moved: list["Object"] = []
+            moved: list[Object] = []
             for variation, obj in zip(self.variations, objects):
                 if obj is None:
                     continue
@@ -426,9 +429,9 @@ def _lost(run: int, status: str, message: str) -> dict[str, Any]:
             FOLD: {"status": str(Status.FAILED), "failure": {"type": kind, "message": message}}}
 
 
-def _failure(row: dict[str, Any]) -> dict[str, Any]:
+def _failure(row: dict[str, Any]) -> FailureRecord:
     kind, _, message = row["failure"].partition(": ")
-    return {"type": kind, "message": message}
+    return FailureRecord(kind, message)
 
 
 def _table_text(table: dict[str, dict[str, Any]]) -> str:

@@ -47,14 +47,16 @@ steps are recorded in the same order, with the same states, however the threads 
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterable
+from typing import TYPE_CHECKING, Any
 
 from ..limits import MAX_PHYSICS_FRAMES
 from ..locations.plot import MAP_KEY
 from ..status import Status
-from .trace import DIGITS, TraceNode, canonical_quaternion
 from ..world.bullet_world import STEP_HZ
+from .observer import Observing
+from .trace import DIGITS, TraceNode, canonical_quaternion
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
@@ -75,7 +77,7 @@ PLACES = ("target", "look", "position")
 SCENERY = ("robot", "environment")
 
 
-def world_state(world: "BulletWorld", free_only: bool = False) -> State:
+def world_state(world: BulletWorld, free_only: bool = False) -> State:
     """Every object's pose and movable joint values, rounded as traces are (6 decimals); `free_only`: only the
     objects physics moves (neither robots nor environments), and their poses only."""
     state: State = {}
@@ -111,10 +113,10 @@ def changes(before: State, after: State) -> State:
     return found
 
 
-class Recorder:
+class Recorder(Observing):
     """Observes a run, passing every event on to `inner`, and records the world after each leaf step."""
 
-    def __init__(self, world: "BulletWorld", inner: "Observer | None" = None,
+    def __init__(self, world: BulletWorld, inner: Observer | None = None,
                  world_file: Path | str | None = None) -> None:
         self.world = world
         self.inner = inner
@@ -168,9 +170,8 @@ class Recorder:
     def folded(self, summary: TraceNode, child: TraceNode) -> None:
         """`child` (an attempt of a retry, with its subtree) was folded into `summary`: fold its steps here too."""
         fold_steps(self.steps, self.initial, summary.path, child.path, _earlier_attempts(summary.path, child.path))
-        inner = getattr(self.inner, "folded", None)
-        if inner is not None:
-            inner(summary, child)
+        if self.inner is not None:
+            self.inner.folded(summary, child)
 
     def projected(self, node: TraceNode, name: str, run: int, replay: dict[str, Any]) -> None:
         """The replay of run `run` of alternative `name` of the `project` step `node` (recorded where it ran)."""
@@ -191,7 +192,7 @@ class PhysicsFrames:
     """The physics frames of the step running now (see the module docstring): `stepped` after every simulation
     step, `take` when the step has finished."""
 
-    def __init__(self, world: "BulletWorld", state: State, free_only: bool = False) -> None:
+    def __init__(self, world: BulletWorld, state: State, free_only: bool = False) -> None:
         self.world = world
         self.free_only = free_only  # only the free objects' poses, also in the first frame (a prospection copy's)
         self._last = state  # the state the next frame's changes are counted from
@@ -200,7 +201,7 @@ class PhysicsFrames:
         self._steps = 0  # simulation steps since the step began
         self._every = PHYSICS_EVERY
 
-    def stepped(self, world: "BulletWorld") -> None:
+    def stepped(self, world: BulletWorld) -> None:
         self._steps += 1
         if self._steps % self._every:
             return
@@ -308,7 +309,7 @@ def fold_steps(steps: list[dict[str, Any]], initial: State, summary_path: str, c
     found: list[int] = []
     for index in range(len(steps) - 1, -1, -1):
         path = steps[index]["path"]
-        if path == summary_path or path == child_path or path.startswith(prefix):
+        if path in (summary_path, child_path) or path.startswith(prefix):
             found.append(index)
             if path == summary_path:
                 break  # an earlier summary comes before everything folded since
@@ -351,7 +352,7 @@ def _put(changed: State, key: tuple[str, str | None], source: dict[str, Any]) ->
 
 
 # -- what a step works on -------------------------------------------------------------------------
-def focus_points(world: "BulletWorld", info: dict[str, Any]) -> list[Point]:
+def focus_points(world: BulletWorld, info: dict[str, Any]) -> list[Point]:
     """The objects (their bounding boxes' centres) and places a step names in its resolved designator
     slots or query arguments (`object: bowl`, `target: [x, y, z]`): what a camera should show with the robot."""
     values: dict[str, Any] = {}
@@ -365,7 +366,7 @@ def focus_points(world: "BulletWorld", info: dict[str, Any]) -> list[Point]:
     return points
 
 
-def _points(world: "BulletWorld", key: str, value: Any) -> Iterable[Point]:
+def _points(world: BulletWorld, key: str, value: Any) -> Iterable[Point]:
     if isinstance(value, str):
         obj = world.get_object_by_name(value)
         if obj is not None and obj.type not in SCENERY:

@@ -10,7 +10,8 @@ uses everything its subplan (transitively) uses.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Mapping
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..designators import ANY_ARM, DESIGNATORS, robot_resources
 from .context import is_reference
@@ -20,13 +21,13 @@ if TYPE_CHECKING:
     from ..robots import RobotDescription
 
 
-def everything(description: "RobotDescription | None") -> frozenset[str]:
+def everything(description: RobotDescription | None) -> frozenset[str]:
     """Every resource of the robot: what an unknown step is assumed to use."""
     return robot_resources(frozenset({"base", "head", ANY_ARM}), description)
 
 
 def designator_resources(type_name: str, slots: Mapping[str, Any],
-                         description: "RobotDescription | None" = None) -> frozenset[str]:
+                         description: RobotDescription | None = None) -> frozenset[str]:
     """The resources a motion designator drives, from its declaration, its literal slots and the robot."""
     spec = DESIGNATORS.get(type_name)
     if spec is None:
@@ -38,7 +39,7 @@ def designator_resources(type_name: str, slots: Mapping[str, Any],
 class ResourceAnalysis:
     """Resources of steps and of subplans (a fixpoint over calls, recursion included), for one robot."""
 
-    def __init__(self, plan: Plan, description: "RobotDescription | None" = None) -> None:
+    def __init__(self, plan: Plan, description: RobotDescription | None = None) -> None:
         self.plan = plan
         self.description = description
         self.subplans: dict[str, frozenset[str]] = {name: frozenset() for name in plan.plans}

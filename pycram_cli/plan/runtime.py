@@ -14,8 +14,9 @@ runs the branches, the composite decides (see composites.py). `Cancelled` and
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Protocol, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ..errors import Location
 from ..status import Status
@@ -53,6 +54,7 @@ class Record(Protocol):
     path: str    # `body/1:for_each/item 0/0:call fetch`
     status: Status  # pending, running, succeeded, failed, cancelled, skipped
     info: dict[str, Any]  # what the node records (its designator, query answer, bound values...)
+    failure: Any  # the failure the node ended with (a FailureRecord), or None
 
     def child(self, label: str, type: str, source: Location | None = None) -> Record:
         """A new (pending) entry below this one (raises LimitExceeded beyond the run's limits)."""
@@ -88,6 +90,11 @@ class Token(Protocol):
 
     @property
     def cancelled(self) -> bool: ...
+
+    @property
+    def reason(self) -> str:
+        """Why it was cancelled ("" while it is not)."""
+        ...
 
     def cancel(self, reason: str = "") -> None:
         """Cancel it and every token made from it."""

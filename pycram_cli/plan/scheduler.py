@@ -19,8 +19,8 @@ function of the plan alone, so traces are identical however threads interleave.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Callable, Iterable
 
 from .runtime import Cancelled
 
@@ -33,23 +33,27 @@ POLL = 0.05  # seconds between checks of a cancellation while waiting (wake-ups 
 class CancelToken:
     """Cancelled when it or any ancestor is cancelled. Checked before every step."""
 
-    def __init__(self, parent: "CancelToken | None" = None, notify: Callable[[], None] | None = None) -> None:
+    _notify: Callable[[], None] | None  # told when it is cancelled (the scheduler's wake-up), the parent's by default
+
+    def __init__(self, parent: CancelToken | None = None, notify: Callable[[], None] | None = None) -> None:
         self._event = threading.Event()
         self._lock = threading.Lock()
         self._children: list[CancelToken] = []
-        self._notify = notify if notify is not None else (parent._notify if parent is not None else None)
+        if notify is None and parent is not None:
+            notify = parent._notify
+        self._notify = notify
         self.reason = ""
         if parent is not None:
             parent._adopt(self)
 
-    def _adopt(self, child: "CancelToken") -> None:
+    def _adopt(self, child: CancelToken) -> None:
         with self._lock:
             self._children.append(child)
             cancelled = self._event.is_set()
         if cancelled:
             child.cancel(self.reason)
 
-    def child(self) -> "CancelToken":
+    def child(self) -> CancelToken:
         return CancelToken(self)
 
     def cancel(self, reason: str = "") -> None:
@@ -187,7 +191,7 @@ class Scheduler:
         self.acquire(key, token)
 
     # -- branches -------------------------------------------------------------------------
-    def spawn(self, parent: Key, count: int, waits_for: dict[int, Iterable[int]],
+    def spawn(self, parent: Key, count: int, waits_for: Mapping[int, Iterable[int]],
               running: int | None = None) -> list[Key]:
         """Register `count` branches of `parent` (which gives its turn up until they have all finished).
 

@@ -13,8 +13,9 @@ from __future__ import annotations
 
 import ast
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 #: the names an expression may use: one alternative's row of the projection table
 OUTCOMES = {
@@ -25,7 +26,7 @@ OUTCOMES = {
     "steps": "the mean number of steps of its successful runs",
 }
 SENSES = ("max", "min")
-FUNCTIONS = {"min": min, "max": max, "abs": abs}
+FUNCTIONS: dict[str, Callable[..., float]] = {"min": min, "max": max, "abs": abs}
 _OPERATORS = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b, ast.Mult: lambda a, b: a * b,
               ast.Div: lambda a, b: a / b if b else math.inf if a > 0 else -math.inf if a < 0 else 0.0}
 
@@ -93,6 +94,7 @@ def _check(node: ast.expr) -> None:
 
 def _evaluate(node: ast.expr, values: Mapping[str, float]) -> float:
     if isinstance(node, ast.Constant):
+        assert isinstance(node.value, (int, float)), "_check lets only numbers through"
         return float(node.value)
     if isinstance(node, ast.Name):
         return float(values[node.id])

@@ -23,9 +23,10 @@ malformed steps; `validate.py` checks names, variables and calls across the whol
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterable
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..kinds import param_kind, param_kind_names
@@ -67,7 +68,7 @@ class Node:
 
     # -- parsing ----------------------------------------------------------------
     @classmethod
-    def parse(cls, head: str, step: LMap, parser: "Parser") -> "Node | None":
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         raise NotImplementedError
 
     @classmethod
@@ -79,11 +80,11 @@ class Node:
         """How the node is named in paths and trees: `par`, `moving`, `call fetch`."""
         return self.head
 
-    def parts(self) -> list[tuple[str, list["Node"]]]:
+    def parts(self) -> list[tuple[str, list[Node]]]:
         """The node's static lists of child steps, named (for validation and resource analysis)."""
         return []
 
-    def walk(self) -> Iterable["Node"]:
+    def walk(self) -> Iterable[Node]:
         yield self
         for _, steps in self.parts():
             for step in steps:
@@ -97,12 +98,12 @@ class Node:
         """The variables this node binds with `scope: plan` (seen after the branch it runs in)."""
         return self.bindings() if self.scope == "plan" else []
 
-    def resources(self, analysis: "ResourceAnalysis") -> frozenset[str]:
+    def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
         """The robot's resources this node itself uses, not counting its child steps (see resources.py)."""
         return frozenset()
 
     # -- checking and running -----------------------------------------------------
-    def check(self, validator: "Validator") -> None:
+    def check(self, validator: Validator) -> None:
         """Static checks (references, names); the default checks the child steps in order."""
         for _, steps in self.parts():
             validator.check_steps(steps)
@@ -271,7 +272,8 @@ class Parser:
         if not isinstance(value, LMap):
             hint = None
             if isinstance(value, str):
-                hint = f"write a step as a mapping, e.g. {{{value}: ...}}" if node_class(value) else did_you_mean(value, all_heads())
+                hint = (f"write a step as a mapping, e.g. {{{value}: ...}}" if node_class(value)
+                        else did_you_mean(value, all_heads()))
             self.error(f"a step must be a mapping with one node type, got {describe(value)}", where, suggestion=hint)
             return None
         heads = [(key, cls) for key in value if isinstance(key, str) and (cls := node_class(key)) is not None]

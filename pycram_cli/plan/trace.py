@@ -6,8 +6,8 @@ resolved designator slots, reasoning answers, bound values and failure (type, me
 and the path of the node where it arose). The final state of the world closes the trace.
 
 Wall-clock data lives only under `timing` keys (and `source` names the line in the plan
-file); `comparable()` drops them, and the replay record (`replay`, see replay.py) too. Everything else is a function of the plan and the
-world: the tree is built in declaration order (concurrent branches by index, never by
+file); `comparable()` drops them, and the replay record (`replay`, see replay.py) too. Everything else is a function
+of the plan and the world: the tree is built in declaration order (concurrent branches by index, never by
 finishing order), floats are rounded to 6 decimals and keys sorted, so the same plan on
 the same world gives byte-identical comparable traces.
 """
@@ -16,11 +16,13 @@ from __future__ import annotations
 import json
 import math
 import threading
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import TYPE_CHECKING, Any, cast
 
 from ..errors import InputError, Location
+from ..failures import FailureRecord
 from ..files import read_text, write_atomic
 from ..limits import MAX_STEP_DEPTH, MAX_TRACE_BYTES, MAX_TRACE_NODES
 from ..status import Status
@@ -30,6 +32,7 @@ from .runtime import LimitExceeded
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
+    from .runtime import Record
 
 FORMAT = "pycram-trace"
 VERSION = 1
@@ -74,7 +77,7 @@ class TraceNode:
         self.type = type
         self.status = Status.PENDING
         self.info: dict[str, Any] = {}
-        self.failure: dict[str, Any] | None = None
+        self.failure: FailureRecord | None = None
         self.children: list[TraceNode] = []
         self.started: float | None = None
         self.duration: float | None = None
@@ -83,7 +86,7 @@ class TraceNode:
         self._budget = budget if budget is not None else Budget()
         self._lock = threading.Lock()
 
-    def child(self, label: str, type: str, source: Location | None = None) -> "TraceNode":
+    def child(self, label: str, type: str, source: Location | None = None) -> TraceNode:
         path = f"{self.path}/{label}"
         if self.depth + 1 > MAX_STEP_DEPTH:
             raise LimitExceeded(f"steps nested more than {MAX_STEP_DEPTH} levels deep (the limit; endless "
@@ -94,12 +97,14 @@ class TraceNode:
             self.children.append(node)
         return node
 
-    def detached(self, label: str, type: str, source: Location | None = None) -> "TraceNode":
+    def detached(self, label: str, type: str, source: Location | None = None) -> TraceNode:
         """A new entry with a child's path, in no tree and with a budget of its own (runtime.Record.detached)."""
         return TraceNode(f"{self.path}/{label}", type, source, None, self.depth + 1)
 
-    def summarise(self, child: "TraceNode", label: str) -> "TraceNode | None":
-        """Replace `child` by a count in the summary node `label` ("folded"), made at the child's place; the summary."""
+    def summarise(self, entry: Record, label: str) -> TraceNode | None:
+        """Replace `entry` by a count in the summary node `label` ("folded"), made at the child's place; the summary.
+        (A `Record` for the runtime's protocol: the runtime only ever hands back the trace nodes it was given.)"""
+        child = cast(TraceNode, entry)
         with self._lock:
             if child not in self.children:
                 return None
@@ -119,7 +124,7 @@ class TraceNode:
         if child.status != Status.SUCCEEDED:
             summary.status = Status.FAILED
         if child.failure is not None:
-            text = f"{child.failure.get('type')}: {child.failure.get('message')}"
+            text = f"{child.failure.type}: {child.failure.message}"
             failures = folded["failures"]
             if text not in failures and len(failures) >= FOLDED_MESSAGES:
                 text = "(other failures)"
@@ -130,7 +135,7 @@ class TraceNode:
     def label(self) -> str:
         return self.path.rsplit("/", 1)[-1]
 
-    def walk(self) -> Iterator["TraceNode"]:
+    def walk(self) -> Iterator[TraceNode]:
         yield self
         for child in list(self.children):
             yield from child.walk()
@@ -139,7 +144,7 @@ class TraceNode:
         data: dict[str, Any] = {"path": self.path, "type": self.type, "status": str(self.status)}  # plain data
         data.update(self.info)
         if self.failure is not None:
-            data["failure"] = self.failure
+            data["failure"] = self.failure.to_json()
         children = list(self.children)
         if children:
             data["children"] = [c.to_dict(timing) for c in children]
@@ -151,15 +156,6 @@ class TraceNode:
         return data
 
 
-def failure_record(error: BaseException, path: str) -> dict[str, Any]:
-    record: dict[str, Any] = {"type": type(error).__name__, "message": str(error),
-                              "path": getattr(error, "plan_path", None) or path}
-    nested = getattr(error, "failures", None)
-    if nested:
-        record["failures"] = [failure_record(f, path) for f in nested]
-    return record
-
-
 # -- the world's final state ---------------------------------------------------------------
 def canonical_quaternion(q: Any) -> list[float]:
     """q and -q are the same rotation: pick the one with w >= 0 (first non-zero component positive if w = 0)."""
@@ -168,7 +164,7 @@ def canonical_quaternion(q: Any) -> list[float]:
     return [-v for v in values] if lead < 0 else values
 
 
-def final_state(world: "BulletWorld") -> dict[str, Any]:
+def final_state(world: BulletWorld) -> dict[str, Any]:
     """Object poses, attachments, and the joints of non-robot objects that are not at 0 (opened drawers)."""
     objects: dict[str, Any] = {}
     attachments: list[dict[str, Any]] = []

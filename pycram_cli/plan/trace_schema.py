@@ -14,7 +14,8 @@ from __future__ import annotations
 import json
 import math
 import re
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from ..errors import InputError, InputErrors, Location
 from ..limits import MAX_MAGNITUDE, MAX_NESTING, MAX_PHYSICS_FRAMES, MAX_STEP_DEPTH, MAX_TRACE_NODES
@@ -489,7 +490,7 @@ def _enter(text: str, index: int, part: Any) -> int | None:
     try:
         while index < len(text) and text[index] not in "}]":
             if is_object:
-                key, index = json.decoder.scanstring(text, index + 1)
+                key, index = json.decoder.scanstring(text, index + 1)  # type: ignore[attr-defined]  # public, not in typeshed
                 index = _skip(text, index)
                 index = _skip(text, index + 1)  # the colon
                 if key == part:

@@ -13,19 +13,19 @@ par, pursue or try_all binds is visible in that branch only, unless bound with `
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterable, Mapping
+from typing import TYPE_CHECKING, Any
 
-from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..designators import DESIGNATORS, process_module_problems
+from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..failures import ALIASES, FAILURES, failure_class
 from ..kinds import KINDS, Robots, param_kind
+from ..paths import find_world
 from ..reasoning import QUERIES
 from ..robots import RobotDescription, bundled_descriptions, description_for
 from ..yamlsource import LList, LMap
 from .context import REFERENCE, Ref, UnboundVariable, attribute, references
-from ..paths import find_world
-from ..world.model_files import describe_model
 from .params import type_problem
 from .syntax import Node, Param, Plan, plain
 
@@ -52,7 +52,7 @@ class WorldFacts:
     types: tuple[str, ...] = ()  # the objects' types (what `object-type` slots name)
 
     @classmethod
-    def of_spec(cls, spec: "WorldSpec") -> "WorldFacts":
+    def of_spec(cls, spec: WorldSpec) -> WorldFacts:
         robot = spec.robot
         links = {name: tuple(info.links) for name, info in spec.models.items()}
         joints = {name: tuple(j for j, info_joint in info.joints.items() if info_joint.movable)
@@ -61,7 +61,7 @@ class WorldFacts:
                    spec.robot_description, links, joints, _unique(o.type for o in spec.objects))
 
     @classmethod
-    def of_world(cls, world: "BulletWorld") -> "WorldFacts":
+    def of_world(cls, world: BulletWorld) -> WorldFacts:
         robot = world.robot
         return cls(tuple(o.name for o in world.objects), robot.name if robot else None,
                    robot.path.name if robot else "", description_for(robot) if robot is not None else None,
@@ -108,7 +108,7 @@ class Validator:
     # -- the whole plan --------------------------------------------------------------------
     def check(self) -> None:
         self._defaults(self.plan.params)
-        for name, sub in self.plan.plans.items():
+        for sub in self.plan.plans.values():
             self._defaults(sub.params)
             self._body(sub.body, {p.name: p.where for p in sub.params})
             if sub.has_returns:
@@ -450,7 +450,7 @@ def _suggest(name: str, known: list[str], prefix: str = "") -> str | None:
     return None
 
 
-def check_plan(plan: Plan, world: "BulletWorld | None" = None, check_world_file: bool = True,
+def check_plan(plan: Plan, world: BulletWorld | None = None, check_world_file: bool = True,
                errors: list[InputError] | None = None, facts: WorldFacts | None = None,
                values: Mapping[str, Any] | None = None) -> Plan:
     """Raise every static problem of `plan` (and the `errors` found before) together; return it when there is none.

@@ -9,7 +9,7 @@ collision-checked (`motion.py`). What rests in the drawer rides along.
 """
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 

@@ -31,8 +31,8 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
@@ -41,7 +41,7 @@ from ..robots.objects import object_knowledge
 from ..robots.tool import hand
 from ..robots.tool import tool_axes as model_tool_axes
 from ..world import Object
-from ..world.pose import Quat, Vec3, invert, matrix_to_quat, quat_to_matrix, compose
+from ..world.pose import Quat, Vec3, compose, invert, matrix_to_quat, quat_to_matrix
 
 #: a box axis within this of the wanted direction counts as equally good (ties keep the box's axis order)
 TIE = 1e-6
@@ -60,7 +60,7 @@ class Grasp:
     depth: float = 0.0  # how far the tool frame is in from the side of the object's box it comes through (m)
 
 
-_AXES: "weakref.WeakKeyDictionary[Object, dict[str, np.ndarray]]" = weakref.WeakKeyDictionary()
+_AXES: weakref.WeakKeyDictionary[Object, dict[str, np.ndarray]] = weakref.WeakKeyDictionary()
 
 
 def tool_axes(robot: Robot, arm: str) -> np.ndarray:
@@ -89,7 +89,7 @@ def grasp_offset(robot: Robot, arm: str) -> np.ndarray:
 
 def wanted_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
     """The tool orientation a grasp asks for: a robot grasp turned with the base, or a world quaternion."""
-    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())  # type: ignore[arg-type]
+    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())
 
 
 def _frame(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -127,8 +127,9 @@ def _round_orientations(axis: np.ndarray, wanted: np.ndarray) -> list[np.ndarray
                 _unit(np.cross(approach, np.array([1.0, 0.0, 0.0])))
         assert closing is not None
         return [_frame(approach, closing), _frame(approach, -closing)]
-    approach = _unit(a - axis * float(a @ axis))
-    assert approach is not None
+    across = _unit(a - axis * float(a @ axis))
+    assert across is not None
+    approach = across
     across = np.cross(axis, approach)
     options = [across, -across, axis, -axis]
     options.sort(key=lambda v: -float(v @ c))

@@ -12,9 +12,9 @@ says why not.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from enum import Enum
-from typing import Sequence
+from enum import StrEnum
 
 import numpy as np
 
@@ -37,7 +37,7 @@ WRIST_ELEVATIONS = (math.radians(60.0), math.radians(45.0), math.radians(75.0), 
 WRIST_ANGLE = math.radians(8.0)
 
 
-class Mount(str, Enum):
+class Mount(StrEnum):
     """Where the camera is: what moves when the robot looks."""
 
     HEAD = "head"
@@ -204,7 +204,7 @@ def _viewpoints(robot: Robot, arm: str, target: Sequence[float]) -> list[tuple[n
     goal = np.asarray(target, dtype=float)
     towards = shoulder[:2] - goal[:2]
     heading = math.atan2(towards[1], towards[0]) if np.hypot(*towards) > 1e-6 else 0.0
-    poses = []
+    poses: list[tuple[np.ndarray, tuple[float, ...]]] = []
     for distance in WRIST_DISTANCES:
         for elevation in WRIST_ELEVATIONS:
             eye = goal + distance * np.array([math.cos(elevation) * math.cos(heading),

@@ -36,8 +36,9 @@ from __future__ import annotations
 import math
 import weakref
 from collections import OrderedDict
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -61,7 +62,7 @@ PRECISION = 0.001
 STILL = 1e-5
 #: how many walks and searches each world remembers (the newest; see `Motion.situation`)
 MEMO_SIZE = 512
-_MEMO: "weakref.WeakKeyDictionary[Any, OrderedDict[tuple, Any]]" = weakref.WeakKeyDictionary()
+_MEMO: weakref.WeakKeyDictionary[Any, OrderedDict[tuple, Any]] = weakref.WeakKeyDictionary()
 
 
 @dataclass(frozen=True)
@@ -435,7 +436,8 @@ class Motion:
         delta = np.abs(end - start)
         # how much of each mover's lever bound each joint's change adds per unit of travel of the mover (see below)
         weights = (below * delta[:, None]).sum(axis=0)
-        t, last_free, hits = 0.0, 0.0, []
+        t, last_free = 0.0, 0.0
+        hits: list[Hit] = []
         total = 0.0
         levers, since = None, np.zeros(len(parts))
         try:

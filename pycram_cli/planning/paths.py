@@ -4,7 +4,8 @@ last, a search in the arm's joint space (`search_path`); every leg collision-che
 from __future__ import annotations
 
 import math
-from typing import Any, Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -16,7 +17,6 @@ from ..world import Object
 from . import motion
 from .motion import Motion
 from .reach import arm_configuration, middle_of_ranges, reach_each, reach_from_middle, solve_tool
-
 
 # -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
 
@@ -145,7 +145,7 @@ class _Search:
             trees.reverse()
         return None
 
-    def _checked(self, first: "_Tree", second: "_Tree", i: int, j: int) -> list[np.ndarray] | None:
+    def _checked(self, first: _Tree, second: _Tree, i: int, j: int) -> list[np.ndarray] | None:
         """The way from the start tree's root through its node `i` (= the other's `j`) to the goal tree's root when
         every leg is free; else None, the node beyond the first blocked leg cut from its tree (with what hangs on
         it)."""
@@ -339,12 +339,13 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
             plan = departure + arrival
             if not plan:
                 continue
-            way = [via(leg) if isinstance(leg, tuple) else leg for leg in plan]
-            if any(leg is None for leg in way):
+            legs = [via(leg) if isinstance(leg, tuple) else leg for leg in plan]
+            way_round = [leg for leg in legs if leg is not None]
+            if len(way_round) < len(legs):
                 continue
             try:
-                for leg in way:
-                    motion.move(robot, leg, what, ignore)  # type: ignore[arg-type]
+                for leg in way_round:
+                    motion.move(robot, leg, what, ignore)
                 motion.move(robot, goal, what, ignore)
                 return
             except ManipulationFailure:

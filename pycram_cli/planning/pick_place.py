@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import replace
-from typing import Any, Iterator, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -27,8 +28,7 @@ from ..kinds import arm_words, gripper_words
 from ..reasoning.ik import IKSolution
 from ..robots import Robot
 from ..world import Object
-from ..world.pose import (Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix,
-                          yaw_quaternion)
+from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
 from .grasps import Grasp, gripper_values, holdable_grasps, wanted_orientation
 from .reach import close_on, reach, reach_from, reach_near, reach_near_each, set_gripper

@@ -4,7 +4,8 @@ what is in the way in `paths.py`."""
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -16,7 +17,6 @@ from ..robots import Robot
 from ..world.pose import angle_between, quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
 from .grasps import gripper_values, tool_axes
-
 
 #: how close the arm must bring its tool to a pose it moves to: 1 cm, and 2° of the orientation (grasps are aligned
 #: with objects' sides: a looser angle would hold a square carton askew)
@@ -44,7 +44,12 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     front of the robot to get there); then it is also solved from the middle of the joints' ranges (an arm held out in
     front, elbow out), and the solution that moves the arm least is taken. Both are searched at once."""
     found: list[IKSolution] = []
-    reach_near_each(robot, arm, [(position, orientation)], lambda k, s: found.append(s) is None)
+
+    def take(k: int, solution: IKSolution) -> bool:
+        found.append(solution)
+        return True  # one target: enough
+
+    reach_near_each(robot, arm, [(position, orientation)], take)
     return found[0]
 
 
@@ -82,7 +87,8 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
         handed = [0]  # how many of the batch's targets have been handed over
         ended = [False]
 
-        def decided(k: int) -> IKSolution | None:
+        # (each batch's closures are called only within its own iteration: the loop's values are bound as defaults)
+        def decided(k: int, answers: dict[int, IKSolution] = answers) -> IKSolution | None:
             here, other = answers.get(2 * k), answers.get(2 * k + 1)
             if here is None:
                 return None
@@ -94,7 +100,8 @@ def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[flo
                 return other
             return here
 
-        def found(g: int, solution: IKSolution) -> bool:
+        def found(g: int, solution: IKSolution, answers: dict[int, IKSolution] = answers, handed: list[int] = handed,
+                  batch: Sequence[Any] = batch, first: int = first, ended: list[bool] = ended) -> bool:
             answers[g] = solution
             while handed[0] < len(batch):
                 chosen = decided(handed[0])
@@ -217,7 +224,8 @@ def solve_tool(robot: Robot, arm: str, position: Sequence[float], orientation: S
     else:
         solution = reach(robot, arm, position, orientation)
     if not solution.success:
-        angle = "" if solution.orientation_error is None else f", {math.degrees(solution.orientation_error):.0f}° off in orientation"
+        angle = ("" if solution.orientation_error is None
+                 else f", {math.degrees(solution.orientation_error):.0f}° off in orientation")
         raise ReachabilityFailure(
             f"{arm_words(arm)} cannot reach {what}: the tool frame stays {solution.position_error * 100:.1f} cm away{angle}",
             arm=arm, position_error=solution.position_error)
@@ -328,7 +336,8 @@ def arm_configuration(robot: Robot, arm: str, config: Any) -> dict[str, float]:
             raise ManipulationFailure(f"'{unknown[0]}' is not a joint of the {arm_words(arm)}" + (f" ({hint})" if hint else ""))
         return {str(k): float(v) for k, v in config.items()}
     if len(config) != len(desc.joints):
-        raise ManipulationFailure(f"{arm_words(arm)} has {len(desc.joints)} joints ({', '.join(desc.joints)}), got {len(config)} values")
+        raise ManipulationFailure(f"{arm_words(arm)} has {len(desc.joints)} joints ({', '.join(desc.joints)}), "
+                                  f"got {len(config)} values")
     return dict(zip(desc.joints, (float(v) for v in config)))
 
 

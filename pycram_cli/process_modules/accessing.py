@@ -2,7 +2,8 @@
 rests in the drawer riding along (`planning/drawers.py` plans the grasp and checks the pull)."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words

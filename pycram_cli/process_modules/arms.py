@@ -2,7 +2,8 @@
 (inverse kinematics, ways around what is in the way, gripper values) is in `planning/`."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import GripperFailure, ManipulationFailure
 from ..planning import motion
@@ -12,7 +13,6 @@ from ..robots import Robot
 from ..world import JointLimitError
 from .base import ProcessModule
 from .registry import process_module
-
 
 #: the joint-space search's budget (legs checked) for a commanded arm configuration (`move-arm-joints`): it has no
 #: other goal to fall back on, so it searches longer than a motion to a tool pose (`paths.SEARCH_EDGES`). Measured

@@ -1,7 +1,8 @@
 """What every process module is: an executor of one kind of resolved designator on a robot."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..robots import Robot
 

@@ -1,7 +1,8 @@
 """The head executor: point the camera at a target (`planning/head.py` says how, for every camera mount)."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..planning.head import look_at
 from ..robots import Robot

@@ -2,7 +2,9 @@
 motions there), with physics where it matters (the object settles where it is let go)."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+import contextlib
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -63,8 +65,6 @@ class Place(ProcessModule):
         tool = robot.body.get_link_position_and_orientation(robot.description.arm(arm).tool_frame)
         up = reach(robot, arm, offset_along(tool[0], np.array([0.0, 0.0, 1.0]), LIFT), tool[1])
         if up.success:  # and up, clear of what stands there, if the way is free
-            try:
+            with contextlib.suppress(ManipulationFailure):
                 motion.move(robot, up.joint_positions, f"the {arm_words(arm)}'s retreat from {obj.name}")
-            except ManipulationFailure:
-                pass
         settle(obj)

@@ -1,7 +1,8 @@
 """Navigation: teleport the base; fail (and stay put) if the robot, or what it holds, would collide."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import NavigationFailure
 from ..planning.contacts import collisions

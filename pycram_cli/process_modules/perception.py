@@ -1,7 +1,8 @@
 """Perception: detect a visible object of a type, or look it up in the world state."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import PerceptionFailure
 from ..reasoning import occluding, visible
@@ -23,7 +24,7 @@ class Detecting(ProcessModule):
         candidates = _of_type(robot, object_type)
         if not candidates:
             raise PerceptionFailure(f"there is no object of type '{object_type}' to see", object_type=object_type)
-        seen = []
+        seen: list[tuple[float, str, Object | str]] = []  # (order, name, the object or why it is not seen)
         for obj in candidates:
             answer = visible(obj, world=robot.world)
             if answer.visible:
@@ -32,7 +33,7 @@ class Detecting(ProcessModule):
                 blockers = [o.name for o in occluding(obj, world=robot.world)]
                 reason = f"{answer.fraction:.0%} visible" + (f", hidden by {', '.join(blockers)}" if blockers else "")
                 seen.append((1.0, obj.name, reason))
-        visible_ones = [s for s in seen if isinstance(s[2], Object)]
+        visible_ones = [(order, name, obj) for order, name, obj in seen if isinstance(obj, Object)]
         if visible_ones:
             return min(visible_ones)[2]
         details = "; ".join(f"{name}: {reason}" for _, name, reason in seen)

@@ -6,7 +6,8 @@ description may name another (`process_modules: {moving: my-navigation}`).
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Callable, TypeVar
+from collections.abc import Callable
+from typing import TYPE_CHECKING, TypeVar
 
 from ..errors import InputError, Location, did_you_mean
 from .base import ProcessModule
@@ -32,14 +33,14 @@ def process_module(name: str) -> Callable[[T], T]:
     return register
 
 
-def module_name(designator: str, default: str, description: "RobotDescription | None") -> str:
+def module_name(designator: str, default: str, description: RobotDescription | None) -> str:
     """The module that performs `designator` on a robot: its description's choice, else the designator's default."""
     if description is not None:
         return description.process_modules.get(designator, default)
     return default
 
 
-def choose(designator: str, default: str, description: "RobotDescription | None" = None) -> ProcessModule:
+def choose(designator: str, default: str, description: RobotDescription | None = None) -> ProcessModule:
     """The process module for `designator` on a robot; an unknown module name is an input error."""
     name = module_name(designator, default, description)
     module = PROCESS_MODULES.get(name)

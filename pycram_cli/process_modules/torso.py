@@ -1,7 +1,8 @@
 """The torso: raise or lower it (its prismatic joint, named in the robot description)."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ..failures import ManipulationFailure
 from ..robots import Robot

@@ -13,12 +13,14 @@ sentence) at the end of the module that computes it (`stable.py` declares `stabl
 `QUERIES` and `run_query` answer them by name with JSON-friendly results, for plans and
 `pycram query`. A new query is a module ending with its `declare_query(...)`, imported here.
 """
-# the design's seven queries, declared in this order (`pycram query` and the docs list them so)
+# the design's seven queries, declared in this order (`pycram query` and the docs list them so): isort keeps off
+# isort: off
 from .stable import StableAnswer, stable
 from .contact import ContactAnswer, contact
 from .visibility import VisibleAnswer, occluding, visible
 from .reachability import ReachableAnswer, blocking, reachable
 from .supporting import supporting
+# isort: on
 from .ik import IKSolution, solve, solve_link
 from .query import QUERIES, Call, QueryAnswer, QuerySpec, check_query_args, declare_query, parameters, run_query
 

@@ -9,7 +9,7 @@ if TYPE_CHECKING:
     from ..world import Object
 
 
-def world_of(obj: "Object", world: BulletWorld | None = None) -> BulletWorld:
+def world_of(obj: Object, world: BulletWorld | None = None) -> BulletWorld:
     """The world `obj` lives in (a `world` argument, if given, must be that world)."""
     if world is not None and obj.world is not world:
         raise WorldError(f"object '{obj.name}' is not in the given world")
@@ -18,7 +18,7 @@ def world_of(obj: "Object", world: BulletWorld | None = None) -> BulletWorld:
     return obj.world
 
 
-def same_world(*objects: "Object") -> BulletWorld:
+def same_world(*objects: Object) -> BulletWorld:
     world = objects[0].world
     for obj in objects[1:]:
         if obj.world is not world:
@@ -28,7 +28,7 @@ def same_world(*objects: "Object") -> BulletWorld:
     return world
 
 
-def attached_descendants(obj: "Object") -> list["Object"]:
+def attached_descendants(obj: Object) -> list[Object]:
     """Every object that follows `obj` (its attached children, theirs, ...), in a stable order."""
     found: list[Object] = []
     seen = {obj.id}

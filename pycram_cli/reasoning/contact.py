@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..errors import BadValue
 from ..signature import Param
 from ._common import same_world
 from .query import AN_OBJECT, Call, QueryAnswer, QuerySpec, declare_query, finite, mm, parameters
@@ -35,12 +36,12 @@ class ContactAnswer:
         return self.in_contact
 
 
-def contact(a: "Object", b: "Object", tolerance: float = 0.005, links: bool = False) -> ContactAnswer:
+def contact(a: Object, b: Object, tolerance: float = 0.005, links: bool = False) -> ContactAnswer:
     """Whether `a` and `b` are within `tolerance` metres of each other (touching)."""
     if a is b:
-        raise ValueError(f"contact needs two different objects, got '{a.name}' twice")
+        raise BadValue(f"contact needs two different objects, got '{a.name}' twice")
     if not (tolerance >= 0 and math.isfinite(tolerance)):
-        raise ValueError(f"tolerance must be a non-negative distance in metres, got {tolerance!r}")
+        raise BadValue(f"tolerance must be a non-negative distance in metres, got {tolerance!r}")
     world = same_world(a, b)
     with world.lock:
         if links:

@@ -24,8 +24,9 @@ from __future__ import annotations
 import math
 import weakref
 from collections import OrderedDict
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable, Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -111,10 +112,10 @@ class Chain:
     joints: list[_ChainJoint]
     tool_com_to_link: np.ndarray  # tool centre of mass -> tool link frame
     #: what searches over its joints need, per tuple of variable joints (`_kinematics`)
-    kinematics: "dict[tuple[str, ...], _Kinematics]" = field(default_factory=dict, repr=False, compare=False)
+    kinematics: dict[tuple[str, ...], _Kinematics] = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
-    def build(cls, robot: "Object", link_index: int) -> "Chain":
+    def build(cls, robot: Object, link_index: int) -> Chain:
         joints: list[_ChainJoint] = []
         index = link_index
         while index != -1:
@@ -135,10 +136,10 @@ class Chain:
 
 
 #: chains already built, per robot and tool link (forgotten with the robot)
-_CHAINS: "weakref.WeakKeyDictionary[Object, dict[int, Chain]]" = weakref.WeakKeyDictionary()
+_CHAINS: weakref.WeakKeyDictionary[Object, dict[int, Chain]] = weakref.WeakKeyDictionary()
 
 
-def chain_for(robot: "Object", link_index: int) -> Chain:
+def chain_for(robot: Object, link_index: int) -> Chain:
     cache = _CHAINS.setdefault(robot, {})
     chain = cache.get(link_index)
     if chain is None:
@@ -197,7 +198,7 @@ class _Kinematics:
         self.all_revolute = not self.prismatic
         self._layouts: dict[tuple[float, ...], _Layout] = {}
 
-    def layout(self, current: Mapping[str, float]) -> "_Layout":
+    def layout(self, current: Mapping[str, float]) -> _Layout:
         """The chain's constant parts for the other joints' values in `current` (`_Layout`)."""
         key = tuple(current[name] for name in self.fixed)
         found = self._layouts.get(key)
@@ -279,7 +280,7 @@ class _Problem:
     are laid out joint-major ((n, S, ...)), so that each joint's slice is contiguous.
     """
 
-    def __init__(self, robot: "Object", chain: Chain, variable: Sequence[str]) -> None:
+    def __init__(self, robot: Object, chain: Chain, variable: Sequence[str]) -> None:
         kin = _kinematics(chain, variable)
         base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
         current = robot.get_joint_positions(kin.read) if kin.read else {}
@@ -432,7 +433,7 @@ Found = tuple[np.ndarray, float, "float | None"]
 
 def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.ndarray], target_pos: np.ndarray,
                    target_rot: np.ndarray | None, threshold: float, angle_threshold: float, iterations: int,
-                   enough: "Callable[[int, Found], bool] | None" = None) -> list[Found | None]:
+                   enough: Callable[[int, Found], bool] | None = None) -> list[Found | None]:
     """Levenberg–Marquardt from every seed at once, for several groups of seeds (rows of `seeds`): a group stops when
     one of its seeds converged or all stalled, and its answer is the first of its seeds (in seed order) within the
     thresholds once converged, or the one with the smallest weighted error. Every seed's iterations are independent
@@ -467,10 +468,11 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
             pick = int(np.argmax(converged))
         else:
             pick = int(np.argmin(np.where(within, cost, np.inf))) if within.any() else int(np.argmin(cost))
-        answers[g] = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if oriented else None)
+        found = (best_q[idx[pick]].copy(), float(pos[pick]), float(ang[pick]) if oriented else None)
+        answers[g] = found
         todo.remove(g)
         pending[g] = False
-        return enough is not None and enough(g, answers[g])
+        return enough is not None and enough(g, found)
 
     rows = 6 if oriented else 3
     diagonal = slice(None, None, n + 1)  # the diagonal of a flattened n×n matrix
@@ -481,6 +483,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         now = np.zeros((count, 3))  # cost, position error, angle error
         np.sqrt(np.einsum("ij,ij->i", dp, dp), out=now[:, 1])
         if oriented:
+            assert target_rot is not None
             dr, now[:, 2] = _rotation_errors(target_rot, tool[:, :3, :3])
             np.multiply(dr, ORIENTATION_WEIGHT, out=e[:, 3:])
         np.einsum("ij,ij->i", e, e, out=now[:, 0])
@@ -498,8 +501,8 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
         if stalled:
             done |= (member & good).any(axis=1) | ~(member & active).any(axis=1)
         finished = np.flatnonzero(done & pending)
-        for g in finished:
-            if finish(int(g)):
+        for row in finished:
+            if finish(int(row)):
                 return answers
         if not todo:
             return answers
@@ -515,7 +518,7 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
                 history = [h[keep] for h in history]
                 if per_seed_target:
                     target_pos = target_pos[keep]
-                    target_rot = target_rot[keep] if oriented else None
+                    target_rot = target_rot[keep] if oriented and target_rot is not None else None
                 count = len(keep)
         jt = problem.jacobian_t(tool, origins, axes, ORIENTATION_WEIGHT if oriented else None)  # (S,n,rows)
         lhs = jt @ jt.transpose(0, 2, 1)
@@ -531,10 +534,10 @@ def _search_groups(problem: _Problem, seeds: np.ndarray, groups: Sequence[np.nda
 #: how many answers `solve_link_each` keeps per robot (the latest used)
 MEMO_SIZE = 512
 #: answers already found, per robot: by the robot's state, the link, joints, settings and query (forgotten with the robot)
-_MEMO: "weakref.WeakKeyDictionary[Object, OrderedDict[tuple, IKSolution]]" = weakref.WeakKeyDictionary()
+_MEMO: weakref.WeakKeyDictionary[Object, OrderedDict[tuple, IKSolution]] = weakref.WeakKeyDictionary()
 
 
-def _recall(memo: "OrderedDict[tuple, IKSolution]", key: tuple) -> IKSolution | None:
+def _recall(memo: OrderedDict[tuple, IKSolution], key: tuple) -> IKSolution | None:
     found = memo.get(key)
     if found is None:
         return None
@@ -542,13 +545,13 @@ def _recall(memo: "OrderedDict[tuple, IKSolution]", key: tuple) -> IKSolution | 
     return IKSolution(found.success, dict(found.joint_positions), found.position_error, found.orientation_error)
 
 
-def _remember(memo: "OrderedDict[tuple, IKSolution]", key: tuple, answer: IKSolution) -> None:
+def _remember(memo: OrderedDict[tuple, IKSolution], key: tuple, answer: IKSolution) -> None:
     memo[key] = IKSolution(answer.success, dict(answer.joint_positions), answer.position_error, answer.orientation_error)
     if len(memo) > MEMO_SIZE:
         memo.popitem(last=False)
 
 
-def forget_answers(robot: "Object | None" = None) -> None:
+def forget_answers(robot: Object | None = None) -> None:
     """Forget the answers kept for `robot` (None: for every robot): what a benchmark of a first query needs."""
     if robot is None:
         _MEMO.clear()
@@ -556,7 +559,7 @@ def forget_answers(robot: "Object | None" = None) -> None:
         _MEMO.pop(robot, None)
 
 
-def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
+def _arm_joints(robot: Object, tool_link: str) -> list[str]:
     desc = description_for(robot)
     if desc is not None:
         arm = desc.arm_of_link(tool_link)
@@ -570,7 +573,7 @@ def _arm_joints(robot: "Object", tool_link: str) -> list[str]:
     return [j.name for j in chain.joints if j.movable and j.name not in torso]
 
 
-def forward_pose(robot: "Object", tool_link: str, joint_positions: dict[str, float]) -> tuple[Vec3, Quat]:
+def forward_pose(robot: Object, tool_link: str, joint_positions: dict[str, float]) -> tuple[Vec3, Quat]:
     """PyBullet's pose of `tool_link` with `joint_positions` applied, computed on the world's prospection copy of
     the robot: the robot itself is only read (see world/prospection.py)."""
     twin = robot.world.prospection([robot], velocities=False)
@@ -602,10 +605,10 @@ def solve(
 def solve_each(
     robot: Robot,
     arm: str,
-    queries: "Sequence[Query]",
+    queries: Sequence[Query],
     threshold: float = 0.01,
     angle_threshold: float = 0.1,
-    enough: "Callable[[int, IKSolution], bool] | None" = None,
+    enough: Callable[[int, IKSolution], bool] | None = None,
     best_effort: bool = True,
 ) -> list[IKSolution | None]:
     """`solve` for several queries at once (`solve_link_each`), for the arm's tool frame and joints."""
@@ -614,7 +617,7 @@ def solve_each(
 
 
 def solve_link(
-    robot: "Object",
+    robot: Object,
     tool_link: str,
     position: Sequence[float],
     orientation: Sequence[float] | None = None,
@@ -643,7 +646,7 @@ Query = tuple[Sequence[float], "Sequence[float] | None", "Mapping[str, float] | 
 
 
 def solve_link_each(
-    robot: "Object",
+    robot: Object,
     tool_link: str,
     queries: Sequence[Query],
     joints: Sequence[str] | None = None,
@@ -697,7 +700,8 @@ def solve_link_each(
                                      f"got {', '.join(unknown)}")
                 current = np.array([start.get(n, c) for n, c in zip(problem.names, problem.current)], dtype=float)
             starts.append(current)
-            keys.append((asked, targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes(),
+            rotation = rotations[k]
+            keys.append((asked, targets[k].tobytes(), None if rotation is None else rotation.tobytes(),
                          None if current is None else current.tobytes()))
         searched: list[int] = []
         for k, key in enumerate(keys):
@@ -706,9 +710,10 @@ def solve_link_each(
                 beyond = problem.beyond_reach(targets[k], rotations[k], threshold, angle_threshold)
                 if beyond > 0.0:
                     answers[k] = IKSolution(False, {}, beyond + threshold + REACH_SLACK, None)
-            if answers[k] is None:
+            answer = answers[k]
+            if answer is None:
                 searched.append(k)
-            elif enough is not None and enough(k, answers[k]):
+            elif enough is not None and enough(k, answer):
                 return answers
         if not searched:
             return answers
@@ -717,7 +722,8 @@ def solve_link_each(
         row_target: list[int] = []
         groups: list[np.ndarray] = []
         for k in searched:
-            aim = (targets[k].tobytes(), None if rotations[k] is None else rotations[k].tobytes())
+            rotation = rotations[k]
+            aim = (targets[k].tobytes(), None if rotation is None else rotation.tobytes())
             group = []
             for seed in _seeds(problem, max(1, seeds), starts[k]):
                 key = (seed.tobytes(), aim)
@@ -732,9 +738,10 @@ def solve_link_each(
             k = searched[g]
             solution = {name: float(v) for name, v in zip(problem.names, found[0])}
             pos, orn = forward_pose(robot, tool_link, solution)
-            answers[k] = _verdict(solution, pos, orn, targets[k], rotations[k], threshold, angle_threshold)
-            _remember(memo, keys[k], answers[k])
-            return enough is not None and enough(k, answers[k])
+            verdict = _verdict(solution, pos, orn, targets[k], rotations[k], threshold, angle_threshold)
+            answers[k] = verdict
+            _remember(memo, keys[k], verdict)
+            return enough is not None and enough(k, verdict)
 
         if len(set(row_target)) == 1:  # one target for all: broadcast it
             target_pos, target_rot = targets[row_target[0]], rotations[row_target[0]]

@@ -29,8 +29,9 @@ are spawned up to 1 mm above their support; a stable object moves less than 1 mm
 from __future__ import annotations
 
 import weakref
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -51,15 +52,15 @@ class Neighbourhood:
     attached to them); `kept`: the fixed bodies simulated too; `parked`: everything else. `boxes`: each
     free or parked body's box as it stood, (2, 3) arrays of the min and max corner, by object id."""
 
-    members: list["Object"]
-    kept: list["Object"]
-    parked: list["Object"]
+    members: list[Object]
+    kept: list[Object]
+    parked: list[Object]
     boxes: dict[int, np.ndarray]
     #: joints (by index) of kept fixed bodies that nothing simulated comes near: they need not be held
     loose: dict[int, list[int]] = field(default_factory=dict)
 
 
-def attached_closure(objects: Iterable["Object"]) -> list["Object"]:
+def attached_closure(objects: Iterable[Object]) -> list[Object]:
     """`objects` with everything attached to them, transitively (parents and children), in a stable order."""
     found: dict[int, Object] = {}
     frontier = list(objects)
@@ -72,7 +73,7 @@ def attached_closure(objects: Iterable["Object"]) -> list["Object"]:
     return list(found.values())
 
 
-def box_of(obj: "Object") -> np.ndarray:
+def box_of(obj: Object) -> np.ndarray:
     """The object's box (2, 3): min and max corner of its collision shapes."""
     lo, hi = obj.get_aabb(-1) if not obj.joints else obj.get_aabb()
     return np.array([lo, hi], dtype=float)
@@ -85,7 +86,7 @@ def overlapping(box: np.ndarray, boxes: np.ndarray, grow: float = 0.0) -> np.nda
     return np.all((boxes[:, 0] <= box[1] + grow) & (boxes[:, 1] >= box[0] - grow), axis=1)
 
 
-def reaches(objects: list["Object"], boxes: np.ndarray, seconds: float, supported: np.ndarray,
+def reaches(objects: list[Object], boxes: np.ndarray, seconds: float, supported: np.ndarray,
             gravity: float = 9.81) -> np.ndarray:
     """How far each object's box can grow in `seconds` (m), falling aside (see the module's text).
 
@@ -106,7 +107,7 @@ def reaches(objects: list["Object"], boxes: np.ndarray, seconds: float, supporte
     return np.where(supported, resting, flying)
 
 
-def find(world: "BulletWorld", obj: "Object", seconds: float) -> Neighbourhood:
+def find(world: BulletWorld, obj: Object, seconds: float) -> Neighbourhood:
     """The neighbourhood of `obj` in `world` for a check that simulates `seconds` (see the module's text)."""
     free = [o for o in world.objects if not o.fixed]
     free_boxes = np.array([box_of(o) for o in free]).reshape(-1, 2, 3)
@@ -160,10 +161,10 @@ def find(world: "BulletWorld", obj: "Object", seconds: float) -> Neighbourhood:
     return Neighbourhood(ordered, kept, parked, boxes, loose)
 
 
-_JOINT_BOXES: "weakref.WeakKeyDictionary[Object, tuple[tuple, dict[int, np.ndarray]]]" = weakref.WeakKeyDictionary()
+_JOINT_BOXES: weakref.WeakKeyDictionary[Object, tuple[tuple, dict[int, np.ndarray]]] = weakref.WeakKeyDictionary()
 
 
-def _joint_boxes(obj: "Object") -> dict[int, np.ndarray]:
+def _joint_boxes(obj: Object) -> dict[int, np.ndarray]:
     """For each movable joint of `obj` (by index): the box of everything it moves (its child link's subtree),
     kept while the object's pose and joint positions stay."""
     key = (obj.get_com_pose(), tuple(obj.get_joint_positions().values()))
@@ -180,7 +181,7 @@ def _joint_boxes(obj: "Object") -> dict[int, np.ndarray]:
     return boxes
 
 
-def _descends(obj: "Object", link: int, ancestor: int) -> bool:
+def _descends(obj: Object, link: int, ancestor: int) -> bool:
     while link >= 0:
         if link == ancestor:
             return True
@@ -196,7 +197,7 @@ def _hits(lo: np.ndarray, hi: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return np.all(inside, axis=2).any(axis=1)
 
 
-def _supported(world: "BulletWorld", obj: "Object", boxes: dict[int, np.ndarray]) -> bool:
+def _supported(world: BulletWorld, obj: Object, boxes: dict[int, np.ndarray]) -> bool:
     """Whether anything is within TOUCH of `obj` (else it falls freely)."""
     box = boxes[obj.id]
     for other in world.objects:
@@ -207,7 +208,7 @@ def _supported(world: "BulletWorld", obj: "Object", boxes: dict[int, np.ndarray]
     return False
 
 
-def _touching_closure(world: "BulletWorld", members: dict[int, "Object"], free: list["Object"],
+def _touching_closure(world: BulletWorld, members: dict[int, Object], free: list[Object],
                       boxes: dict[int, np.ndarray]) -> None:
     """Add to `members` every free body within TOUCH of a free member, transitively (with its attachments)."""
     candidates = [o for o in free if o.id not in members]
@@ -224,7 +225,7 @@ def _touching_closure(world: "BulletWorld", members: dict[int, "Object"], free: 
         candidates = [o for o in candidates if o.id not in members]
 
 
-def near_parked(box: np.ndarray, grow: float, parked: list["Object"], boxes: dict[int, np.ndarray]) -> list["Object"]:
+def near_parked(box: np.ndarray, grow: float, parked: list[Object], boxes: dict[int, np.ndarray]) -> list[Object]:
     """The parked objects whose box (as it stood) overlaps `box` grown by `grow`."""
     if not parked:
         return []

@@ -14,10 +14,11 @@ JSON-friendly `args`, `result` and `details`, and the Python `value` (a bool, or
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
-from ..errors import InputError, Location, did_you_mean
+from ..errors import InputError, Location, did_you_mean, setting
 from ..kinds import KINDS, NOTHING_KNOWN, Robots, parse_vector
 from ..robots import RobotDescription, description_for
 from ..schema import is_vector
@@ -58,7 +59,7 @@ class QuerySpec:
     name: str
     doc: str
     signature: Signature
-    run: Callable[["Call"], QueryAnswer]
+    run: Callable[[Call], QueryAnswer]
     describe: Callable[[QueryAnswer], str]
 
     @property
@@ -157,7 +158,7 @@ def place(value: Any) -> str:
 class Call:
     """One call of a query: resolves its arguments against a world and records the resolved values."""
 
-    def __init__(self, world: "BulletWorld", spec: QuerySpec, args: Mapping[str, Any]) -> None:
+    def __init__(self, world: BulletWorld, spec: QuerySpec, args: Mapping[str, Any]) -> None:
         self.world = world
         self.spec = spec
         self.resolved: dict[str, Any] = {}
@@ -251,7 +252,7 @@ class Call:
         if value is None:
             desc = self.description("camera", "from")
             if desc.camera is None:
-                raise self.error("from", f"robot '{desc.name}' has no camera", "give a camera with --from LINK|x,y,z")
+                raise self.error("from", f"robot '{desc.name}' has no camera", f"give a camera: {setting('from')} LINK|x,y,z")
             self.resolved["from"] = desc.camera.frame
             return None
         if isinstance(value, str):
@@ -319,7 +320,7 @@ class Call:
         return list(value)
 
 
-def run_query(world: "BulletWorld", name: str, args: Mapping[str, Any]) -> QueryAnswer:
+def run_query(world: BulletWorld, name: str, args: Mapping[str, Any]) -> QueryAnswer:
     """Answer query `name` with `args` (parameter name -> value) in `world`. Bad input raises InputError."""
     spec = QUERIES.get(name)
     if spec is None:

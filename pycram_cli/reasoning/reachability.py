@@ -15,9 +15,11 @@ copy's hand while checking (and collide too). The world itself is only read.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Callable, Iterable
+from typing import TYPE_CHECKING, Any
 
+from ..errors import BadValue
 from ..kinds import arm_phrase
 from ..robots import description_for
 from ..signature import Param
@@ -80,7 +82,7 @@ def register_take_check(check: TakeCheck) -> None:
     _TAKE_CHECKS[:] = [check]
 
 
-def can_take(robot: "Object", obj: "Object", arm: str | None = None, grasp: Any = None) -> TakeAnswer | None:
+def can_take(robot: Object, obj: Object, arm: str | None = None, grasp: Any = None) -> TakeAnswer | None:
     """Pick-up's own answer for `obj` from where the robot stands, or None when no planner is loaded."""
     return _TAKE_CHECKS[0](robot, obj, arm, grasp) if _TAKE_CHECKS else None
 
@@ -95,7 +97,7 @@ def target_pose(target: Any) -> tuple[tuple[float, float, float], tuple[float, f
     return check_position(items, "target position"), None
 
 
-def grasp_orientation(robot: "Object", grasp: Any) -> tuple[float, float, float, float] | None:
+def grasp_orientation(robot: Object, grasp: Any) -> tuple[float, float, float, float] | None:
     """World orientation of the tool for a grasp name (robot description, relative to the base) or a quaternion."""
     if grasp is None:
         return None
@@ -104,12 +106,12 @@ def grasp_orientation(robot: "Object", grasp: Any) -> tuple[float, float, float,
         grasps = desc.grasps if desc is not None else {}
         if grasp not in grasps:
             known = ", ".join(grasps) or "none: the robot has no description"
-            raise ValueError(f"unknown grasp '{grasp}' for robot '{robot.name}' (grasps: {known})")
+            raise BadValue(f"unknown grasp '{grasp}' for robot '{robot.name}' (grasps: {known})")
         return quat_multiply(robot.get_orientation(), grasps[grasp])
     return check_quaternion(grasp, "grasp orientation")
 
 
-def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshold: float, angle_threshold: float):
+def _solve(target: Any, robot: Object, gripper_link: str, grasp: Any, threshold: float, angle_threshold: float):
     position, orientation = target_pose(target)
     wanted = grasp_orientation(robot, grasp)
     if wanted is None:
@@ -117,19 +119,19 @@ def _solve(target: Any, robot: "Object", gripper_link: str, grasp: Any, threshol
     return solve_link(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
 
 
-def reachable(target: Any, robot: "Object", gripper_link: str, grasp: Any = None, threshold: float = REACH,
+def reachable(target: Any, robot: Object, gripper_link: str, grasp: Any = None, threshold: float = REACH,
               angle_threshold: float = 0.1) -> ReachableAnswer:
     """Whether IK brings `gripper_link` within `threshold` m (and `angle_threshold` rad of the grasp) of `target`."""
     if not (threshold > 0 and math.isfinite(threshold)):
-        raise ValueError(f"threshold must be a positive distance in metres, got {threshold!r}")
+        raise BadValue(f"threshold must be a positive distance in metres, got {threshold!r}")
     with robot.world.lock:
         sol = _solve(target, robot, gripper_link, grasp, threshold, angle_threshold)
     return ReachableAnswer(sol.success, sol.joint_positions, sol.position_error, sol.orientation_error)
 
 
-def blocking(target: Any, robot: "Object", gripper_link: str, grasp: Any = None,
+def blocking(target: Any, robot: Object, gripper_link: str, grasp: Any = None,
              exclude_types: Iterable[str] = (), threshold: float = REACH, angle_threshold: float = 0.1,
-             tolerance: float = TOUCH) -> list["Object"]:
+             tolerance: float = TOUCH) -> list[Object]:
     """The objects the robot touches at the IK solution for `target` (sorted by name).
 
     Never the target itself, the robot, or what the robot holds; objects whose type is in
@@ -140,8 +142,8 @@ def blocking(target: Any, robot: "Object", gripper_link: str, grasp: Any = None,
         return touching_at(robot, sol.joint_positions, target, exclude_types, tolerance)
 
 
-def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any = None,
-                exclude_types: Iterable[str] = (), tolerance: float = TOUCH) -> list["Object"]:
+def touching_at(robot: Object, joint_positions: dict[str, float], target: Any = None,
+                exclude_types: Iterable[str] = (), tolerance: float = TOUCH) -> list[Object]:
     """The objects the robot touches with `joint_positions` applied (then put back exactly)."""
     world = robot.world
     excluded_types = {exclude_types} if isinstance(exclude_types, str) else set(exclude_types)
@@ -167,7 +169,7 @@ def touching_at(robot: "Object", joint_positions: dict[str, float], target: Any 
         return sorted((twin.original_of(o) for o in found), key=lambda o: (o.name, o.id))
 
 
-def _touches(body: "Object", links: frozenset[int], other: "Object", tolerance: float) -> bool:
+def _touches(body: Object, links: frozenset[int], other: Object, tolerance: float) -> bool:
     """Whether any of the body's `links` comes within `tolerance` of `other`."""
     return any(point.link_a in links for point in body.world.closest_points(body, other, tolerance))
 
@@ -176,7 +178,8 @@ def _touches(body: "Object", links: frozenset[int], other: "Object", tolerance: 
 
 
 _TARGET = "an object name or a position [x, y, z]"
-_ARM = Param("arm", "arm", doc="the arm to reach with", default_doc="every arm in the description's order: the first that reaches")
+_ARM = Param("arm", "arm", doc="the arm to reach with",
+             default_doc="every arm in the description's order: the first that reaches")
 _GRASP = Param("grasp", "grasp", doc="tool orientation: a grasp of the robot (front, top, ...) or a quaternion [x, y, z, w]",
                default_doc="any orientation")
 _REACH = Param("threshold", "distance", doc="how close (m) the tool frame must come", default=REACH)

@@ -48,8 +48,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..world.parking import Parking
 from ..signature import Param
+from ..world.parking import Parking
 from ..world.pose import angle_between
 from . import neighbourhood
 from ._common import world_of
@@ -122,7 +122,7 @@ def _moved(a: tuple, b: tuple) -> tuple[float, float]:
     return math.dist(a[0], b[0]), angle_between(a[1], b[1])
 
 
-def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = SECONDS,
+def stable(obj: Object, world: BulletWorld | None = None, seconds: float = SECONDS,
            distance: float = DISTANCE, angle: float = ANGLE, observe: float = OBSERVE) -> StableAnswer:
     """Whether `obj` moves less than `distance` (m) and `angle` (rad) while the world runs for `seconds`; an object
     that does not is watched `observe` s longer to say what it does (0: the verdict only, as fast as it comes)."""
@@ -149,7 +149,7 @@ def stable(obj: "Object", world: "BulletWorld | None" = None, seconds: float = S
 class _Watch:
     """One check: steps the copy, watches the object and judges the neighbourhood's rest."""
 
-    def __init__(self, world: "BulletWorld", obj: "Object", hood: neighbourhood.Neighbourhood, parking: Parking,
+    def __init__(self, world: BulletWorld, obj: Object, hood: neighbourhood.Neighbourhood, parking: Parking,
                  distance: float, angle: float) -> None:
         self.world, self.obj, self.hood, self.parking = world, obj, hood, parking
         self.distance, self.angle = distance, angle
@@ -233,7 +233,7 @@ class _Watch:
         at_rest = True
         motion = (0.0, 0.0)
         gravity = float(np.linalg.norm(self.world.gravity))
-        returning: list["Object"] = []
+        returning: list[Object] = []
         for other in self.watched:
             pose = other.get_com_pose()
             md, ma = _moved(self.last[other.id], pose)
@@ -252,7 +252,7 @@ class _Watch:
             at_rest = False
         return at_rest, motion
 
-    def _put_back(self, objects: list["Object"]) -> None:
+    def _put_back(self, objects: list[Object]) -> None:
         """Bring parked bodies back into the check (with what touched them where they stood)."""
         hood = self.hood
         chosen = {o.id: o for o in neighbourhood.attached_closure(objects) if o in self.parking}
@@ -283,7 +283,7 @@ def _turns(series: list[float], swing: float) -> int:
     return turns
 
 
-def _loose(obj: "Object") -> bool:
+def _loose(obj: Object) -> bool:
     """A free object that nothing holds (what is attached to a parent just follows it)."""
     return not obj.fixed and not any(a.child is obj for a in obj.attachments.values())
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..errors import did_you_mean
+from ..errors import BadValue, did_you_mean
 from ..signature import Param
 from ._common import same_world
 from .query import Call, QueryAnswer, QuerySpec, declare_query, parameters
@@ -29,10 +29,10 @@ MIN_NORMAL_Z = 0.7
 TOLERANCE = 0.001
 
 
-def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> list[tuple[str, tuple[float, float, float]]]:
+def support_points(a: Object, b: Object, tolerance: float = TOLERANCE) -> list[tuple[str, tuple[float, float, float]]]:
     """The contact points where `a` holds `b` up: (a's link name, point on a)."""
     if a is b:
-        raise ValueError(f"supporting needs two different objects, got '{a.name}' twice")
+        raise BadValue(f"supporting needs two different objects, got '{a.name}' twice")
     world = same_world(a, b)
     with world.lock:
         # b first, a second: the normal on the second points from a towards b (up, when b rests on a)
@@ -50,7 +50,7 @@ def support_points(a: "Object", b: "Object", tolerance: float = TOLERANCE) -> li
         return found
 
 
-def supporting(a: "Object", b: "Object", link: str | None = None) -> bool:
+def supporting(a: Object, b: Object, link: str | None = None) -> bool:
     """True when `b` rests on `a` (on `a`'s link `link`, if given): b above, in contact, the contact roughly horizontal."""
     if link is not None:
         a.get_link_id(link)  # an unknown link is an error, not a "no"

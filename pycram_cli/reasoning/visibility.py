@@ -28,15 +28,17 @@ from __future__ import annotations
 
 import math
 import weakref
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import BadValue
 from ..robots import description_for
+from ..signature import Param
 from ..world.camera import projection_matrix, view_matrix
 from ..world.pose import check_position, check_quaternion, quat_to_matrix
-from ..signature import Param
 from ._common import world_of
 from .query import AN_OBJECT, Call, QueryAnswer, QuerySpec, declare_query, parameters, place
 
@@ -88,7 +90,7 @@ class CameraPose:
 # -- cameras ---------------------------------------------------------------------------
 
 
-def look_at(eye: Sequence[float], target: Sequence[float]) -> np.ndarray:
+def look_at(eye: Sequence[float] | np.ndarray, target: Sequence[float] | np.ndarray) -> np.ndarray:
     """Optical-frame rotation (x right, y down, z forward) looking from `eye` at `target`, upright."""
     z = np.asarray(target, dtype=float) - np.asarray(eye, dtype=float)
     norm = float(np.linalg.norm(z))
@@ -100,24 +102,24 @@ def look_at(eye: Sequence[float], target: Sequence[float]) -> np.ndarray:
     return np.column_stack([x, y, z])
 
 
-def _robot_camera(world: "BulletWorld") -> tuple["Object", Any]:
+def _robot_camera(world: BulletWorld) -> tuple[Object, Any]:
     robot = world.robot
     if robot is None:
-        raise ValueError("no camera given and the world has no robot to take it from")
+        raise BadValue("no camera given and the world has no robot to take it from")
     desc = description_for(robot)
     if desc is None or desc.camera is None:
         why = "has no description naming its camera" if desc is None else "has no camera in its description"
-        raise ValueError(f"no camera given and robot '{robot.name}' {why}")
+        raise BadValue(f"no camera given and robot '{robot.name}' {why}")
     return robot, desc.camera
 
 
-def _frame_camera(robot: "Object", cam: Any) -> CameraPose:
+def _frame_camera(robot: Object, cam: Any) -> CameraPose:
     pos, orn = robot.get_link_position_and_orientation(cam.frame)
     return CameraPose(np.asarray(pos, dtype=float), quat_to_matrix(orn), (cam.horizontal_fov, cam.vertical_fov),
                       cam.near, cam.frame)
 
 
-def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
+def resolve_camera(obj: Object, camera: Any = None) -> CameraPose:
     """Turn any accepted camera argument into an optical frame pose."""
     world = obj.world
     centre = _aabb_centre(obj)
@@ -125,13 +127,13 @@ def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
         robot, cam = _robot_camera(world)
         return _frame_camera(robot, cam)
     if isinstance(camera, str):
-        robot = world.robot
-        if robot is None:
-            raise ValueError(f"camera link '{camera}': the world has no robot")
-        desc = description_for(robot)
+        body = world.robot
+        if body is None:
+            raise BadValue(f"camera link '{camera}': the world has no robot")
+        desc = description_for(body)
         if desc is not None and desc.camera is not None and camera == desc.camera.frame:
-            return _frame_camera(robot, desc.camera)
-        pos = robot.get_link_position(camera)  # KeyError with a suggestion for unknown links
+            return _frame_camera(body, desc.camera)
+        pos = body.get_link_position(camera)  # KeyError with a suggestion for unknown links
         return CameraPose(np.asarray(pos, dtype=float), look_at(pos, centre), None, POSITION_NEAR, camera)
     if isinstance(camera, CameraPose):
         return camera
@@ -149,12 +151,12 @@ def resolve_camera(obj: "Object", camera: Any = None) -> CameraPose:
                       ",".join(f"{v:g}" for v in position))
 
 
-def _aabb(obj: "Object") -> tuple[np.ndarray, np.ndarray]:
+def _aabb(obj: Object) -> tuple[np.ndarray, np.ndarray]:
     lo, hi = obj.get_aabb(-1) if not obj.joints else obj.get_aabb()
     return np.asarray(lo), np.asarray(hi)
 
 
-def _aabb_centre(obj: "Object") -> np.ndarray:
+def _aabb_centre(obj: Object) -> np.ndarray:
     lo, hi = _aabb(obj)
     return (lo + hi) / 2.0
 
@@ -169,7 +171,7 @@ class _Views:
     in_view: np.ndarray  # True for pixels inside the camera's field of view
 
 
-def _window(obj: "Object", cam: CameraPose) -> tuple[float, float, float, float, float, float] | None:
+def _window(obj: Object, cam: CameraPose) -> tuple[float, float, float, float, float, float] | None:
     """(umin, umax, vmin, vmax, near, far) of the object's box on the image plane, or None if behind."""
     lo, hi = _aabb(obj)
     corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
@@ -192,7 +194,7 @@ def _window(obj: "Object", cam: CameraPose) -> tuple[float, float, float, float,
     return umin, umax, vmin, vmax, cam.near, far
 
 
-def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | None:
+def _render(world: BulletWorld, obj: Object, cam: CameraPose) -> _Views | None:
     window = _window(obj, cam)
     if window is None:
         return None
@@ -234,8 +236,8 @@ def _render(world: "BulletWorld", obj: "Object", cam: CameraPose) -> _Views | No
     return _Views(scene, alone, in_view)
 
 
-def _seen_parts(world: "BulletWorld", obj: "Object", cam: CameraPose,
-                window: tuple[float, float, float, float, float, float]) -> dict["Object", list[int] | None]:
+def _seen_parts(world: BulletWorld, obj: Object, cam: CameraPose,
+                window: tuple[float, float, float, float, float, float]) -> dict[Object, list[int] | None]:
     """What may show in the window: for each object the links whose boxes meet the frustum (None: all)."""
     objects, owners, links, boxes, unbounded, counts = _scene_boxes(world)
     inside = _in_frustum(boxes, cam, window) | unbounded
@@ -250,10 +252,10 @@ def _seen_parts(world: "BulletWorld", obj: "Object", cam: CameraPose,
     return parts
 
 
-_SCENES: "weakref.WeakKeyDictionary[BulletWorld, tuple]" = weakref.WeakKeyDictionary()
+_SCENES: weakref.WeakKeyDictionary[BulletWorld, tuple] = weakref.WeakKeyDictionary()
 
 
-def _scene_boxes(world: "BulletWorld") -> tuple[list["Object"], np.ndarray, list[int], np.ndarray, np.ndarray,
+def _scene_boxes(world: BulletWorld) -> tuple[list[Object], np.ndarray, list[int], np.ndarray, np.ndarray,
                                                 np.ndarray]:
     """Every drawn link of the world at once: the objects, each link's owner (index into them), link, box and
     whether it has none; and how many links each object draws. Kept while the world's version stays."""
@@ -261,7 +263,7 @@ def _scene_boxes(world: "BulletWorld") -> tuple[list["Object"], np.ndarray, list
     cached = _SCENES.get(world)
     if cached is not None and cached[0] == version and len(cached[1]) == len(world.objects) \
             and all(a is b for a, b in zip(cached[1], world.objects)):
-        return cached[1:]  # type: ignore[return-value]
+        return cached[1:]
     objects = list(world.objects)
     drawn = [_drawn_boxes(o) for o in objects]
     owners = np.concatenate([np.full(len(d[0]), i) for i, d in enumerate(drawn)] or [np.zeros(0)]).astype(int)
@@ -273,10 +275,10 @@ def _scene_boxes(world: "BulletWorld") -> tuple[list["Object"], np.ndarray, list
     return objects, owners, links, boxes, unbounded, counts
 
 
-_BOXES: "weakref.WeakKeyDictionary[Object, tuple[int, list[int], np.ndarray, np.ndarray]]" = weakref.WeakKeyDictionary()
+_BOXES: weakref.WeakKeyDictionary[Object, tuple[int, list[int], np.ndarray, np.ndarray]] = weakref.WeakKeyDictionary()
 
 
-def _drawn_boxes(obj: "Object") -> tuple[list[int], np.ndarray, np.ndarray]:
+def _drawn_boxes(obj: Object) -> tuple[list[int], np.ndarray, np.ndarray]:
     """The links `obj` draws, their boxes (n, 2, 3) grown by MARGIN, and which have no box (no collision shape);
     kept while the object's version stays."""
     version = obj.version
@@ -311,12 +313,12 @@ def _in_frustum(boxes: np.ndarray, cam: CameraPose, window: tuple[float, float, 
 # -- the queries --------------------------------------------------------------------------
 
 
-def visible(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None,
+def visible(obj: Object, camera: Any = None, world: BulletWorld | None = None,
             threshold: float = SEEN) -> VisibleAnswer:
     """Whether at least `threshold` (default 80 %) of `obj`'s pixels are seen from `camera`."""
     world = world_of(obj, world)
     if not 0.0 <= threshold <= 1.0:
-        raise ValueError(f"threshold must be a fraction between 0 and 1, got {threshold!r}")
+        raise BadValue(f"threshold must be a fraction between 0 and 1, got {threshold!r}")
     with world.lock:
         cam = resolve_camera(obj, camera)
         views = _render(world, obj, cam)
@@ -328,7 +330,7 @@ def visible(obj: "Object", camera: Any = None, world: "BulletWorld | None" = Non
     return VisibleAnswer(total > 0 and fraction >= threshold, fraction, seen, total)
 
 
-def occluding(obj: "Object", camera: Any = None, world: "BulletWorld | None" = None) -> list["Object"]:
+def occluding(obj: Object, camera: Any = None, world: BulletWorld | None = None) -> list[Object]:
     """The objects in front of `obj`'s pixels as seen from `camera` (sorted by name; never obj itself)."""
     world = world_of(obj, world)
     with world.lock:

@@ -93,16 +93,17 @@ def _geometry(mesh: ET.Element) -> tuple[np.ndarray, np.ndarray]:
             continue
         inputs = _children(primitive, "input")
         stride = 1 + max((int(i.get("offset", "0")) for i in inputs), default=0)
-        offset, source = None, None
+        offset: int | None = None
+        positions_id: str | None = None
         for put in inputs:
             target = (put.get("source") or "").lstrip("#")
             if put.get("semantic") == "VERTEX":
-                offset, source = int(put.get("offset", "0")), vertices.get(target, target)
+                offset, positions_id = int(put.get("offset", "0")), vertices.get(target, target)
             elif put.get("semantic") == "POSITION" and offset is None:
-                offset, source = int(put.get("offset", "0")), target
-        if offset is None or source not in sources:
+                offset, positions_id = int(put.get("offset", "0")), target
+        if offset is None or positions_id not in sources:
             continue
-        points = sources[source]
+        points = sources[positions_id]
         faces: list[np.ndarray] = []
         if kind == "polygons":
             for p in _children(primitive, "p"):

@@ -8,13 +8,15 @@ object and its target together, and `pycram run --render` of a failed run can fr
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Iterable, Iterator
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..plan.replay import PLACES
 from ..world.camera import boxes_camera, movable_objects
+from ..world.pose import vec3
 
 if TYPE_CHECKING:
     from ..world import BulletWorld
@@ -99,7 +101,7 @@ def focus(root: dict[str, Any], failed: dict[str, Any], objects: set[str],
     by_path = {node.get("path"): node for node in leaves(root)}
     paths = order if order is not None else list(by_path)
     path = failed.get("path")
-    before = paths[:paths.index(path)] if path in paths else paths
+    before = paths[:paths.index(path)] if isinstance(path, str) and path in paths else paths
     for earlier in reversed(before):  # the latest step that named one of the objects and a place
         node = by_path.get(earlier)
         if node is None:
@@ -112,7 +114,7 @@ def focus(root: dict[str, Any], failed: dict[str, Any], objects: set[str],
     return Focus(named, None, None)
 
 
-def failure_camera(world: "BulletWorld", trace: dict[str, Any], aspect: float = 4 / 3) -> "Camera | None":
+def failure_camera(world: BulletWorld, trace: dict[str, Any], aspect: float = 4 / 3) -> Camera | None:
     """A camera on a failed run's failure in `world` as the run left it: the objects the failed step names and the
     place meant for them (the box the first of them would have there, its bottom's centre at the target); None
     when the run did not fail or its failure names neither."""
@@ -129,15 +131,15 @@ def failure_camera(world: "BulletWorld", trace: dict[str, Any], aspect: float = 
         if boxes:  # the first object's box, moved so that its bottom's centre is at the target
             lo, hi = boxes[0]
             shift = [t - c for t, c in zip(found.target, ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2]))]
-            boxes.append((tuple(a + d for a, d in zip(lo, shift)), tuple(b + d for b, d in zip(hi, shift))))
+            boxes.append((vec3(a + d for a, d in zip(lo, shift)), vec3(b + d for b, d in zip(hi, shift))))
         else:
-            boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
+            boxes.append((vec3(v - 0.05 for v in found.target), vec3(v + 0.05 for v in found.target)))
     if not boxes:
         return None
     return framing(world, boxes, aspect)
 
 
-def framing(world: "BulletWorld", boxes: list[Any], aspect: float, fov_deg: float = 50.0) -> "Camera":
+def framing(world: BulletWorld, boxes: list[Any], aspect: float, fov_deg: float = 50.0) -> Camera:
     """A camera on a failure's boxes, from above and at least FAILURE_DISTANCE away: past what stands in the way
     where it can, else from outside whatever hides them (not from inside a closed drawer that holds the object)."""
     heading = None

@@ -30,10 +30,11 @@ import base64
 import io
 import json
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 from ..designators.declaration import DESIGNATORS
 from ..plan.replay import focus_points
@@ -41,7 +42,7 @@ from ..plan.trace import REPLAY_KEY
 from ..reasoning.visibility import resolve_camera
 from ..world import BulletWorld
 from ..world.camera import Camera, encode_image, render
-from ..world.pose import matrix_to_quat
+from ..world.pose import matrix_to_quat, vec3
 from ..worldfile.loader import load_world
 from .foxglove_scene import WORLD_FRAME, SceneEntities, color, quaternion, time_of, vector
 from .foxglove_schemas import SCHEMAS
@@ -90,7 +91,7 @@ def _short(value: Any, limit: int = 60) -> str:
 def step_text(step: dict[str, Any], node: dict[str, Any]) -> str:
     """`PATH: slot=value, ...` (slots in name order: a trace run now and the same trace read from its file give
     the same text) and, for a failed step, its failure; a folded entry says how many it stands for."""
-    values = {}
+    values: dict[str, Any] = {}
     if isinstance(node.get("designator"), dict):
         values = node["designator"].get("resolved") or node["designator"].get("slots") or {}
     elif isinstance(node.get("query"), dict):
@@ -167,11 +168,9 @@ def robot_camera(world: BulletWorld) -> RobotCamera | None:
     forward, down = pose.rotation[:, 2], pose.rotation[:, 1]
     horizontal, vertical = pose.fov if pose.fov else (math.radians(60.0), math.radians(45.0))
     aspect = math.tan(horizontal / 2) / math.tan(vertical / 2)
-    camera = Camera(tuple(float(v) for v in eye), tuple(float(v) for v in eye + forward),  # type: ignore[arg-type]
-                    tuple(float(v) for v in -down), vertical_fov_deg=math.degrees(vertical),
+    camera = Camera(vec3(eye), vec3(eye + forward), vec3(-down), vertical_fov_deg=math.degrees(vertical),
                     near=max(0.01, float(pose.near)))
-    return RobotCamera(camera, f"{robot.name}/{pose.label}/optical", tuple(float(v) for v in eye),  # type: ignore[arg-type]
-                       tuple(float(v) for v in matrix_to_quat(pose.rotation)),  # type: ignore[arg-type]
+    return RobotCamera(camera, f"{robot.name}/{pose.label}/optical", vec3(eye), matrix_to_quat(pose.rotation),
                        IMAGE_WIDTH, max(1, round(IMAGE_WIDTH / aspect)), (horizontal, vertical))
 
 
@@ -236,7 +235,8 @@ def failure_marker(world: BulletWorld, node: dict[str, Any], ns: int) -> dict[st
                        "text": f"{failure.get('type')}: {failure.get('message')}"}]}
 
 
-TOPICS = {"/scene": "foxglove.SceneUpdate", "/failures": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms", "/plan": "foxglove.Log",
+TOPICS = {"/scene": "foxglove.SceneUpdate", "/failures": "foxglove.SceneUpdate", "/tf": "foxglove.FrameTransforms",
+          "/plan": "foxglove.Log",
           "/camera/tf": "foxglove.FrameTransforms", "/camera/calibration": "foxglove.CameraCalibration",
           "/camera/image": "foxglove.CompressedImage"}
 

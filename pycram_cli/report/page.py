@@ -13,7 +13,7 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any
 
-from ..errors import InputError, Location
+from ..errors import InputError, Location, setting
 from ..files import probe
 from ..paths import find_world
 from ..plan.trace import REPLAY_KEY
@@ -47,8 +47,8 @@ def report_world(trace: dict[str, Any], override: str | None = None) -> Path:
     try:
         return find_world(str(name)) if name else find_world(None)
     except InputError:
-        raise InputError(f"cannot find the world the trace ran in ('{recorded or name}')", Location("--world"),
-                         suggestion="name it with --world") from None
+        raise InputError(f"cannot find the world the trace ran in ('{recorded or name}')", Location(setting("world")),
+                         suggestion=f"name it ({setting('world')})") from None
 
 
 def _index(node: dict[str, Any], into: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:

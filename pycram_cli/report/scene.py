@@ -15,15 +15,15 @@ from typing import Any
 
 import numpy as np
 
-from ..plan.replay import focus_points
+from ..plan.replay import Point, focus_points
+from ..robots.description import description_for
 from ..world import BulletWorld, Object
 from ..world.camera import movable_objects, objects_camera, robot_camera
-from .collada import read_collada
-from .simplify import simplify
-from .failures import failed_leaves, focus, framing, named_values
-from ..robots.description import description_for
-from ..world.pose import quat_to_matrix
 from ..world.meshes import read_mesh
+from ..world.pose import quat_to_matrix, vec3
+from .collada import read_collada
+from .failures import failed_leaves, focus, framing, named_values
+from .simplify import simplify
 
 POSE_DIGITS = 4  # 0.1 mm and 1e-4 of a quaternion: plenty to look at
 VIEW_FOV, VIEW_ASPECT = 50.0, 1.6  # the page's camera (vertical field of view) and a typical shape of its view
@@ -113,7 +113,7 @@ class Scene:
         for b, (obj, indices) in enumerate(self.links):
             if not indices or (bodies is not None and b not in bodies):
                 continue
-            for slot, (index, (position, orientation)) in enumerate(sorted(obj.link_poses(indices).items())):
+            for slot, (_index, (position, orientation)) in enumerate(sorted(obj.link_poses(indices).items())):
                 found[(b, slot)] = [round(float(v), POSE_DIGITS) + 0.0 for v in (*position, *orientation)]
         return found
 
@@ -197,7 +197,7 @@ class Replayer:
         state = {name: dict(entry) for name, entry in (self.replay.get("initial") or {}).items()}
         start = {o.name: o.get_position() for o in movable_objects(world)}
         last = scene.poses()
-        focus = [tuple((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
+        focus: list[Point] = [vec3((a + b) / 2 for a, b in zip(*o.get_aabb())) for o in movable_objects(world)]
         result = [{"path": None, "status": None, "poses": _flat(last), "camera": _camera(world, focus)}]
         steps = self.replay.get("steps") or []
         by_name = {obj.name: b for b, (obj, _) in enumerate(scene.links)}
@@ -205,7 +205,7 @@ class Replayer:
         order = [step.get("path") for step in steps]
         for k, step in enumerate(steps, start=1):
             frame: dict[str, Any] = {"path": step.get("path"), "status": step.get("status")}
-            physics = []
+            physics: list[dict[str, Any]] = []
             touched: set[int] = set()
             for sub in step.get("physics") or []:
                 moved_bodies = scene.apply(sub.get("changed") or {})
@@ -289,7 +289,7 @@ class Replayer:
                                  "objects": [by_name[name] for name in found.objects if name in by_name],
                                  "target": [round(v, 4) + 0.0 for v in found.target] if found.target else None,
                                  "ghost": None}
-        boxes = [world.get_object_by_name(name).get_aabb() for name in found.objects if name in by_name]
+        boxes = [scene.links[by_name[name]][0].get_aabb() for name in found.objects if name in by_name]
         if found.objects and found.target is not None and found.objects[0] in by_name:
             b = by_name[found.objects[0]]
             obj = scene.links[b][0]
@@ -308,7 +308,7 @@ class Replayer:
             finally:
                 obj.set_position_and_orientation(*pose)
         elif found.target is not None:
-            boxes.append((tuple(v - 0.05 for v in found.target), tuple(v + 0.05 for v in found.target)))
+            boxes.append((vec3(v - 0.05 for v in found.target), vec3(v + 0.05 for v in found.target)))
         if boxes:
             entry["camera"] = _eye_target(framing(world, boxes, VIEW_ASPECT, VIEW_FOV))
         else:
@@ -329,8 +329,8 @@ def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, in
     fraction and the occluders (body indices) where the step says them; or a reach target and its blockers."""
     kind = node.get("type")
     values = named_values(node)
-    query = node.get("query") if isinstance(node.get("query"), dict) else {}
-    details = query.get("details") if isinstance(query.get("details"), dict) else {}
+    query = _mapping(node.get("query"))
+    details = _mapping(query.get("details"))
     result = query.get("result")
     bound = [v for v in (node.get("bound") or {}).values() if isinstance(v, str) and v in by_name]
     target = _point(world, values.get("object") or values.get("target") or (bound[0] if bound else None))
@@ -339,7 +339,7 @@ def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, in
     if kind in SEEING:
         robot = world.robot
         desc = description_for(robot) if robot is not None else None
-        if desc is None or desc.camera is None or values.get("from") not in (None, desc.camera.frame):
+        if robot is None or desc is None or desc.camera is None or values.get("from") not in (None, desc.camera.frame):
             return None
         position, orientation = robot.get_link_position_and_orientation(desc.camera.frame)
         rotation = quat_to_matrix(orientation)
@@ -365,17 +365,22 @@ def reasoning_of(world: BulletWorld, node: dict[str, Any], by_name: dict[str, in
     return None
 
 
+def _mapping(value: Any) -> dict[str, Any]:
+    """A trace record's entry when it is a mapping, else an empty one (a step that recorded none)."""
+    return value if isinstance(value, dict) else {}
+
+
 def _planned_view(world: BulletWorld, node: dict[str, Any]) -> dict[str, Any] | None:
     """A locate step that chose where to stand to see something (`found` has a `look-at`): the view cone the
     robot's camera will have from there — its camera where it sits on the robot now, carried to the pose found,
     turned to the point to look at."""
-    location = node.get("location") if isinstance(node.get("location"), dict) else {}
-    found = location.get("found") if isinstance(location.get("found"), dict) else {}
+    location = _mapping(node.get("location"))
+    found = _mapping(location.get("found"))
     look = _point(world, found.get("look-at"))
     position, orientation = found.get("position"), found.get("orientation")
     robot = world.robot
     desc = description_for(robot) if robot is not None else None
-    if look is None or desc is None or desc.camera is None or _point(world, position) is None or not (
+    if look is None or robot is None or desc is None or desc.camera is None or _point(world, position) is None or not (
             isinstance(orientation, list) and len(orientation) == 4 and all(isinstance(v, (int, float)) for v in orientation)):
         return None
     base_position, base_orientation = robot.get_pose()

@@ -12,8 +12,9 @@ import base64
 import html
 import json
 from collections import defaultdict
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from ..sweep.plot import OutcomeMap
 from ..sweep.summary import outcome_of
@@ -42,7 +43,7 @@ td, th { text-align: left; padding: 3px 8px; border-top: 1px solid #eef0f2; vert
 td.message { color: #5c2b29; }
 code { font: 12px ui-monospace, "DejaVu Sans Mono", monospace; }
 .more { padding: 4px 10px; color: #6c757d; }
-"""
+"""  # noqa: E501 (a style sheet, written out as it stands)
 
 
 def key_of(record: dict[str, Any]) -> Key:

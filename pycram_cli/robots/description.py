@@ -17,14 +17,15 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import warnings
 import math
+import warnings
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING
 
-from ..errors import InputError, Location, did_you_mean, raise_if_any
+from ..errors import InputError, Location, UnknownName, did_you_mean, raise_if_any
 from ..files import probe
 from ..paths import resources_dir
 from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
@@ -63,13 +64,6 @@ class GripperDescription:
     approach: str = ""  # "fingers" or "palm"; "" = as the model shows (robots/tool.py `hand`)
     coupling: tuple[float, ...] = ()  # per joint: its value is this times the gripper's; () = from the model's limits
     grasp_point: tuple[float, float, float] | None = None  # in the palm's frame; None = as the model shows
-
-    def angle_for_width(self, width: float) -> float:
-        """The finger joint value that leaves `width` between the fingers (linear between closed and open)."""
-        if width >= self.max_width or self.max_width == math.inf:
-            return self.open
-        return self.closed + (self.open - self.closed) * max(width, 0.0) / self.max_width
-
 
 @dataclass(frozen=True)
 class ArmDescription:
@@ -130,7 +124,7 @@ class RobotDescription:
         try:
             return self.arms[name]
         except KeyError:
-            raise KeyError(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
+            raise UnknownName(f"robot '{self.name}' has no arm '{name}' (arms: {', '.join(self.arms)})") from None
 
     def resource(self, role: str) -> str:
         """The physical resource a role drives (`base`, `head`, `arm:<name>`); roles share one when the description says
@@ -147,7 +141,7 @@ class RobotDescription:
         """World orientation of the tool frame for a named grasp (relative to the base) or a world quaternion."""
         if isinstance(grasp, str):
             if grasp not in self.grasps:
-                raise KeyError(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps) or 'none'})")
+                raise UnknownName(f"robot '{self.name}' has no grasp '{grasp}' (grasps: {', '.join(self.grasps) or 'none'})")
             return quat_multiply(base_orientation, self.grasps[grasp])
         return check_quaternion(grasp, "grasp")
 
@@ -548,18 +542,18 @@ def check_description(desc: RobotDescription, model_path: Path) -> None:
     """Raise the description's names that the robot model lacks (InputErrors)."""
     try:
         model = describe_model(model_path)
-    except Exception:  # noqa: BLE001 - an unreadable model is reported where the model is named
+    except Exception:  # an unreadable model is reported where the model is named
         return
     raise_if_any(check_against_model(desc, model, model_path))
 
 
-def assign_description(obj: "Object", desc: RobotDescription | None) -> None:
+def assign_description(obj: Object, desc: RobotDescription | None) -> None:
     """Give a robot object its description, once (the world loader does, for `description:` in a world file): its
     world keeps it (`BulletWorld.described_robot`)."""
     obj.world.described_robot = (obj, _prepared(obj, desc))
 
 
-def _prepared(obj: "Object", desc: RobotDescription | None) -> RobotDescription | None:
+def _prepared(obj: Object, desc: RobotDescription | None) -> RobotDescription | None:
     """A description made ready for its robot object: a description without `grasps:` gets the named grasps of its
     first arm's tool frame as the model has it. Each hand is read from the model now (robots/tool.py `hand`), while
     it holds nothing."""
@@ -579,7 +573,7 @@ def _prepared(obj: "Object", desc: RobotDescription | None) -> RobotDescription 
     return desc
 
 
-def description_for(obj: "Object") -> RobotDescription | None:
+def description_for(obj: Object) -> RobotDescription | None:
     """The description of a robot object: the one its world keeps (assigned by the loader), else found by
     `find_description` (a world built in Python) — once for the world's robot, which the world then keeps."""
     kept = obj.world.described_robot

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, field
+from typing import Any
 
 import yaml
 
@@ -36,10 +37,10 @@ class ObjectKnowledge:
     grasps: dict[str, tuple[GraspPoint, ...]] = field(default_factory=dict)
 
 
-def _triple(value: object, default: tuple[float, float, float]) -> tuple[float, float, float]:
+def _triple(value: Any, default: tuple[float, float, float]) -> tuple[float, float, float]:
     if value is None:
         return default
-    x, y, z = (float(v) for v in value)  # type: ignore[union-attr]
+    x, y, z = (float(v) for v in value)
     return (x, y, z)
 
 
@@ -55,7 +56,7 @@ def _knowledge(entry: dict) -> ObjectKnowledge:
     return ObjectKnowledge(symmetry, grasps)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _table() -> dict[str, ObjectKnowledge]:
     path = resources_dir() / "objects" / "grasps.yaml"
     if not path.is_file():
@@ -68,12 +69,3 @@ def object_knowledge(object_type: str) -> ObjectKnowledge:
     """What is known of objects of this type (a box-like object with no special grasps when nothing is)."""
     return _table().get(object_type, ObjectKnowledge())
 
-
-def grasp_points(object_type: str, grasp: str) -> tuple[GraspPoint, ...]:
-    """The special grasp points known for this type and grasp (empty: use the generic rule)."""
-    return object_knowledge(object_type).grasps.get(grasp, ())
-
-
-def special_grasps(object_type: str) -> tuple[str, ...]:
-    """Grasps that have special grasp points for this type (these are the only ones that work for it)."""
-    return tuple(object_knowledge(object_type).grasps)

@@ -20,7 +20,7 @@ class Robot:
     description: RobotDescription
 
     @classmethod
-    def of(cls, world: BulletWorld) -> "Robot":
+    def of(cls, world: BulletWorld) -> Robot:
         """The world's robot with its description: the one the world loader gave it, kept by the world (else found for
         its model once, `description_for`); an input error when the world has no robot or it has no description."""
         body = world.robot

@@ -14,13 +14,14 @@ description leaves out of the gripper (`approach`, `coupling`, `grasp_point`) is
 from __future__ import annotations
 
 import weakref
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..world import Object
-from ..world.pose import Quat, matrix_to_quat, quat_to_matrix
+from ..world.pose import Quat, matrix_to_quat, quat_to_matrix, vec3
 
 if TYPE_CHECKING:
     from .description import ArmDescription, GripperDescription
@@ -42,7 +43,7 @@ def _nearest_axis(v: np.ndarray, avoid: np.ndarray | None = None) -> np.ndarray:
     return max(axes, key=lambda a: float(a @ v))
 
 
-def _wrist_axes(body: Object, arm: "ArmDescription") -> tuple[np.ndarray, np.ndarray]:
+def _wrist_axes(body: Object, arm: ArmDescription) -> tuple[np.ndarray, np.ndarray]:
     """The wrist's roll axis pointing away from the arm (nearest tool axis), and the world-to-tool rotation."""
     _, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
     to_tool = quat_to_matrix(tool_orientation).T
@@ -58,7 +59,7 @@ def _wrist_axes(body: Object, arm: "ArmDescription") -> tuple[np.ndarray, np.nda
     return _nearest_axis(to_tool @ axis), to_tool
 
 
-def _closing_axis(body: Object, arm: "ArmDescription", to_tool: np.ndarray, approach: np.ndarray) -> np.ndarray:
+def _closing_axis(body: Object, arm: ArmDescription, to_tool: np.ndarray, approach: np.ndarray) -> np.ndarray:
     """The tool axis across `approach` that the gripper joints' links are most spread along (y with fewer than two)."""
     fingers = [body.get_aabb(body.joint(name).index) for name in arm.gripper.joints]
     spread = np.zeros(3)
@@ -68,7 +69,7 @@ def _closing_axis(body: Object, arm: "ArmDescription", to_tool: np.ndarray, appr
     return _nearest_axis(spread + np.array([0.0, 1e-6, 0.0]), avoid=approach)
 
 
-def tool_axes(body: Object, arm: "ArmDescription") -> np.ndarray:
+def tool_axes(body: Object, arm: ArmDescription) -> np.ndarray:
     """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame. Fingers-first
     the approach is the wrist's roll axis; palm-first it is the palm's normal (`hand`)."""
     wrist, to_tool = _wrist_axes(body, arm)
@@ -95,12 +96,12 @@ class Hand:
     palm_normal: tuple[float, float, float]  # the tool axis the fingers curl towards (palm-first: the approach)
     grasp_offset: tuple[float, float, float]  # the grasp point in the tool frame (where an object is held)
 
-    def values(self, gripper: "GripperDescription", value: float) -> dict[str, float]:
+    def values(self, gripper: GripperDescription, value: float) -> dict[str, float]:
         """The gripper's joints at a gripper value (`open`, `closed`), each turned by its coupling."""
         return {joint: c * value for joint, c in zip(gripper.joints, self.coupling)}
 
 
-def joint_coupling(gripper: "GripperDescription", limits: Callable[[str], tuple[bool, float, float] | None]
+def joint_coupling(gripper: GripperDescription, limits: Callable[[str], tuple[bool, float, float] | None]
                    ) -> tuple[float, ...]:
     """Each gripper joint's coupling: the description's, else 1, or -1 for a joint whose limits (`limits(name)`:
     limited, lower, upper) allow the gripper's open and closed values only negated (it curls the other way)."""
@@ -112,17 +113,21 @@ def joint_coupling(gripper: "GripperDescription", limits: Callable[[str], tuple[
         sign = 1.0
         if info is not None and info[0]:
             _, lo, hi = info
-            inside = lambda v: lo - 1e-9 <= v <= hi + 1e-9  # noqa: E731
-            if not (inside(gripper.open) and inside(gripper.closed)) and inside(-gripper.open) and inside(-gripper.closed):
+            if not _within((gripper.open, gripper.closed), lo, hi) and _within((-gripper.open, -gripper.closed), lo, hi):
                 sign = -1.0
         found.append(sign)
     return tuple(found)
 
 
-_HANDS: "weakref.WeakKeyDictionary[Object, dict[tuple, Hand]]" = weakref.WeakKeyDictionary()
+def _within(values: tuple[float, ...], lo: float, hi: float) -> bool:
+    """Whether every value lies within [lo, hi] (give or take rounding)."""
+    return all(lo - 1e-9 <= v <= hi + 1e-9 for v in values)
 
 
-def hand(body: Object, arm: "ArmDescription") -> Hand:
+_HANDS: weakref.WeakKeyDictionary[Object, dict[tuple, Hand]] = weakref.WeakKeyDictionary()
+
+
+def hand(body: Object, arm: ArmDescription) -> Hand:
     """The arm's hand as the model has it (kept per body: it is first read when the robot is loaded, its fingers
     tried closed and put back)."""
     key = (arm.name, arm.tool_frame, arm.palm_link, arm.joints[-1] if arm.joints else "", arm.gripper)
@@ -132,7 +137,7 @@ def hand(body: Object, arm: "ArmDescription") -> Hand:
     return cache[key]
 
 
-def _read_hand(body: Object, arm: "ArmDescription") -> Hand:
+def _read_hand(body: Object, arm: ArmDescription) -> Hand:
     """The hand as the description says and, where it says nothing, as the model shows: palm-first when its fingers
     (two or more chains of revolute joints), closed, lie to one side of the palm across the wrist axis (they curl
     towards that side: the palm's normal) rather than ahead of it, as fingers closing against each other do."""
@@ -154,10 +159,10 @@ def _read_hand(body: Object, arm: "ArmDescription") -> Hand:
         normal = min((a for a in np.eye(3) if abs(float(a @ wrist)) < 0.5),
                      key=lambda a: float(np.abs(palm_to_tool.T @ a) @ (hi - lo)))
     offset = _grasp_offset(body, arm, approach, normal)
-    return Hand(approach, coupling, tuple(float(v) + 0.0 for v in normal), offset)  # type: ignore[arg-type]
+    return Hand(approach, coupling, vec3(float(v) + 0.0 for v in normal), offset)
 
 
-def _closed_fingers(body: Object, gripper: "GripperDescription", coupling: tuple[float, ...], palm: str,
+def _closed_fingers(body: Object, gripper: GripperDescription, coupling: tuple[float, ...], palm: str,
                     to_tool: np.ndarray) -> tuple[np.ndarray, int]:
     """Where the links the gripper's joints move lie, on average, with the gripper closed, seen from the middle of the
     palm (tool axes); and how many fingers there are (gripper joints not moved by another of them)."""
@@ -174,7 +179,7 @@ def _closed_fingers(body: Object, gripper: "GripperDescription", coupling: tuple
     return to_tool @ (np.mean(centres, axis=0) - middle), roots
 
 
-def _grasp_offset(body: Object, arm: "ArmDescription", approach: str, normal: np.ndarray) -> tuple[float, float, float]:
+def _grasp_offset(body: Object, arm: ArmDescription, approach: str, normal: np.ndarray) -> tuple[float, float, float]:
     """The grasp point in the tool frame: the description's (given in the palm's frame), else the tool frame itself
     (fingers-first) or the middle of the palm's face the fingers curl towards (palm-first)."""
     gripper = arm.gripper
@@ -189,7 +194,7 @@ def _grasp_offset(body: Object, arm: "ArmDescription", approach: str, normal: np
     else:
         world = _palm_face(body, palm, quat_to_matrix(tool_orientation) @ normal)
     local = quat_to_matrix(tool_orientation).T @ (world - np.asarray(tool_position))
-    return tuple(float(v) + 0.0 for v in np.round(local, 6))  # type: ignore[return-value]
+    return vec3(float(v) + 0.0 for v in np.round(local, 6))
 
 
 def _palm_face(body: Object, palm: str, normal: np.ndarray) -> np.ndarray:
@@ -205,7 +210,7 @@ def _palm_face(body: Object, palm: str, normal: np.ndarray) -> np.ndarray:
     return middle + normal * float(np.abs(normal) @ ((hi - lo) / 2.0))
 
 
-def model_grasps(body: Object, arm: "ArmDescription") -> dict[str, Quat]:
+def model_grasps(body: Object, arm: ArmDescription) -> dict[str, Quat]:
     """The named grasps (tool orientations relative to the base) for this arm's tool frame as the model has it."""
     tool = tool_axes(body, arm)
     grasps: dict[str, Quat] = {}
@@ -220,7 +225,7 @@ def model_grasps(body: Object, arm: "ArmDescription") -> dict[str, Quat]:
 ASTRAY = 0.8
 
 
-def astray_grasps(body: Object, arm: "ArmDescription", grasps: dict[str, Quat]) -> list[tuple[str, str, Quat]]:
+def astray_grasps(body: Object, arm: ArmDescription, grasps: dict[str, Quat]) -> list[tuple[str, str, Quat]]:
     """Hand-written named grasps (front, top, left, right) that do not approach from where their name says, for this
     arm's tool frame as the model has it: (name, where it approaches from, the orientation that would)."""
     tool = tool_axes(body, arm)

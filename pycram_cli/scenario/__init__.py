@@ -13,11 +13,13 @@ it open, so any number of scenarios can run one after another, or side by side, 
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 from ..errors import InputError, PycramError, as_list, raise_if_any
+from ..failures import InternalError
 from ..kinds import NOTHING_KNOWN
 from ..paths import find_plan, find_world
 from ..plan import Plan, RunResult, WorldFacts, bind_params, check_plan, parse_assignments, parse_plan, run_plan
@@ -65,11 +67,11 @@ class Scenario:
             raise
         return world
 
-    def varied(self, variant: Variant) -> "Scenario":
+    def varied(self, variant: Variant) -> Scenario:
         """This scenario with a variant's parameter values and world (checked when the variations were read)."""
         return replace(self, params={**self.params, **variant.params}, variant=variant)
 
-    def with_params(self, values: Mapping[str, Any]) -> "Scenario":
+    def with_params(self, values: Mapping[str, Any]) -> Scenario:
         """This scenario with some parameters set otherwise (values checked by `bind_params`)."""
         robots = WorldFacts.of_spec(self.world).robots
         return replace(self, params={**self.params, **bind_params(self.plan, {**self.params, **values}, robots=robots)})
@@ -95,6 +97,10 @@ class Scenario:
         try:
             result = run_plan(self.plan, world, self.params, recorder or observer, world_name=self.world_path.name,
                               bound=True, projector=projector)
+        except InternalError as exc:  # a bug stopped the run: its trace (exc.result) gets the replay too
+            if recorder is not None and exc.result is not None:
+                exc.result.trace[REPLAY_KEY] = recorder.record()
+            raise
         finally:
             if recorder is not None:
                 recorder.close()

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from ..paths import plans_dir
 from ..plan import trace as traces
@@ -98,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
             continue
         try:
             found = check(plan, args.dir, args.atol)
-        except Exception as exc:  # noqa: BLE001 - report and go on
+        except Exception as exc:  # report and go on
             print(f"{plan.stem}: {exc}")
             status = 1
             continue

@@ -15,8 +15,9 @@ what pycram's own trace diff does, so the plugin is a thin layer over it.
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, Callable, Mapping
+from typing import Any
 
 import pytest
 

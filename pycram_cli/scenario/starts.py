@@ -17,7 +17,8 @@ the scenario as `invalid` (not counted in the success rate), `pycram run --scena
 from __future__ import annotations
 
 import hashlib
-from typing import TYPE_CHECKING, Callable
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from ..worldfile.starts import start_problems
 
@@ -43,17 +44,17 @@ def redraw_seed(seed: int, attempt: int) -> int:
     return int.from_bytes(hashlib.sha256(f"pycram-redraw/{seed}/{attempt}".encode()).digest()[:4], "big")
 
 
-def impossible(world: "BulletWorld", variant: "Variant") -> list[str]:
+def impossible(world: BulletWorld, variant: Variant) -> list[str]:
     """Why the variant, applied to `world`, cannot start (empty: it can): its moved and swapped objects."""
     names = sorted(set(variant.poses) | set(variant.swaps))
     objects = [world.robot if name == "robot" else world.get_object_by_name(name) for name in names]
     return start_problems(world, [obj for obj in objects if obj is not None])
 
 
-def possible_variant(variations: "Variations", seed: int, index: int | None,
-                     world_for: Callable[["Variant"], "BulletWorld"],
-                     release: Callable[["BulletWorld"], None] = lambda world: None,
-                     ) -> tuple["Variant", "BulletWorld"]:
+def possible_variant(variations: Variations, seed: int, index: int | None,
+                     world_for: Callable[[Variant], BulletWorld],
+                     release: Callable[[BulletWorld], None] = lambda world: None,
+                     ) -> tuple[Variant, BulletWorld]:
     """The first possible draw of scenario `seed` and the world it is applied to.
 
     `world_for(variant)` gives a world with the variant applied; `release(world)` is called on the

@@ -8,21 +8,22 @@ the drawing of scenarios (`Variations.sample`) needs none of it.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 from ..errors import InputError, Location, did_you_mean, raise_if_any
 from ..files import probe
 from ..kinds import Robots, param_kind
 from ..plan import Plan, WorldFacts
-from ..plan.syntax import Param
 from ..plan.params import type_problem
+from ..plan.syntax import Param
 from ..schema import check_keys, describe, expect, is_number, names_only, number_list
 from ..world.model_files import MESH_SUFFIXES, describe_model
 from ..worldfile.loader import load_spec
-from ..worldfile.spec import ObjectSpec, WorldSpec, Unreadable, resolve_file
+from ..worldfile.spec import ObjectSpec, Unreadable, WorldSpec, resolve_file
 from ..yamlsource import LList, LMap, load_yaml
-from .variations import KEEP, ParamDraw, Region, Swap, Varied, Variations, is_fixed
+from .variations import KEEP, ParamDraw, Region, Swap, Variations, Varied, is_fixed
 
 #: the keys a variation file, an object, the robot, a region, a swap and a parameter may have
 TOP_KEYS = ("description", "plan", "separation", "objects", "robot", "params")
@@ -346,7 +347,7 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
             continue
         declared = plan.param(str(name)) if plan is not None else None
 
-        def typed(values: list[Any], places: list[Location]) -> bool:
+        def typed(values: list[Any], places: list[Location], declared: Any = declared, name: Any = name) -> bool:
             """The drawn values fit the parameter's declared type (as `-p` values must)."""
             problems = [(type_problem(declared, v, robots), at) for v, at in zip(values, places)] if declared else []
             errors.extend(InputError(problem, at, key=str(name)) for problem, at in problems if problem)

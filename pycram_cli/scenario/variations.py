@@ -28,8 +28,8 @@ robot starts, and which values the plan's parameters take:
       arm: [left, right]                # one of these, equally likely
       offset: {range: [0.0, 0.1]}       # uniform (integers when both ends are integers)
 
-Reading and checking the file is `variation_files.py`'s job. `Variations.sample(seed)` draws one `Variant` from its own `random.Random(seed)`, in file
-order, so a scenario is a function of its seed alone; `scenario_seed(sweep_seed, i)` gives
+Reading and checking the file is `variation_files.py`'s job. `Variations.sample(seed)` draws one `Variant` from its
+own `random.Random(seed)`, in file order, so a scenario is a function of its seed alone; `scenario_seed(sweep_seed, i)` gives
 scenario i's seed. A variant changes the world's *structure* (which bodies exist: presence,
 swaps) through `Variant.world_spec`, and the rest (poses) through `Variant.apply` on a
 loaded world of that structure.
@@ -137,7 +137,7 @@ class Variations:
         return self.objects + ([self.robot] if self.robot is not None else [])
 
     # -- drawing ------------------------------------------------------------------------------
-    def sample(self, seed: int, index: int | None = None) -> "Variant":
+    def sample(self, seed: int, index: int | None = None) -> Variant:
         """The variant of scenario `seed`: every draw from one generator, in the file's order."""
         missing = [s for s in self.needs_surfaces() if s not in self.surfaces]
         if missing:
@@ -200,8 +200,9 @@ class Variations:
 
     def _position(self, rng: random.Random, item: Varied, spec: ObjectSpec) -> tuple[float, float, float]:
         if item.region is not None and item.region.box is not None:
-            lo, hi = item.region.box
-            return tuple(rng.uniform(lo[k], hi[k]) for k in range(3))  # type: ignore[return-value]
+            box_lo, box_hi = item.region.box
+            return (rng.uniform(box_lo[0], box_hi[0]), rng.uniform(box_lo[1], box_hi[1]),
+                    rng.uniform(box_lo[2], box_hi[2]))
         if item.region is not None and item.region.on is not None:
             lo, hi = self.surfaces[item.region.on]
             m = item.region.margin

@@ -46,7 +46,7 @@ class LoadedWorlds:
     scenario: Scenario
     keep: int = KEEP
     loads: int = 0  # how many worlds were loaded (for the benchmarks)
-    _worlds: "OrderedDict[Any, _Loaded]" = field(default_factory=OrderedDict)
+    _worlds: OrderedDict[Any, _Loaded] = field(default_factory=OrderedDict)
 
     def world_for(self, variant: Variant) -> BulletWorld:
         """A world of the variant's structure in its freshly loaded state, the variant applied."""

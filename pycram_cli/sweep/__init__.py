@@ -22,13 +22,14 @@ from __future__ import annotations
 import math
 import os
 import shlex
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import yaml
 
-from ..errors import InputError, Location, PycramError, as_list, raise_if_any
+from ..errors import InputError, Location, PycramError, as_list, raise_if_any, setting
 from ..jsonable import jsonable
 from ..limits import MAX_SCENARIO_TIMEOUT, MAX_SWEEP_RUNS, MAX_WORKERS
 from ..paths import plans_dir, worlds_dir
@@ -37,12 +38,12 @@ from ..plan.syntax import plain
 from ..scenario import Scenario, prepare
 from ..scenario.variation_files import beside, read_variations, variation_file
 from ..scenario.variations import Variations, scenario_seed
+from ..yamlsource import load_yaml_text
 from . import ray_backend
 from .local import LocalPool, SweepError
 from .results import ResultsFile, file_digest
 from .summary import summarise
 from .worker import SweepJob, Task, import_extensions
-from ..yamlsource import load_yaml_text
 
 BACKENDS = ("local", "ray")
 
@@ -81,18 +82,23 @@ class PreparedSweep:
 
     @property
     def total(self) -> int:
-        return self.settings.n * len(self.alternatives or [None])
+        return self.settings.n * len(self.choices)
+
+    @property
+    def choices(self) -> list[dict[str, Any] | None]:
+        """The alternatives each scenario runs with: [None] when the sweep compares none."""
+        return [*self.alternatives] if self.alternatives else [None]
 
 
 def parse_compare(text: str, scenario: Scenario, variations: Variations) -> tuple[str, list[dict[str, Any]]]:
     """`PARAM=A,B,...` (values read as YAML, like -p) -> the parameter and one {PARAM: value} per alternative."""
-    where = Location("--compare")
+    where = Location(setting("compare"))
     name, sep, values = text.partition("=")
     name = name.strip()
     if not sep or not name or not values.strip():
-        raise InputError(f"expected PARAM=A,B,..., got '{text}'", where, suggestion="e.g. --compare arm=left,right")
+        raise InputError(f"expected PARAM=A,B,..., got '{text}'", where, suggestion=f"e.g. {setting('compare')} arm=left,right")
     try:  # with the limits of every YAML value (nesting, aliases), as -p reads its values
-        parsed = plain(load_yaml_text(f"[{values}]", "--compare"))
+        parsed = plain(load_yaml_text(f"[{values}]", setting("compare")))
     except InputError as exc:
         raise InputError(f"cannot read the values (YAML, separated by commas): {exc.message}", where) from None
     if len(parsed) < 2:
@@ -101,7 +107,7 @@ def parse_compare(text: str, scenario: Scenario, variations: Variations) -> tupl
         raise InputError(f"'{name}' is drawn by the variation file: compare a parameter it leaves alone", where)
     alternatives = []
     for value in parsed:
-        bind_params(scenario.plan, {**scenario.params, name: value}, where="--compare")
+        bind_params(scenario.plan, {**scenario.params, name: value}, where=setting("compare"))
         alternatives.append({name: value})
     return name, alternatives
 
@@ -112,33 +118,33 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
     import_extensions(settings.imports)
     errors: list[InputError] = []
     if settings.backend not in BACKENDS:
-        errors.append(InputError(f"unknown backend '{settings.backend}'", Location("--backend"),
+        errors.append(InputError(f"unknown backend '{settings.backend}'", Location(setting("backend")),
                                  suggestion=f"one of {', '.join(BACKENDS)}"))
     if settings.address is not None and settings.backend != "ray":
-        errors.append(InputError("joins a Ray cluster: it needs --backend ray", Location("--address"),
-                                 suggestion="add --backend ray, or leave --address out"))
+        errors.append(InputError(f"joins a Ray cluster: it needs {setting('backend')} ray", Location(setting("address")),
+                                 suggestion=f"set {setting('backend')} ray, or leave {setting('address')} out"))
     elif settings.address is not None:
         try:
             ray_backend.reachable(settings.address)  # before the results folder is made
         except InputError as exc:
             errors.append(exc)
     if settings.force and settings.resume:
-        errors.append(InputError("--force starts the sweep again and --resume goes on with it: give one of them",
-                                 Location("--force")))
+        errors.append(InputError(f"{setting('force')} starts the sweep again and {setting('resume')} goes on with it: give "
+                                 "one of them", Location(setting("force"))))
     if settings.n < 1:
-        errors.append(InputError("the number of scenarios must be at least 1", Location("-n")))
+        errors.append(InputError("the number of scenarios must be at least 1", Location(setting("n"))))
     elif settings.n > MAX_SWEEP_RUNS:
-        errors.append(InputError(f"at most {MAX_SWEEP_RUNS} scenarios (the limit), got {settings.n}", Location("-n"),
-                                 suggestion="sweep in parts: --seed S gives another set of scenarios"))
+        errors.append(InputError(f"at most {MAX_SWEEP_RUNS} scenarios (the limit), got {settings.n}", Location(setting("n")),
+                                 suggestion=f"sweep in parts: another {setting('seed')} gives another set of scenarios"))
     if settings.timeout is not None and not (math.isfinite(settings.timeout)
                                              and 0 < settings.timeout <= MAX_SCENARIO_TIMEOUT):
         errors.append(InputError(f"expected a number of seconds above 0 and at most {MAX_SCENARIO_TIMEOUT:g} (one day), "
-                                 f"got {settings.timeout}", Location("--timeout")))
+                                 f"got {settings.timeout}", Location(setting("timeout"))))
     if settings.workers is not None and not 1 <= settings.workers <= MAX_WORKERS:
         errors.append(InputError(f"expected between 1 and {MAX_WORKERS} workers (the limit), got {settings.workers}",
-                                 Location("--workers")))
+                                 Location(setting("workers"))))
     scenario = prepare(settings.plan, settings.world)
-    vary = variation_file(scenario.plan.path, settings.vary, "--vary", "a sweep")
+    vary = variation_file(scenario.plan.path, settings.vary, setting("vary"), "a sweep")
     variations: Variations | None = None
     try:
         variations = read_variations(vary, scenario.world, scenario.plan)
@@ -170,7 +176,7 @@ def prepare_sweep(settings: SweepSettings) -> PreparedSweep:
                              results)
     for index in range(settings.n):
         seed = scenario_seed(settings.seed, index)
-        for alt, alternative in enumerate(prepared.alternatives or [None]):
+        for alt, alternative in enumerate(prepared.choices):
             task = Task(index, seed, alternative, alt)
             if task.key not in results.done:
                 prepared.tasks.append(task)
@@ -195,14 +201,14 @@ def run_sweep(sweep: PreparedSweep, on_outcome: Callable[[dict[str, Any]], None]
         else:
             LocalPool(sweep.job, workers).run(sweep.tasks, record)
     finally:
-        keys = [(i, a) for i in range(settings.n) for a in range(len(sweep.alternatives or [None]))]
+        keys = [(i, a) for i in range(settings.n) for a in range(len(sweep.choices))]
         sweep.results.finish(keys)
     return summary_of(sweep)
 
 
 def summary_of(sweep: PreparedSweep) -> dict[str, Any]:
     """The summary of the outcomes in the results file so far, with a command to replay each example."""
-    wanted = {(i, a) for i in range(sweep.settings.n) for a in range(len(sweep.alternatives or [None]))}
+    wanted = {(i, a) for i in range(sweep.settings.n) for a in range(len(sweep.choices))}
     records = [r for k, r in sorted(sweep.results.done.items()) if k in wanted]
     summary = summarise(records, sweep.meta)
     summary["results"] = str(sweep.results.path)

@@ -14,14 +14,16 @@ loads its worlds in each worker (processes started by `spawn`); a `project` step
 """
 from __future__ import annotations
 
+import contextlib
 import multiprocessing as mp
 import os
 import signal
 import time
 from collections import deque
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from multiprocessing.connection import Connection, wait
-from typing import Any, Callable, Iterable, Protocol
+from typing import Any, Protocol
 
 from ..errors import PycramError
 from .worker import Task
@@ -47,7 +49,8 @@ class TaskRunner(Protocol):
 class Job(Protocol):
     """What a pool's workers run (see the module docstring)."""
 
-    timeout: float | None
+    @property
+    def timeout(self) -> float | None: ...
 
     def worker(self) -> TaskRunner: ...
 
@@ -65,7 +68,7 @@ def _worker_main(conn: Connection, job: Job) -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a forked worker inherits the command's handler: not its own
     try:
         worker = job.worker()
-    except BaseException as exc:  # noqa: BLE001 - told to the parent, which stops the sweep
+    except BaseException as exc:  # told to the parent, which stops the sweep
         conn.send(("fatal", f"{type(exc).__name__}: {exc}"))
         return
     conn.send(("ready", os.getpid()))
@@ -101,7 +104,7 @@ class LocalPool:
         self.job = job
         self.workers = max(1, workers)
         self.grace = GRACE if grace is None else grace
-        self.context = mp.get_context(start)
+        self.context: Any = mp.get_context(start)  # (typeshed's BaseContext lacks Process; each start method has it)
         self.slots: list[_Slot] = []
         self.started = 0  # processes started, replacements included
 
@@ -185,17 +188,16 @@ class LocalPool:
         code = slot.process.exitcode
         if not slot.ready:
             raise SweepError(f"a sweep worker exited before it was ready (exit code {code})")
-        on_outcome(self.job.error_record(slot.task, f"the worker process died (exit code {code})"))
+        if slot.task is not None:  # it died running a scenario (an idle one has none to record)
+            on_outcome(self.job.error_record(slot.task, f"the worker process died (exit code {code})"))
         self._replace(slot)
 
     def close(self, now: bool = False) -> None:
         """Stop the workers: idle ones are asked to exit (`now`: every one is killed at once)."""
         for slot in self.slots:
             if slot.process.is_alive() and slot.task is None and not now:
-                try:
+                with contextlib.suppress(OSError, BrokenPipeError):
                     slot.conn.send(None)
-                except (OSError, BrokenPipeError):
-                    pass
         deadline = time.monotonic() + 5.0
         for slot in self.slots:
             slot.process.join(max(0.0, deadline - time.monotonic()) if slot.task is None and not now else 0.0)

@@ -44,7 +44,7 @@ def collect(records: list[dict[str, Any]]) -> list[tuple[str, tuple[float, float
         for name, varied in sorted((record.get("varied") or {}).items()):
             if isinstance(varied, dict) and "position" in varied:
                 points.append((name, tuple(varied["position"]), outcome))
-    return points  # type: ignore[return-value]
+    return points
 
 
 def colours(outcomes: list[str]) -> dict[str, tuple[int, int, int]]:
@@ -65,7 +65,7 @@ class OutcomeMap:
     markers: list[tuple[dict[str, Any], str, tuple[int, int]]] = field(default_factory=list)
 
 
-def outcome_map(sweep: "PreparedSweep", records: list[dict[str, Any]], width: int = 960,
+def outcome_map(sweep: PreparedSweep, records: list[dict[str, Any]], width: int = 960,
                 height: int = 720) -> OutcomeMap:
     """The map of the outcomes over the varied start positions (see the module docstring)."""
     points = collect(records)
@@ -113,7 +113,7 @@ def outcome_map(sweep: "PreparedSweep", records: list[dict[str, Any]], width: in
     return OutcomeMap(picture.rgb(), markers)
 
 
-def plot_outcomes(sweep: "PreparedSweep", records: list[dict[str, Any]], path: Path,
+def plot_outcomes(sweep: PreparedSweep, records: list[dict[str, Any]], path: Path,
                   width: int = 960, height: int = 720) -> None:
     """Write the map of the outcomes as a PNG file."""
     write_png(path, outcome_map(sweep, records, width, height).image)

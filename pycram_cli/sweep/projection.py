@@ -30,14 +30,14 @@ import multiprocessing as mp
 import os
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
+from ..errors import setting
 from ..scenario import prepare
 from ..scenario.variation_files import read_variations, variation_file
 from ..scenario.variations import scenario_seed
-from ..errors import InputError, Location
 from .local import LocalPool
 from .summary import summarise
 from .worker import SweepJob, Task, Worker
@@ -67,7 +67,7 @@ class Projection:
 def project(projection: Projection, on_outcome: Callable[[dict[str, Any]], None] | None = None) -> dict[str, Any]:
     """Run the projection; the sweep's summary of its outcomes (plus `runs_total` and `workers`)."""
     scenario = prepare(projection.plan, projection.world)
-    vary = variation_file(scenario.plan.path, projection.vary, "--project", "projecting the plan")
+    vary = variation_file(scenario.plan.path, projection.vary, setting("project"), "projecting the plan")
     read_variations(vary, scenario.world, scenario.plan)  # its problems now, as input errors
     job = SweepJob(str(scenario.plan.path), str(vary), str(scenario.world_path))
     given = dict(projection.params) or None
@@ -172,7 +172,7 @@ class _ForkedJob:
     lost: Callable[[int, str, str], Row]
     timeout: float | None
 
-    def worker(self) -> "_ForkedWorker":
+    def worker(self) -> _ForkedWorker:
         return _ForkedWorker(self)
 
     def timeout_record(self, task: Task, how: str) -> dict[str, Any]:

@@ -16,9 +16,10 @@ import os
 import socket
 import time
 from collections import deque
-from typing import Any, Callable, Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
-from ..errors import InputError, Location
+from ..errors import InputError, Location, setting
 from .local import GRACE, STARTUP, SweepError
 from .worker import SweepJob, Task, Worker, error_record, timeout_record
 
@@ -26,8 +27,8 @@ MISSING = ("the ray backend needs Ray, an optional extra: pip install 'pycram-cl
            "(in a checkout: pip install '.[ray]')")
 
 
-START = ("start one on this machine with `ray start --head` and give --address auto (or the address it prints), "
-         "or leave --address out for a Ray of this sweep's own")
+START = (f"start one on this machine with Ray's `ray start --head` and give {setting('address')} auto (or the address it "
+         f"prints), or leave {setting('address')} out for a Ray of this sweep's own")
 #: seconds to wait for a cluster's address to answer before Ray is asked to join it (Ray itself retries for minutes)
 CONNECT_TIMEOUT = 5.0
 #: seconds between two checks that the cluster is still there while scenarios run (Ray's own wait has no bound)
@@ -38,7 +39,7 @@ def cluster_alive(ray: Any) -> bool:
     """Whether the cluster answers and has a node alive (a cluster that dropped after connecting does not)."""
     try:
         return any(node.get("Alive") for node in ray.nodes())
-    except Exception:  # noqa: BLE001 - whatever Ray raises for a lost cluster, it is lost
+    except Exception:  # whatever Ray raises for a lost cluster, it is lost
         return False
 
 
@@ -49,22 +50,22 @@ def reachable(address: str) -> None:
         return
     host, _, port = address.removeprefix("ray://").rpartition(":")
     if not host or not port.isdigit() or not 0 < int(port) < 65536:
-        raise InputError(f"expected HOST:PORT (or ray://HOST:PORT, or auto), got '{address}'", Location("--address"),
+        raise InputError(f"expected HOST:PORT (or ray://HOST:PORT, or auto), got '{address}'", Location(setting("address")),
                          suggestion=START)
     try:
         socket.create_connection((host.strip("[]"), int(port)), timeout=CONNECT_TIMEOUT).close()
     except OSError as exc:
         raise InputError(f"cannot join a Ray cluster at '{address}': nothing answers there ({exc.strerror or exc})",
-                         Location("--address"), suggestion=START) from None
+                         Location(setting("address")), suggestion=START) from None
 
 
 def load_ray() -> Any:
     """The `ray` module, or an input error saying how to install it."""
     try:
-        # why: Ray is optional and takes a second to import; only `--backend ray` needs it
+        # why: Ray is optional and takes a second to import; only the ray backend needs it
         return importlib.import_module("ray")
     except ImportError:
-        raise InputError(MISSING, Location("--backend")) from None
+        raise InputError(MISSING, Location(setting("backend"))) from None
 
 
 class RayWorker:
@@ -100,14 +101,14 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
         try:
             ray.init(**options)
         except (ConnectionError, TimeoutError) as exc:  # `auto` with no cluster running, a cluster gone
-            raise InputError(f"cannot join a Ray cluster at '{address}': {exc}", Location("--address"),
+            raise InputError(f"cannot join a Ray cluster at '{address}': {exc}", Location(setting("address")),
                              suggestion=START) from None
     actor_class = ray.remote(num_cpus=1, max_restarts=0)(RayWorker)
     try:
         actors = [actor_class.remote(job) for _ in range(min(workers, len(pending)))]
         try:
             ray.get([a.ready.remote() for a in actors], timeout=STARTUP)
-        except Exception as exc:  # noqa: BLE001 - an actor that cannot start stops the sweep
+        except Exception as exc:  # an actor that cannot start stops the sweep
             raise SweepError(f"a Ray worker could not start: {exc}") from None
         running: dict[Any, tuple[Any, Task, float]] = {}
 
@@ -125,12 +126,12 @@ def run(job: SweepJob, tasks: Iterable[Task], workers: int, on_outcome: Callable
             if not done and not cluster_alive(ray):
                 where = f"at '{address}'" if address is not None else "of this sweep"
                 raise SweepError(f"lost the Ray cluster {where} while {len(running)} scenario(s) ran: what finished "
-                                 "is kept (--resume runs the rest)")
+                                 f"is kept ({setting('resume')} runs the rest)")
             for ref in done:
                 actor, task, _ = running.pop(ref)
                 try:
                     outcome, retire = ray.get(ref)
-                except Exception as exc:  # noqa: BLE001 - the actor died: record, replace, go on
+                except Exception as exc:  # the actor died: record, replace, go on
                     outcome, retire = error_record(task, f"the Ray worker died: {type(exc).__name__}"), True
                 if retire:
                     ray.kill(actor)

@@ -7,7 +7,8 @@ the replay record on, and checks that it did the same as in the sweep (the trace
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterator
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
 
 from ..scenario.worlds import LoadedWorlds
 from .summary import outcome_of
@@ -39,7 +40,7 @@ def chosen(records: list[dict[str, Any]], limit: int) -> list[dict[str, Any]]:
     return picked
 
 
-def rerun(sweep: "PreparedSweep", records: list[dict[str, Any]]) -> Iterator[tuple[dict[str, Any], dict[str, Any], bool]]:
+def rerun(sweep: PreparedSweep, records: list[dict[str, Any]]) -> Iterator[tuple[dict[str, Any], dict[str, Any], bool]]:
     """(record, trace with its replay record, whether the run did the same as in the sweep) of each record."""
     worlds = LoadedWorlds(sweep.scenario)
     try:

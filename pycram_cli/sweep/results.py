@@ -13,10 +13,11 @@ import hashlib
 import json
 import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
-from ..errors import InputError, Location
+from ..errors import InputError, Location, setting
 from ..files import probe, read_bytes, reason, write_atomic
 from ..limits import MAX_SWEEP_META_BYTES, MAX_SWEEP_RESULTS_BYTES, MAX_SWEEP_RUNS
 
@@ -78,7 +79,7 @@ def record_problem(record: Any, alternatives: list[Any] | None) -> str | None:
     if alternatives is None and "alternative" in record:
         return "'alternative' is given, but this sweep compares no alternatives"
     if alternatives is not None and record.get("alternative") not in alternatives:
-        return "'alternative' must be one of the sweep's --compare values"
+        return f"'alternative' must be one of the sweep's {setting('compare')} values"
     return _varied_problem(record.get("varied"))
 
 
@@ -106,37 +107,37 @@ class ResultsFile:
         self.alternatives = meta.get("compare", {}).get("alternatives") if meta.get("compare") else None
         self.done: dict[tuple[int, int], dict[str, Any]] = {}
         self._fd = -1
-        try:  # the folder is the user's: any operating-system problem with it is an input error naming --out
+        try:  # the folder is the user's: any operating-system problem with it is an input error naming `out`
             self.folder.mkdir(parents=True, exist_ok=True)
             for path in (self.meta_path, self.path):  # a named pipe would block, a device be read without end
                 problem = probe(path)
                 if problem is not None and problem != "not found":
                     raise InputError(f"cannot use it as part of the results folder: {problem}", Location(str(path)),
-                                     suggestion="give another --out")
+                                     suggestion=f"give another {setting('out')}")
             existing = self.path.is_file() and self.path.stat().st_size > 0
             if existing and force:  # asked for: the sweep starts again, its earlier results replaced
                 self.path.unlink()
                 existing = False
             if existing and not resume:
-                raise InputError(f"{self.path} holds the results of a sweep already", Location("--out"),
-                                 suggestion="add --resume to go on with it, --force to run it again from the start "
-                                            "(its results are replaced), or give another --out")
+                raise InputError(f"{self.path} holds the results of a sweep already", Location(setting("out")),
+                                 suggestion=f"add {setting('resume')} to go on with it, {setting('force')} to run it again "
+                                            f"from the start (its results are replaced), or give another {setting('out')}")
             if existing:
                 self._check_same_sweep()
                 self._load()
-            write_atomic(self.meta_path, json.dumps(meta, indent=2) + "\n", key="--out")
+            write_atomic(self.meta_path, json.dumps(meta, indent=2) + "\n", key=setting("out"))
             self._fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
         except OSError as exc:
             why = "it cannot be made there" if exc.errno == errno.ENOENT else reason(exc)
-            raise InputError(f"cannot use '{self.folder}' as the results folder: {why}", Location("--out"),
-                             suggestion="give --out a folder that can be made and written") from None
+            raise InputError(f"cannot use '{self.folder}' as the results folder: {why}", Location(setting("out")),
+                             suggestion=f"give {setting('out')} a folder that can be made and written") from None
         except ValueError:  # a NUL character in the name
             raise InputError("cannot use the results folder: its name contains a NUL character",
-                             Location("--out")) from None
+                             Location(setting("out"))) from None
 
     def _check_same_sweep(self) -> None:
         if probe(self.meta_path) == "not found":
-            raise InputError(f"cannot resume: {self.meta_path} is missing", Location("--resume"))
+            raise InputError(f"cannot resume: {self.meta_path} is missing", Location(setting("resume")))
         text = read_bytes(self.meta_path, MAX_SWEEP_META_BYTES, "the sweep's settings")
         try:
             before = json.loads(text, parse_constant=_not_a_number)
@@ -149,9 +150,9 @@ class ResultsFile:
         differ = sorted(k for k in set(before) | set(self.meta) if k not in FREE and before.get(k) != self.meta.get(k))
         if differ:
             raise InputError(f"cannot resume: this sweep differs from the one in {self.folder} in "
-                             + ", ".join(differ), Location("--resume"),
-                             suggestion="run it with the same plan, world, variations, seed and --compare, "
-                                        "or give another --out")
+                             + ", ".join(differ), Location(setting("resume")),
+                             suggestion=f"run it with the same plan, world, variations, seed and {setting('compare')}, "
+                                        f"or give another {setting('out')}")
 
     def _load(self) -> None:
         """The outcomes already in the file; a damaged line is an InputError at its line (never dropped), only a
@@ -167,7 +168,7 @@ class ResultsFile:
             record = self._record(line, Location(str(self.path), number, 1))
             self.done[key_of(record, self.alternatives)] = record
         if "".join(kept) != text:
-            write_atomic(self.path, "".join(kept), key="--out")
+            write_atomic(self.path, "".join(kept), key=setting("out"))
 
     def _record(self, line: str, where: Location) -> dict[str, Any]:
         """One line's outcome, checked to be what a sweep writes (InputError at the line otherwise)."""
@@ -177,11 +178,11 @@ class ResultsFile:
             record = []  # lists or mappings nested thousands deep: not an outcome either
         except ValueError as exc:
             raise InputError(f"not JSON ({_json_reason(exc)}): a damaged line of the sweep's results", where,
-                             suggestion="remove or repair the line, then --resume again") from None
+                             suggestion=f"remove or repair the line, then {setting('resume')} again") from None
         problem = record_problem(record, self.alternatives)
         if problem is not None:
             raise InputError(f"{problem}: a damaged line of the sweep's results", where,
-                             suggestion="remove or repair the line, then --resume again")
+                             suggestion=f"remove or repair the line, then {setting('resume')} again")
         return record
 
     def append(self, record: dict[str, Any]) -> None:
@@ -197,7 +198,7 @@ class ResultsFile:
         if keys is not None and not set(keys) <= set(self.done):
             return
         lines = [json.dumps(r, sort_keys=False, separators=(", ", ": ")) + "\n" for r in self.records()]
-        write_atomic(self.path, "".join(lines), key="--out")  # a temporary file of its own: two sweeps never share it
+        write_atomic(self.path, "".join(lines), key=setting("out"))  # a temporary file of its own: two sweeps never share it
 
     def close(self) -> None:
         if self._fd >= 0:

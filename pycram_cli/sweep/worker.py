@@ -27,8 +27,8 @@ from ..scenario import Scenario, prepare
 from ..scenario.starts import ImpossibleStart
 from ..scenario.variation_files import read_variations
 from ..scenario.variations import Variations
-from .summary import INVALID
 from ..scenario.worlds import LoadedWorlds
+from .summary import INVALID
 
 
 @dataclass(frozen=True)
@@ -42,14 +42,14 @@ class SweepJob:
     #: extensions (module names or .py files) to import before the plan is read: they declare designators or queries
     imports: tuple[str, ...] = ()
 
-    def worker(self) -> "Worker":
+    def worker(self) -> Worker:
         """What runs in one worker process (local.py): the scenario prepared, its worlds loaded."""
         return Worker(self)
 
-    def timeout_record(self, task: "Task", how: str) -> dict[str, Any]:
+    def timeout_record(self, task: Task, how: str) -> dict[str, Any]:
         return timeout_record(task, self.timeout, how=how)
 
-    def error_record(self, task: "Task", message: str) -> dict[str, Any]:
+    def error_record(self, task: Task, message: str) -> dict[str, Any]:
         return error_record(task, message)
 
 
@@ -144,8 +144,8 @@ class Worker:
         previous = signal.signal(signal.SIGALRM, _alarm) if alarm else None
         variant = None
         try:
-            if alarm:
-                signal.setitimer(signal.ITIMER_REAL, float(self.job.timeout))  # type: ignore[arg-type]
+            if alarm and self.job.timeout:
+                signal.setitimer(signal.ITIMER_REAL, float(self.job.timeout))
             try:
                 variant, world = self.worlds.possible(self.variations, task.seed, task.index)
                 setup = time.perf_counter() - started
@@ -164,7 +164,7 @@ class Worker:
                 self.worlds.discard(variant)
             self.retire = threading.active_count() > self._threads
             return timeout_record(task, self.job.timeout, varied)
-        except Exception as exc:  # noqa: BLE001 - recorded, and the sweep goes on
+        except Exception as exc:  # recorded, and the sweep goes on
             varied = (variant or self.variations.sample(task.seed, task.index)).varied
             if variant is not None:
                 self.worlds.discard(variant)
@@ -180,7 +180,7 @@ class Worker:
         duration = time.perf_counter() - started - setup
         failure = None
         if result.failure is not None:
-            failure = {k: result.failure.get(k) for k in ("type", "path", "message")}
+            failure = {"type": result.failure.type, "path": result.failure.path, "message": result.failure.message}
         return outcome(task, result.status, failure, variant.varied, result.steps, trace_digest(result.trace),
                        duration, setup)
 

@@ -2,10 +2,10 @@
 from ..quiet import silenced
 
 with silenced():  # PyBullet prints its build banner from C when first imported
-    import pybullet  # noqa: F401
+    import pybullet  # noqa: F401  (imported here, silenced, before anything else imports it)
 from .bullet_world import BulletWorld, ClosestPoint, RayHit, WorldError, current_world
-from .events import Event
 from .display import NoDisplayError
+from .events import Event
 from .object import Object
 from .parts import Attachment, JointLimitError, MissingMeshWarning, VisualShape
 from .state import StateError, WorldState

@@ -10,21 +10,22 @@ import itertools
 import math
 import threading
 import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pybullet as p
 
+from ..quiet import silenced
 from .camera import segmentation
 from .display import check_display
 from .events import Event
-from ..quiet import silenced
 from .pose import Vec3, check_position
+from .state import StateCache, WorldState
 from .view import ViewRenderer
 from .window import GuiWindow
-from .state import StateCache, WorldState
 
 if TYPE_CHECKING:
     from .object import Object
@@ -60,7 +61,7 @@ class RayHit:
     """Where a ray first meets a collision shape: the object and link (-1: the base) hit, how far along the ray
     (0 at its start, 1 at its end), the point and the surface normal there (world frame)."""
 
-    object: "Object | None"
+    object: Object | None
     link: int
     fraction: float
     position: Vec3
@@ -74,12 +75,12 @@ class BulletWorld(GuiWindow):
     `BulletWorld("DIRECT")`, `BulletWorld(type="GUI")`: the design's spelling of the mode is accepted too.
     """
 
-    current_world: "BulletWorld | None" = None
-    current_bullet_world: "BulletWorld | None" = None  # the design's name for current_world
+    current_world: BulletWorld | None = None
+    current_bullet_world: BulletWorld | None = None  # the design's name for current_world
     #: the design's scripts set `BulletWorld.robot = robot` and read it back; each world's own robot is `world.robot`
-    robot: "Object | None" = None
-    _live: list["BulletWorld"] = []
-    _gui_world: "BulletWorld | None" = None
+    robot: Object | None = None
+    _live: list[BulletWorld] = []
+    _gui_world: BulletWorld | None = None
     _registry_lock = threading.Lock()
 
     # long: connecting the client (direct or GUI) and setting up every table the world owns
@@ -134,8 +135,8 @@ class BulletWorld(GuiWindow):
         self._exited = False
         self._realtime = False
         self._exit_hooks: list[Callable[[], None]] = []
-        self._step_watchers: list[Callable[["BulletWorld"], None]] = []  # called after every step (watch_steps)
-        self._copy_watchers: list[Callable[["BulletWorld"], None]] = []  # the same, for the prospection copy's steps
+        self._step_watchers: list[Callable[[BulletWorld], None]] = []  # called after every step (watch_steps)
+        self._copy_watchers: list[Callable[[BulletWorld], None]] = []  # the same, for the prospection copy's steps
         #: a replay of a run on this world is being recorded (plan/replay.py): steps may keep details for it
         self.recording_replay = False
         self._view: ViewRenderer | None = None  # made on the first picture_of
@@ -153,7 +154,7 @@ class BulletWorld(GuiWindow):
 
     # -- life cycle -------------------------------------------------------------
     @classmethod
-    def current(cls) -> "BulletWorld | None":
+    def current(cls) -> BulletWorld | None:
         return cls.current_world
 
     @property
@@ -168,7 +169,7 @@ class BulletWorld(GuiWindow):
         """Call `hook` when this world exits (e.g. to free helper clients made for it)."""
         self._exit_hooks.append(hook)
 
-    def watch_steps(self, watcher: Callable[["BulletWorld"], None], prospection: bool = False) -> Callable[[], None]:
+    def watch_steps(self, watcher: Callable[[BulletWorld], None], prospection: bool = False) -> Callable[[], None]:
         """Call `watcher(world)` after every physics step of this world (a replay recording the motion physics
         makes), or with `prospection` of its prospection copy, where queries like `stable` simulate what would
         happen (prospection.py; the copy is passed); returns the function that stops it."""
@@ -217,7 +218,7 @@ class BulletWorld(GuiWindow):
                 BulletWorld.current_world = BulletWorld._live[-1] if BulletWorld._live else None
                 BulletWorld.current_bullet_world = BulletWorld.current_world
 
-    def __enter__(self) -> "BulletWorld":
+    def __enter__(self) -> BulletWorld:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -278,7 +279,7 @@ class BulletWorld(GuiWindow):
             self.mark_changed()
         return self._version
 
-    def mark_changed(self, obj: "Object | None" = None) -> None:
+    def mark_changed(self, obj: Object | None = None) -> None:
         """Record a change of `obj` (None: of anything, e.g. a simulation step, which may move every object).
 
         The world's own methods and Object's call this; code that changes a world through PyBullet
@@ -291,7 +292,7 @@ class BulletWorld(GuiWindow):
         else:
             obj._version = version
 
-    def version_of(self, obj: "Object") -> int:
+    def version_of(self, obj: Object) -> int:
         """The version of one object: the newest change of it, or of everything (a step), whichever is later."""
         if not self.tracks_changes:
             self.mark_changed()
@@ -341,13 +342,13 @@ class BulletWorld(GuiWindow):
         """
         self.wake([obj for obj in self.objects if not obj.fixed])
 
-    def wake(self, objects: Sequence["Object"]) -> None:
+    def wake(self, objects: Sequence[Object]) -> None:
         """Wake `objects` (sleeping bodies are not simulated; restoreState does not restore sleep)."""
         for obj in objects:
             p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=self.client_id)
 
     # -- geometry ---------------------------------------------------------------
-    def closest_points(self, a: "Object", b: "Object", distance: float,
+    def closest_points(self, a: Object, b: Object, distance: float,
                        link_a: int | None = None, link_b: int | None = None) -> list[ClosestPoint]:
         """The closest points between `a` and `b` (or the given links of them) at most `distance` m apart.
 
@@ -365,14 +366,14 @@ class BulletWorld(GuiWindow):
             points.append(point)
         return points
 
-    def distance(self, a: "Object", b: "Object", max_distance: float,
+    def distance(self, a: Object, b: Object, max_distance: float,
                  link_a: int | None = None, link_b: int | None = None) -> float:
         """The smallest distance between `a` and `b` (negative: they interpenetrate), or inf when
         nothing of them is within `max_distance` m — `closest_points` without building the points."""
         rows = self._closest_rows(a, b, max_distance, link_a, link_b)
         return min(row[8] for row in rows) if rows else math.inf
 
-    def _closest_rows(self, a: "Object", b: "Object", distance: float, link_a: int | None,
+    def _closest_rows(self, a: Object, b: Object, distance: float, link_a: int | None,
                       link_b: int | None) -> Sequence[Sequence[Any]]:
         """PyBullet's getClosestPoints rows for `closest_points` and `distance` (kept lean: hot path)."""
         if self._exited:
@@ -388,7 +389,7 @@ class BulletWorld(GuiWindow):
             links["linkIndexB"] = link_b
         return p.getClosestPoints(a.id, b.id, distance, physicsClientId=self.client_id, **links)
 
-    def clear_fraction(self, start: Sequence[float], end: Sequence[float], ignore: Sequence["Object"] = ()) -> float:
+    def clear_fraction(self, start: Sequence[float], end: Sequence[float], ignore: Sequence[Object] = ()) -> float:
         """How far along the segment from `start` to `end` (0..1) nothing blocks it: 1.0 when the line is
         clear. Objects in `ignore` are seen through (e.g. a camera looking past the robot at its work)."""
         self._check_alive()
@@ -411,7 +412,7 @@ class BulletWorld(GuiWindow):
         return done
 
     def cast_rays(self, starts: Sequence[Sequence[float]], ends: Sequence[Sequence[float]],
-                  ignore: Sequence["Object"] = ()) -> list["RayHit | None"]:
+                  ignore: Sequence[Object] = ()) -> list[RayHit | None]:
         """Where each ray from `starts[k]` to `ends[k]` first hits a collision shape, or None; objects in `ignore`
         are seen through. Read as the shapes are now (no simulation step), like `closest_points`."""
         self._check_alive()
@@ -428,7 +429,7 @@ class BulletWorld(GuiWindow):
                 more = True
                 if body in skip or (hits[k] is not None and hits[k].fraction <= fraction):  # type: ignore[union-attr]
                     continue
-                hits[k] = RayHit(self._by_id.get(body), link, float(fraction), tuple(position), tuple(normal))  # type: ignore[arg-type]
+                hits[k] = RayHit(self._by_id.get(body), link, float(fraction), tuple(position), tuple(normal))
             if not more:
                 break
         return hits
@@ -443,12 +444,12 @@ class BulletWorld(GuiWindow):
         self._check_alive()
         return segmentation(self.client_id, width, height, view, projection)
 
-    def segmentation_alone(self, obj: "Object", width: int, height: int, view: Sequence[float],
+    def segmentation_alone(self, obj: Object, width: int, height: int, view: Sequence[float],
                            projection: Sequence[float]) -> np.ndarray:
         """(height, width) booleans: where `obj` would cover the pixel with nothing else in the world."""
         return self.segmentation_of({obj: None}, width, height, view, projection) == obj.id
 
-    def segmentation_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+    def segmentation_of(self, parts: Mapping[Object, Sequence[int] | None], width: int, height: int,
                         view: Sequence[float], projection: Sequence[float]) -> np.ndarray:
         """(height, width) ids of the objects seen at each pixel (-1: nothing) when only `parts` exist: for each
         object the links to draw (by index, -1: the base) or None for all of them.
@@ -459,7 +460,7 @@ class BulletWorld(GuiWindow):
         """
         return self.picture_of(parts, width, height, view, projection)[0]
 
-    def picture_of(self, parts: "Mapping[Object, Sequence[int] | None]", width: int, height: int,
+    def picture_of(self, parts: Mapping[Object, Sequence[int] | None], width: int, height: int,
                    view: Sequence[float], projection: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
         """`segmentation_of` and the picture's depth buffer (0..1, growing with distance; 1 where nothing is)."""
         self._check_alive()
@@ -468,7 +469,7 @@ class BulletWorld(GuiWindow):
                 self._view = ViewRenderer(self)
             return self._view.picture(parts, width, height, view, projection)
 
-    def prospection(self, objects: "Sequence[Object] | None" = None, velocities: bool = True) -> "Prospection":
+    def prospection(self, objects: Sequence[Object] | None = None, velocities: bool = True) -> Prospection:
         """This world's private copy, brought in sync (all objects, or only `objects`): where queries simulate and
         try joint values, so that this world is only read and keeps every hidden state (see prospection.py)."""
         self._check_alive()
@@ -481,7 +482,7 @@ class BulletWorld(GuiWindow):
             return self._prospection
 
     # -- objects ----------------------------------------------------------------
-    def register(self, obj: "Object") -> None:
+    def register(self, obj: Object) -> None:
         """Take a newly loaded object into the world's lists (Object's constructor calls this)."""
         self.objects.append(obj)
         self._by_id[obj.id] = obj
@@ -489,7 +490,7 @@ class BulletWorld(GuiWindow):
             self.robot = obj
         self.mark_changed(obj)
 
-    def unregister(self, obj: "Object") -> None:
+    def unregister(self, obj: Object) -> None:
         """Drop a removed object from the world's lists (Object.remove calls this)."""
         self.objects.remove(obj)
         self._by_id.pop(obj.id, None)
@@ -499,17 +500,17 @@ class BulletWorld(GuiWindow):
             self.described_robot = None
         self.mark_changed()
 
-    def get_objects_by_name(self, name: str) -> list["Object"]:
+    def get_objects_by_name(self, name: str) -> list[Object]:
         return [o for o in self.objects if o.name == name]
 
-    def get_object_by_name(self, name: str) -> "Object | None":
+    def get_object_by_name(self, name: str) -> Object | None:
         found = self.get_objects_by_name(name)
         return found[0] if found else None
 
-    def get_objects_by_type(self, type: str) -> list["Object"]:
+    def get_objects_by_type(self, type: str) -> list[Object]:
         return [o for o in self.objects if o.type == type]
 
-    def get_object_by_id(self, id: int) -> "Object | None":
+    def get_object_by_id(self, id: int) -> Object | None:
         return self._by_id.get(id)
 
     # -- state ------------------------------------------------------------------

@@ -12,17 +12,18 @@ import mmap
 import os
 import signal
 import warnings
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pybullet as p
 from PIL import Image
 
+from ..errors import BadValue
 from ..files import write_atomic
-from ..kinds import parse_vector
-from ..limits import MAX_MAGNITUDE
+from .pose import vec3
 
 if TYPE_CHECKING:
     from .bullet_world import BulletWorld
@@ -46,7 +47,7 @@ class Camera:
     far: float = 30.0
 
 
-def default_camera(world: "BulletWorld") -> Camera:
+def default_camera(world: BulletWorld) -> Camera:
     """A three-quarter view that frames every object except huge ones (floors): the `overview`."""
     boxes = [o.get_aabb() for o in world.objects]
     boxes = [b for b in boxes if max(b[1][k] - b[0][k] for k in range(2)) < 15.0] or boxes or [((0, 0, 0), (1, 1, 1))]
@@ -84,8 +85,7 @@ def framing_camera(points: Iterable[Sequence[float]], heading: Sequence[float], 
     half_h = math.atan(math.tan(half_v) * aspect)
     distance = max(radius / math.sin(min(half_v, half_h)) * 1.05, min_distance)
     eye = centre - forward * distance
-    return Camera(tuple(float(v) for v in eye), tuple(float(v) for v in centre),  # type: ignore[arg-type]
-                  vertical_fov_deg=fov_deg)
+    return Camera(vec3(eye), vec3(centre), vertical_fov_deg=fov_deg)
 
 
 def _corners(box: tuple[Sequence[float], Sequence[float]]) -> list[tuple[float, float, float]]:
@@ -93,13 +93,13 @@ def _corners(box: tuple[Sequence[float], Sequence[float]]) -> list[tuple[float, 
     return [(x, y, z) for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
 
 
-def heading_of(obj: "Object") -> tuple[float, float]:
+def heading_of(obj: Object) -> tuple[float, float]:
     """The direction (x, y) an object's base faces: its x axis, projected on the floor."""
     x, y, z, w = obj.get_orientation()
     return (1 - 2 * (y * y + z * z), 2 * (x * y + z * w))
 
 
-def clear_camera(world: "BulletWorld", points: Sequence[Sequence[float]], heading: Sequence[float],
+def clear_camera(world: BulletWorld, points: Sequence[Sequence[float]], heading: Sequence[float],
                  fov_deg: float, aspect: float, pitch_deg: float = -40.0, turn_deg: float = 35.0,
                  min_distance: float = 1.2, focus: Sequence[Sequence[float]] = ()) -> Camera:
     """`framing_camera`, turned until nothing stands between the camera and what it should show.
@@ -112,7 +112,7 @@ def clear_camera(world: "BulletWorld", points: Sequence[Sequence[float]], headin
     """
     robot_and_things = [o for o in world.objects if o.type != "environment"]
     things = [o for o in world.objects if o.type not in SCENERY_TYPES]
-    best: tuple[tuple[float, ...], Camera] | None = None
+    best: tuple[tuple[float, float, float, float], Camera] | None = None
     for order, turn in enumerate((turn_deg, -turn_deg, 2 * turn_deg, -2 * turn_deg, 0.0, 3 * turn_deg,
                                   -3 * turn_deg, 180.0)):
         camera = framing_camera(points, heading, fov_deg, aspect, pitch_deg, turn, min_distance)
@@ -136,10 +136,10 @@ def clear_camera(world: "BulletWorld", points: Sequence[Sequence[float]], headin
     eye, target = np.asarray(camera.eye), np.asarray(camera.target)
     distance = float(np.linalg.norm(eye - target))
     closer = target + (eye - target) * max(0.05, clear - 0.1 / max(distance, 1e-6))
-    return replace(camera, eye=tuple(float(v) for v in closer))
+    return replace(camera, eye=vec3(closer))
 
 
-def robot_camera(world: "BulletWorld", focus: Iterable[Sequence[float]] = (), fov_deg: float = 50.0,
+def robot_camera(world: BulletWorld, focus: Iterable[Sequence[float]] = (), fov_deg: float = 50.0,
                  aspect: float = 4 / 3) -> Camera:
     """The robot (and the points in `focus`, e.g. what it works on) seen over its shoulder.
 
@@ -161,7 +161,7 @@ def robot_camera(world: "BulletWorld", focus: Iterable[Sequence[float]] = (), fo
                         focus=focus)
 
 
-def frame_viewer_on_robot(world: "BulletWorld") -> Camera | None:
+def frame_viewer_on_robot(world: BulletWorld) -> Camera | None:
     """Point the GUI window's camera at the robot and every object it may work on (`robot_camera`, with the
     window's field of view and shape); the camera set, None without a window."""
     current = world.viewer_camera()
@@ -173,12 +173,12 @@ def frame_viewer_on_robot(world: "BulletWorld") -> Camera | None:
     return camera
 
 
-def movable_objects(world: "BulletWorld") -> list["Object"]:
+def movable_objects(world: BulletWorld) -> list[Object]:
     """The things a plan works on: every object that is neither a robot nor an environment."""
     return [o for o in world.objects if o.type not in SCENERY_TYPES]
 
 
-def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = None, fov_deg: float = 50.0,
+def objects_camera(world: BulletWorld, objects: Sequence[Object] | None = None, fov_deg: float = 50.0,
                    aspect: float = 4 / 3) -> Camera:
     """`objects` (default: every movable one) framed close, seen from the robot's side of them."""
     chosen = list(objects) if objects is not None else movable_objects(world)
@@ -187,7 +187,7 @@ def objects_camera(world: "BulletWorld", objects: Sequence["Object"] | None = No
     return boxes_camera(world, [o.get_aabb() for o in chosen], fov_deg, aspect)
 
 
-def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
+def boxes_camera(world: BulletWorld, boxes: Sequence[tuple[Sequence[float], Sequence[float]]],
                  fov_deg: float = 50.0, aspect: float = 4 / 3, min_distance: float = 0.8,
                  pitch_deg: float = -45.0, clear: bool = True,
                  heading: Sequence[float] | None = None) -> Camera:
@@ -197,12 +197,14 @@ def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Se
     the way (x, y) to look, default from the robot towards the boxes."""
     points = [c for box in boxes for c in _corners(box)]
     centre = np.mean(np.asarray(points), axis=0)
-    if heading is None and world.robot is None:
+    robot = world.robot
+    if heading is None and robot is None:
         heading = (1.0, 0.0)
-    elif heading is None:
-        position = world.robot.get_position()
+    elif heading is None and robot is not None:
+        position = robot.get_position()
         towards = (float(centre[0] - position[0]), float(centre[1] - position[1]))
-        heading = towards if math.hypot(*towards) > 0.3 else heading_of(world.robot)
+        heading = towards if math.hypot(*towards) > 0.3 else heading_of(robot)
+    assert heading is not None
     centres = [tuple((a + b) / 2 for a, b in zip(*box)) for box in boxes]
     if not clear:
         return framing_camera(points, heading, fov_deg, aspect, pitch_deg, 20.0, min_distance)
@@ -210,13 +212,13 @@ def boxes_camera(world: "BulletWorld", boxes: Sequence[tuple[Sequence[float], Se
                         min_distance=min_distance, focus=centres)
 
 
-def poses(world: "BulletWorld") -> dict[str, tuple[tuple[float, ...], tuple[float, ...]]]:
+def poses(world: BulletWorld) -> dict[str, tuple[tuple[float, ...], tuple[float, ...]]]:
     """Every object's pose by name, to tell later what moved (`moved_since`)."""
     return {o.name: o.get_pose() for o in world.objects}
 
 
-def moved_since(world: "BulletWorld", before: dict[str, tuple[tuple[float, ...], tuple[float, ...]]],
-                tolerance: float = 1e-3) -> list["Object"]:
+def moved_since(world: BulletWorld, before: dict[str, tuple[tuple[float, ...], tuple[float, ...]]],
+                tolerance: float = 1e-3) -> list[Object]:
     """The movable objects whose position changed by more than `tolerance` m since `before` (see `poses`)."""
     moved = []
     for obj in movable_objects(world):
@@ -226,7 +228,7 @@ def moved_since(world: "BulletWorld", before: dict[str, tuple[tuple[float, ...],
     return moved
 
 
-def named_camera(world: "BulletWorld", name: str, targets: Sequence["Object"] | None = None,
+def named_camera(world: BulletWorld, name: str, targets: Sequence[Object] | None = None,
                  aspect: float = 4 / 3) -> Camera:
     """One of VIEWS: `overview` (the whole scene), `robot` (the robot, over its shoulder) or `target`
     (`targets`, e.g. the objects a plan moved; default: every movable object)."""
@@ -236,7 +238,7 @@ def named_camera(world: "BulletWorld", name: str, targets: Sequence["Object"] | 
         return robot_camera(world, aspect=aspect)
     if name == "target":
         return objects_camera(world, targets, aspect=aspect)
-    raise ValueError(f"unknown view {name!r} (expected one of {', '.join(VIEWS)}, or EYE:TARGET)")
+    raise BadValue(f"unknown view {name!r} (expected one of {', '.join(VIEWS)})")
 
 
 def view_matrix(eye: Sequence[float], target: Sequence[float], up: Sequence[float]) -> tuple[float, ...]:
@@ -278,7 +280,7 @@ def segmentation_and_depth(client: int, width: int, height: int, view: Sequence[
             np.asarray(depth, dtype=np.float64).reshape(height, width))
 
 
-def render(world: "BulletWorld", camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
+def render(world: BulletWorld, camera: Camera, width: int = 640, height: int = 480) -> np.ndarray:
     """RGB image (height, width, 3) of the world from `camera`."""
     cid = world.client_id
     view = p.computeViewMatrix(camera.eye, camera.target, up_for(camera), physicsClientId=cid)
@@ -360,24 +362,3 @@ def encode_image(rgb: np.ndarray, suffix: str = ".png") -> bytes:
 def write_png(path: Path | str, rgb: np.ndarray, key: str | None = None) -> None:
     """Write an RGB image as a PNG file, atomically (for pictures the program draws itself: sweep and location maps)."""
     write_atomic(path, encode_image(rgb, ".png"), key=key)
-
-
-def _point(text: str, what: str) -> tuple[float, float, float]:
-    values = parse_vector(text, 3)
-    if values is None:
-        raise ValueError(f"{what}: expected x,y,z (three finite numbers), got {text!r}")
-    if not all(abs(v) <= MAX_MAGNITUDE for v in values):
-        raise ValueError(f"{what}: numbers must be between {-MAX_MAGNITUDE:g} and {MAX_MAGNITUDE:g}, got {text!r}")
-    return (values[0], values[1], values[2])
-
-
-def parse_camera(text: str) -> Camera:
-    """`EYE:TARGET`, each `x,y,z`, e.g. `-1.5,-1.5,2.5:1,0.8,0.9`."""
-    eye, sep, target = text.partition(":")
-    if not sep:
-        raise ValueError(f"expected EYE:TARGET such as -1.5,-1.5,2.5:1,0.8,0.9, or a view ({', '.join(VIEWS)}), "
-                         f"got {text!r}")
-    camera = Camera(_point(eye, "camera eye"), _point(target, "camera target"))
-    if math.dist(camera.eye, camera.target) < 1e-6:  # no direction to look in: the image would be blank
-        raise ValueError(f"the camera's eye and target must differ, got {text!r}")
-    return camera

@@ -14,9 +14,9 @@ import os
 import sys
 import time
 
-from ..errors import PycramError
+from ..errors import PycramError, setting
 
-ADVICE = "run under xvfb-run or without --gui"
+ADVICE = f"run under xvfb-run or without {setting('gui')}"
 
 
 class NoDisplayError(RuntimeError, PycramError):

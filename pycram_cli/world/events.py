@@ -1,7 +1,8 @@
 """A small multicast event: `event += handler`, `event -= handler`, `event(*args)`."""
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 
 class Event:
@@ -11,13 +12,13 @@ class Event:
         self.name = name
         self._handlers: list[Callable[..., Any]] = []
 
-    def __iadd__(self, handler: Callable[..., Any]) -> "Event":
+    def __iadd__(self, handler: Callable[..., Any]) -> Event:
         if not callable(handler):
             raise TypeError(f"{self.name}: a handler must be callable, got {type(handler).__name__}")
         self._handlers.append(handler)
         return self
 
-    def __isub__(self, handler: Callable[..., Any]) -> "Event":
+    def __isub__(self, handler: Callable[..., Any]) -> Event:
         try:
             self._handlers.remove(handler)
         except ValueError:

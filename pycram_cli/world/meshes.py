@@ -13,7 +13,6 @@ import numpy as np
 
 from ..files import write_atomic
 
-
 #: a closed mesh enclosing less than this fraction of its bounding box is hollow (see Mesh.is_hollow)
 HOLLOW = 0.3
 #: the grid cell for convex pieces of hollow meshes (m), and how far the normals of one piece may spread (rad)
@@ -194,12 +193,12 @@ def _read_stl(path: Path) -> Mesh:
             raw = np.frombuffer(data, dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]), count=count, offset=84)
             verts = raw["v"].reshape(-1, 3).astype(float)
             return Mesh(verts, np.arange(len(verts)).reshape(-1, 3))
-    verts = []
+    corners: list[list[float]] = []
     for line in data.decode("ascii", errors="replace").splitlines():
         parts = line.split()
         if parts and parts[0] == "vertex":
-            verts.append([float(x) for x in parts[1:4]])
-    arr = np.array(verts, dtype=float).reshape(-1, 3)
+            corners.append([float(x) for x in parts[1:4]])
+    arr = np.array(corners, dtype=float).reshape(-1, 3)
     return Mesh(arr, np.arange(len(arr)).reshape(-1, 3))
 
 

@@ -19,9 +19,9 @@ import math
 import os
 import re
 import xml.etree.ElementTree as ET
-from xml.sax.saxutils import escape as xml_escape
 from dataclasses import dataclass, field
 from pathlib import Path
+from xml.sax.saxutils import escape as xml_escape
 
 import pybullet_data
 
@@ -117,7 +117,7 @@ def mesh_urdf(mesh_path: Path, color: tuple[float, float, float, float] | None, 
     </collision>
   </link>
 </robot>
-"""
+"""  # noqa: E501 (the URDF as written, line for line)
     write_atomic(target, text)
     return target
 

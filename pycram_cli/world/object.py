@@ -4,20 +4,20 @@ from __future__ import annotations
 import contextlib
 import math
 import warnings
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Iterator, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pybullet as p
 
 from ..errors import did_you_mean
+from ..quiet import silenced
 from .bullet_world import BulletWorld, WorldError
 from .meshes import read_mesh
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, find_model_file, mesh_urdf, prepare_urdf
-from .parts import (JOINT_TYPES, SHAPE_KINDS, Attachment, Joint, JointLimitError, MissingMeshWarning,
-                    VisualShape)
+from .parts import JOINT_TYPES, SHAPE_KINDS, Attachment, Joint, JointLimitError, MissingMeshWarning, VisualShape
 from .pose import UP_TURNS, Quat, Vec3, check_position, check_quaternion, compose, invert, up_axis
-from ..quiet import silenced
 
 KINEMATIC_TYPES = ("robot", "environment")
 HOLD_FORCE = 1e5  # N or N·m: what holds a fixed object's joints (see parking.py)
@@ -84,7 +84,7 @@ class Object:
         dyn = p.getDynamicsInfo(body, -1, physicsClientId=cid)
         self._inertial: tuple[Vec3, Quat] | None = None
         if tuple(dyn[3]) != (0.0, 0.0, 0.0) or tuple(dyn[4]) != (0.0, 0.0, 0.0, 1.0):
-            self._inertial = (tuple(dyn[3]), tuple(dyn[4]))  # type: ignore[assignment]
+            self._inertial = (tuple(dyn[3]), tuple(dyn[4]))
         self._reset_base(position, orientation)
         self.attachments: dict[Object, Attachment] = {}
         self._local_box: tuple[Vec3, Vec3] | None = None  # a mesh's box in its own frame, read once
@@ -99,7 +99,7 @@ class Object:
         world.register(self)
 
     # -- model ------------------------------------------------------------------
-    def _index_model(self, declared: Mapping[str, "JointInfo"]) -> None:
+    def _index_model(self, declared: Mapping[str, JointInfo]) -> None:
         cid = self.world.client_id
         base_name, _ = p.getBodyInfo(self.id, physicsClientId=cid)
         self.base_link_name = base_name.decode()
@@ -117,7 +117,7 @@ class Object:
             joint = Joint(index, name, type_name, float(lower), float(upper), link,
                           parent_index=info[16], axis=tuple(info[13]),
                           parent_frame=(tuple(info[14]), (-orn[0], -orn[1], -orn[2], orn[3])),
-                          inertial_frame=(tuple(dyn[3]), tuple(dyn[4])))  # type: ignore[arg-type]
+                          inertial_frame=(tuple(dyn[3]), tuple(dyn[4])))
             self.joints.append(joint)
             self._joint_ids[name] = index
             self._link_ids[link] = index
@@ -167,7 +167,7 @@ class Object:
         pos, orn = p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
         if self._inertial is not None:
             return compose((pos, orn), invert(self._inertial))
-        return tuple(pos), tuple(orn)  # type: ignore[return-value]
+        return tuple(pos), tuple(orn)
 
     def get_com_pose(self) -> tuple[Vec3, Quat]:
         """PyBullet's own base pose: the base's centre-of-mass (inertial) frame in the world frame.
@@ -175,12 +175,12 @@ class Object:
         One call, no conversion: cheap enough to watch motion at every simulation step, and the
         frame PyBullet's joint frames start from. `get_pose` is the base link's URDF frame.
         """
-        return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)  # type: ignore[return-value]
+        return p.getBasePositionAndOrientation(self.id, physicsClientId=self.world.client_id)
 
     def get_velocity(self) -> tuple[Vec3, Vec3]:
         """(linear, angular) velocity of the base's centre of mass in the world frame (m/s, rad/s)."""
         linear, angular = p.getBaseVelocity(self.id, physicsClientId=self.world.client_id)
-        return tuple(linear), tuple(angular)  # type: ignore[return-value]
+        return tuple(linear), tuple(angular)
 
     def _reset_base(self, position: Sequence[float], orientation: Sequence[float]) -> None:
         """Put the base link's frame at a pose (PyBullet places the centre of mass)."""
@@ -210,7 +210,7 @@ class Object:
         if index == -1:
             return self.get_pose()
         state = p.getLinkState(self.id, index, computeForwardKinematics=True, physicsClientId=self.world.client_id)
-        return tuple(state[4]), tuple(state[5])  # type: ignore[return-value]
+        return tuple(state[4]), tuple(state[5])
 
     def get_link_position(self, link: str | int) -> Vec3:
         return self.get_link_position_and_orientation(link)[0]
@@ -229,7 +229,7 @@ class Object:
             states = p.getLinkStates(self.id, indices, computeForwardKinematics=True,
                                      physicsClientId=self.world.client_id)
             for index, state in zip(indices, states):
-                poses[index] = (tuple(state[4]), tuple(state[5]))  # type: ignore[assignment]
+                poses[index] = (tuple(state[4]), tuple(state[5]))
         return poses
 
     def visual_shapes(self) -> list[VisualShape]:
@@ -291,13 +291,13 @@ class Object:
         if link is not None:
             index = link if isinstance(link, int) else self.get_link_id(link)
             lo, hi = p.getAABB(self.id, index, physicsClientId=cid)
-            return tuple(lo), tuple(hi)  # type: ignore[return-value]
+            return tuple(lo), tuple(hi)
         boxes = [p.getAABB(self.id, i, physicsClientId=cid) for i in [-1, *range(len(self.joints))]]
         lo = tuple(min(b[0][k] for b in boxes) for k in range(3))
         hi = tuple(max(b[1][k] for b in boxes) for k in range(3))
-        return lo, hi  # type: ignore[return-value]
+        return lo, hi
 
-    def link_aabbs(self, links: Sequence[int] | None = None) -> tuple["np.ndarray", "np.ndarray"]:
+    def link_aabbs(self, links: Sequence[int] | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The boxes of some links (default: every link, the base first, as -1) as two (n, 3) arrays (min corners,
         max corners): `get_aabb` for many links at once. Every link's boxes are kept while the object does not
         change (`BulletWorld.version_of`), so that asking again costs nothing."""
@@ -428,7 +428,7 @@ class Object:
             self.world.mark_changed(self)
 
     # -- attachments -----------------------------------------------------------
-    def attach(self, other: "Object", parent_link: str | None = None, child_link: str | None = None) -> None:
+    def attach(self, other: Object, parent_link: str | None = None, child_link: str | None = None) -> None:
         """Attach `other` to this object: from now on it follows this object's link rigidly.
 
         Attachments are bilateral (either side can detach); attaching an attached pair again changes nothing.
@@ -449,7 +449,7 @@ class Object:
         self.world.mark_changed(other)
         self.world.attachment_event(self, other)
 
-    def detach(self, other: "Object") -> None:
+    def detach(self, other: Object) -> None:
         att = self.attachments.pop(other, None)
         if att is None:
             raise ValueError(f"'{self.name}' and '{other.name}' are not attached")

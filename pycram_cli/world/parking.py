@@ -10,13 +10,14 @@ far below the world, where it touches nothing, is put to sleep (alone in its isl
 asleep and costs nothing per step) and, if it holds joints with motors, has their force set to
 zero. Putting it back writes its saved pose, velocity and joints back bitwise and gives the
 motors their force again. The joints of a fixed object that stays (a kitchen's far drawers and
-doors) can be loosened alike: their motors lose their force until put back. Meant for a world's private copy (prospection.py): the world a user
-sees should never have bodies vanish, even briefly.
+doors) can be loosened alike: their motors lose their force until put back. Meant for a world's private copy
+(prospection.py): the world a user sees should never have bodies vanish, even briefly.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterable
+from typing import TYPE_CHECKING
 
 import pybullet as p
 
@@ -43,20 +44,20 @@ class _Saved:
 class Parking:
     """The objects of one world parked for a while (see the module's text)."""
 
-    def __init__(self, world: "BulletWorld") -> None:
+    def __init__(self, world: BulletWorld) -> None:
         self.world = world
         self._saved: dict[int, _Saved] = {}  # by object id
-        self._objects: dict[int, "Object"] = {}
-        self._loose: dict[tuple[int, int], tuple["Object", float, float]] = {}  # (body, joint): state
+        self._objects: dict[int, Object] = {}
+        self._loose: dict[tuple[int, int], tuple[Object, float, float]] = {}  # (body, joint): state
 
     @property
-    def parked(self) -> list["Object"]:
+    def parked(self) -> list[Object]:
         return list(self._objects.values())
 
-    def __contains__(self, obj: "Object") -> bool:
+    def __contains__(self, obj: Object) -> bool:
         return obj.id in self._objects
 
-    def park(self, objects: Iterable["Object"]) -> None:
+    def park(self, objects: Iterable[Object]) -> None:
         """Take `objects` out of the simulation (their state is kept to put them back)."""
         client = self.world.client_id
         for obj in objects:
@@ -79,7 +80,7 @@ class Parking:
             p.changeDynamics(obj.id, -1, activationState=p.ACTIVATION_STATE_SLEEP, physicsClientId=client)
             self.world.mark_changed(obj)
 
-    def loosen(self, obj: "Object", joints: list[int]) -> None:
+    def loosen(self, obj: Object, joints: list[int]) -> None:
         """Stop holding these joints of a fixed object (by index) for a while: their motors cost solver work
         every step. For joints nothing simulated can come near; `put_back` holds them again where they were."""
         client = self.world.client_id
@@ -93,7 +94,7 @@ class Parking:
                                     forces=[0.0] * len(joints), physicsClientId=client)
         self.world.mark_changed(obj)
 
-    def put_back(self, objects: Iterable["Object"] | None = None) -> list["Object"]:
+    def put_back(self, objects: Iterable[Object] | None = None) -> list[Object]:
         """Put `objects` (default: every parked one) back as they were when parked, awake; returns them."""
         client = self.world.client_id
         chosen = list(self._objects.values()) if objects is None else [o for o in objects if o.id in self._objects]

@@ -29,8 +29,8 @@ class JointLimitError(ValueError):
 class Attachment:
     """`child` follows `parent`: the child link keeps `transform` relative to the parent link."""
 
-    parent: "Object"
-    child: "Object"
+    parent: Object
+    child: Object
     parent_link: int
     child_link: int
     transform: tuple[Vec3, Quat]

@@ -1,14 +1,17 @@
 """Validation and arithmetic of positions and quaternions (x, y, z, w).
 
 Poses are checked at the boundary: a wrong shape or a non-unit quaternion raises
-a ValueError that names the expected and the actual shape or norm.
+a BadValue (a ValueError) that names the expected and the actual shape or norm.
 """
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from collections.abc import Iterable, Sequence
+from typing import Any, cast
 
 import numpy as np
+
+from ..errors import BadValue
 
 Vec3 = tuple[float, float, float]
 Quat = tuple[float, float, float, float]
@@ -18,18 +21,24 @@ QUAT_TOLERANCE = 1e-3
 
 def _numbers(value: object, what: str, size: int) -> list[float]:
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
-        raise ValueError(f"{what}: expected {size} numbers, got {type(value).__name__} {value!r}")
-    items = list(value)  # type: ignore[arg-type]
+        raise BadValue(f"{what}: expected {size} numbers, got {type(value).__name__} {value!r}")
+    items = list(cast(Iterable[Any], value))  # it has a length and is no string: a sequence
     if len(items) != size:
-        raise ValueError(f"{what}: expected {size} numbers, got {len(items)}: {items!r}")
+        raise BadValue(f"{what}: expected {size} numbers, got {len(items)}: {items!r}")
     out = []
     for item in items:
         if isinstance(item, bool) or not isinstance(item, (int, float, np.floating, np.integer)):
-            raise ValueError(f"{what}: expected {size} numbers, got {item!r} ({type(item).__name__})")
+            raise BadValue(f"{what}: expected {size} numbers, got {item!r} ({type(item).__name__})")
         if not math.isfinite(float(item)):
-            raise ValueError(f"{what}: expected finite numbers, got {item!r}")
+            raise BadValue(f"{what}: expected finite numbers, got {item!r}")
         out.append(float(item))
     return out
+
+
+def vec3(values: Iterable[Any]) -> Vec3:
+    """Three numbers as a float triple (a numpy row, a list): the `Vec3` the rest of the code passes around."""
+    x, y, z = (float(v) for v in values)
+    return (x, y, z)
 
 
 def check_position(value: object, what: str = "position") -> Vec3:
@@ -41,7 +50,7 @@ def check_quaternion(value: object, what: str = "orientation") -> Quat:
     q = _numbers(value, what + " (quaternion x, y, z, w)", 4)
     norm = math.sqrt(sum(c * c for c in q))
     if abs(norm - 1.0) > QUAT_TOLERANCE:
-        raise ValueError(f"{what}: quaternion must have unit length, got norm {norm:.6g} for {q!r}")
+        raise BadValue(f"{what}: quaternion must have unit length, got norm {norm:.6g} for {q!r}")
     return (q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm) if norm != 1.0 else (q[0], q[1], q[2], q[3])
 
 

@@ -107,7 +107,7 @@ class Prospection:
         self._clean = None
 
     # -- keeping in sync -----------------------------------------------------------------------------
-    def sync(self, objects: "list[Object] | None" = None, velocities: bool = True) -> None:
+    def sync(self, objects: list[Object] | None = None, velocities: bool = True) -> None:
         """Give the copies the world's state: base poses and velocities, joint positions and velocities,
         attachments and gravity. `objects`: only these (their copies must exist), e.g. only the robot.
 

@@ -33,14 +33,14 @@ class StateError(RuntimeError):
 class WorldState:
     state_id: int
     body_ids: tuple[int, ...]
-    attachments: tuple["Attachment", ...]
+    attachments: tuple[Attachment, ...]
     #: the world's versions when saved: its own, its last step's, and each object's (in world order)
     version: int = 0
     stepped: int = 0
     object_versions: tuple[int, ...] = ()
 
 
-def _all_attachments(world: "BulletWorld") -> tuple["Attachment", ...]:
+def _all_attachments(world: BulletWorld) -> tuple[Attachment, ...]:
     seen: dict[int, Attachment] = {}
     for obj in world.objects:
         for att in obj.attachments.values():
@@ -48,13 +48,13 @@ def _all_attachments(world: "BulletWorld") -> tuple["Attachment", ...]:
     return tuple(seen.values())
 
 
-def capture(world: "BulletWorld") -> WorldState:
+def capture(world: BulletWorld) -> WorldState:
     state_id = p.saveState(physicsClientId=world.client_id)
     return WorldState(state_id, tuple(o.id for o in world.objects), _all_attachments(world), world._version,
                       world._stepped, tuple(o._version for o in world.objects))
 
 
-def restore(world: "BulletWorld", state: WorldState) -> None:
+def restore(world: BulletWorld, state: WorldState) -> None:
     bodies = tuple(o.id for o in world.objects)
     if bodies != state.body_ids:
         raise StateError(
@@ -73,7 +73,7 @@ def restore(world: "BulletWorld", state: WorldState) -> None:
         obj._version = version
 
 
-def release(world: "BulletWorld", state: WorldState) -> None:
+def release(world: BulletWorld, state: WorldState) -> None:
     if world.alive:
         p.removeState(state.state_id, physicsClientId=world.client_id)
 
@@ -81,7 +81,7 @@ def release(world: "BulletWorld", state: WorldState) -> None:
 class StateCache:
     """A world's saved states: one saveState per world version, freed when nobody holds them."""
 
-    def __init__(self, world: "BulletWorld") -> None:
+    def __init__(self, world: BulletWorld) -> None:
         self.world = world
         self.kept: WorldState | None = None  # the newest state saved or restored
         self.holders: dict[int, int] = {}  # state id -> how many save_state calls hold it

@@ -14,7 +14,8 @@ segmentation (which object each pixel shows, given back with the world's object 
 from __future__ import annotations
 
 import weakref
-from typing import TYPE_CHECKING, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pybullet as p
@@ -32,13 +33,13 @@ HIDDEN = (1.0, 1.0, 1.0, 0.0)
 class ViewRenderer:
     """Pictures of any choice of a world's links, from the world's prospection copy."""
 
-    def __init__(self, world: "BulletWorld") -> None:
+    def __init__(self, world: BulletWorld) -> None:
         self.world = world
         # for each copy: the links it draws at all, and those drawn now
-        self._links: "weakref.WeakKeyDictionary[Object, tuple[list[int], set[int]]]" = weakref.WeakKeyDictionary()
-        self._showing: "weakref.WeakSet[Object]" = weakref.WeakSet()  # the copies with links drawn now
+        self._links: weakref.WeakKeyDictionary[Object, tuple[list[int], set[int]]] = weakref.WeakKeyDictionary()
+        self._showing: weakref.WeakSet[Object] = weakref.WeakSet()  # the copies with links drawn now
 
-    def picture(self, parts: Mapping["Object", Sequence[int] | None], width: int, height: int,
+    def picture(self, parts: Mapping[Object, Sequence[int] | None], width: int, height: int,
                 view: Sequence[float], projection: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
         """(height, width) world object ids seen at each pixel (-1: nothing) when only `parts` are drawn — for
         each object the links to draw (by index, -1: the base), or None for all — and the depth buffer
@@ -69,7 +70,7 @@ class ViewRenderer:
             ids[copy.id] = twin.original_of(copy).id
         return ids[seg], depth  # -1 stays -1 (the last entry)
 
-    def _drawn(self, original: "Object", copy: "Object") -> list[int]:
+    def _drawn(self, original: Object, copy: Object) -> list[int]:
         """The links of a copy to manage: those its original draws. A copy seen for the first time is hidden."""
         known = self._links.get(copy)
         if known is not None:

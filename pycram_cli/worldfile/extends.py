@@ -97,7 +97,7 @@ def _objects(base: LList, base_folder: Path, own: LList, folder: Path, errors: l
     for item in base:
         if isinstance(item, LMap):
             copy = _copy(item)
-            copy.folder = folder_of(item, base_folder)  # type: ignore[attr-defined]
+            copy.folder = folder_of(item, base_folder)  # type: ignore[attr-defined]  # LMap: its folder rides as an attribute
             if isinstance(item.get("name"), str):
                 by_name.setdefault(item["name"], len(items))
             items.append(copy)
@@ -109,7 +109,7 @@ def _objects(base: LList, base_folder: Path, own: LList, folder: Path, errors: l
             items[by_name[name]] = _changed(items[by_name[name]], item, folder)
             continue
         if isinstance(item, LMap):
-            item.folder = folder  # type: ignore[attr-defined]
+            item.folder = folder  # type: ignore[attr-defined]  # LMap: its folder rides as an attribute
             missing = [key for key in ("type", "file") if key not in item]
             close = did_you_mean(name, list(by_name)) if isinstance(name, str) else None
             if missing and close:
@@ -133,7 +133,7 @@ def _changed(base: LMap, change: LMap, folder: Path) -> LMap:
     result.where = change.where
     for key, value in change.items():
         _put(result, key, value, change.loc(key), change.loc(key, True))
-    result.folder = folder if "file" in change else folder_of(base, folder)  # type: ignore[attr-defined]
+    result.folder = folder if "file" in change else folder_of(base, folder)  # type: ignore[attr-defined]  # LMap: its folder rides as an attribute
     return result
 
 

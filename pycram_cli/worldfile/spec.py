@@ -75,7 +75,7 @@ class WorldSpec:
     objects: list[ObjectSpec]
     description: str = ""
     robot: ObjectSpec | None = None  # the world's robot: the first object of type robot
-    robot_description: "RobotDescription | None" = None
+    robot_description: RobotDescription | None = None
     models: dict[str, ModelInfo] = field(default_factory=dict)  # each object's links and joints, by object name
 
     @property
@@ -224,7 +224,8 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
     if "position" in item:
         spec.position = number_list(item["position"], 3, item.loc("position", True), "position", errors) or spec.position
     if "orientation" in item:
-        spec.orientation = quaternion(item["orientation"], item.loc("orientation", True), "orientation", errors) or spec.orientation
+        orientation = quaternion(item["orientation"], item.loc("orientation", True), "orientation", errors)
+        spec.orientation = orientation or spec.orientation
     if "up" in item:
         up = item["up"]
         if not isinstance(up, str) or up not in UP_TURNS:
@@ -251,7 +252,7 @@ def _parse_object(item: Any, where: Location, base: Path, errors: list[InputErro
         try:
             info = describe_model(resolved)
             models[name] = info
-        except Exception as exc:  # noqa: BLE001 - any parse failure is the user's file
+        except Exception as exc:  # any parse failure is the user's file
             errors.append(InputError(f"cannot read model file {resolved.name}: {exc}", item.loc("file", True), key="file"))
     if "description" in item and expect(item["description"], str, item.loc("description", True), "description", errors):
         try:
@@ -291,7 +292,8 @@ def _parse_joints(value: Any, where: Location, info: ModelInfo | None, errors: l
                                          suggestion=did_you_mean(str(joint), movable)))
                 continue
             if known.limited and not (known.lower - 1e-9 <= position <= known.upper + 1e-9):
-                errors.append(InputError(f"joint '{joint}': {position:g} is outside its limits [{known.lower:g}, {known.upper:g}]",
+                limits = f"[{known.lower:g}, {known.upper:g}]"
+                errors.append(InputError(f"joint '{joint}': {position:g} is outside its limits {limits}",
                                          value.loc(joint, True), key="joints"))
                 continue
         joints[str(joint)] = float(position)
@@ -316,11 +318,11 @@ def _parse_attach(value: Any, where: Location, errors: list[InputError]) -> list
                 expect(entry[key], str, entry.loc(key, True), key, errors)
         if len(errors) == count:
             spec = AttachSpec(entry["to"], entry.get("parent_link"), entry.get("child_link"))
-            spec.where = entry.where  # type: ignore[attr-defined]
+            spec.where = entry.where  # type: ignore[attr-defined]  # place in the file: no field, kept out of eq/asdict
             result.append(spec)
     for spec in result:
         if not hasattr(spec, "where"):
-            spec.where = where  # type: ignore[attr-defined]
+            spec.where = where  # type: ignore[attr-defined]  # place in the file: no field, kept out of eq/asdict
     return result
 
 
@@ -329,11 +331,12 @@ def _check_attachments(objects: list[ObjectSpec], models: dict[str, ModelInfo], 
     _check_attachment_cycles(objects, errors)
     for obj in objects:
         for att in obj.attach:
-            where = att.where  # type: ignore[attr-defined]
+            where = att.where  # type: ignore[attr-defined]  # place in the file: no field, kept out of eq/asdict
             if att.to not in names or att.to == obj.name:
                 errors.append(InputError(f"'{obj.name}' cannot attach to '{att.to}': "
                                          + ("an object cannot attach to itself" if att.to == obj.name else "no such object"),
-                                         where, key="attach", suggestion=did_you_mean(att.to, [n for n in names if n != obj.name])))
+                                         where, key="attach",
+                                         suggestion=did_you_mean(att.to, [n for n in names if n != obj.name])))
                 continue
             for link, owner in ((att.parent_link, att.to), (att.child_link, obj.name)):
                 info = models.get(owner)
@@ -366,7 +369,7 @@ def _check_attachment_cycles(objects: list[ObjectSpec], errors: list[InputError]
                     obj = by_name[path[-1]]
                     att = next(a for a in obj.attach if a.to == start)
                     errors.append(InputError(f"attachments go round in a circle: {loop} (each object would follow "
-                                             "itself)", att.where, key="attach",  # type: ignore[attr-defined]
+                                             "itself)", att.where, key="attach",  # type: ignore[attr-defined]  # place in the file: no field, kept out of eq/asdict
                                              suggestion="attach each object to one that does not follow it"))
                 continue
             if following in seen or following not in parents:

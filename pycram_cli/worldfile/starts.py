@@ -8,7 +8,8 @@ again (scenario/starts.py), and the plan's `project` node its varied runs.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterable
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from .loader import START_DEPTH
 
@@ -21,7 +22,7 @@ SUPPORT_GAP = 0.01
 LOOK_DOWN = 3.0
 
 
-def start_problems(world: "BulletWorld", objects: Iterable["Object"]) -> list[str]:
+def start_problems(world: BulletWorld, objects: Iterable[Object]) -> list[str]:
     """Why `objects` (of `world`) cannot start where they are, one line each (empty: they can)."""
     problems: list[str] = []
     reported: set[frozenset[str]] = set()
@@ -36,7 +37,7 @@ def start_problems(world: "BulletWorld", objects: Iterable["Object"]) -> list[st
     return problems
 
 
-def _inside(world: "BulletWorld", obj: "Object", reported: set[frozenset[str]]) -> str | None:
+def _inside(world: BulletWorld, obj: Object, reported: set[frozenset[str]]) -> str | None:
     for other in world.objects:
         pair = frozenset((obj.name, other.name))
         if other is obj or pair in reported or other in obj.attachments or obj in other.attachments:
@@ -48,7 +49,7 @@ def _inside(world: "BulletWorld", obj: "Object", reported: set[frozenset[str]]) 
     return None
 
 
-def unsupported(world: "BulletWorld", obj: "Object") -> str | None:
+def unsupported(world: BulletWorld, obj: Object) -> str | None:
     """Why `obj` is not supported (nothing within SUPPORT_GAP under its centre of mass), or None when it is."""
     (x, y, z), _ = obj.get_com_pose()
     bottom = obj.get_aabb()[0][2]

@@ -93,7 +93,7 @@ def test_display_problem_without_a_display(monkeypatch):
     monkeypatch.setattr(display.sys, "platform", "linux")
     monkeypatch.delenv("DISPLAY", raising=False)
     assert display.display_problem() == "no display (DISPLAY is not set)"
-    with pytest.raises(display.NoDisplayError, match="cannot open a window: no display .*run under xvfb-run or without --gui"):
+    with pytest.raises(display.NoDisplayError, match="cannot open a window: no display .*run under xvfb-run or without `gui`"):
         display.check_display()
     monkeypatch.setenv("DISPLAY", ":987")  # no such server
     assert "cannot open DISPLAY=':987'" in (display.display_problem() or "")

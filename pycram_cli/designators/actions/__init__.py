@@ -15,12 +15,16 @@ it (`- action: pick-up` / `  object: milk`), and the motion designators keep the
 """
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ...errors import InputError, Location, raise_if_any
 from ...kinds import Robots
 from ...robots import Robot
-from . import moving, perceiving, handling  # noqa: F401,I001  (declares the actions, in this order)
+
+# isort: off
+from . import moving, perceiving, handling  # noqa: F401  (declares the actions, in this order)
+# isort: on
 from .actor import Actor, DirectActor, Finder
 from .declaration import ACTIONS, Action, check_action, declare_action
 

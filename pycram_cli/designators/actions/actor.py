@@ -16,23 +16,23 @@ at every motion, query and location like any other leaf step.
 """
 from __future__ import annotations
 
-from typing import Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from typing import Any
 
 from ...errors import PycramError
-from ...failures import Failure, LocationFailure, as_failure
+from ...failures import Failure, FailureRecord, LocationFailure, as_failure
 from ...jsonable import jsonable
 from ...locations import BasePoseResolution, LocationSpec, SpotResolution, parse_location, resolution
 from ...locations.plot import MAP_KEY, candidate_map
-from ...robots import Robot
 from ...reasoning import QueryAnswer, run_query
+from ...robots import Robot
 from ...status import Status
 from ...world import BulletWorld, Object
 from ..performing import perform
 from .declaration import ACTIONS
 
-
 #: errors of values met while acting that are reported as failures (never tracebacks)
-VALUE_ERRORS = (PycramError, ValueError, KeyError, LookupError, TypeError)
+VALUE_ERRORS = (PycramError,)  # what a step turns into a failure: pycram's own errors (anything else is a bug)
 
 
 class Finder:
@@ -81,7 +81,7 @@ class Actor:
         """Run one step that touches the world; `run(info)` records what the trace should say in `info`."""
         raise NotImplementedError
 
-    def group(self, label: str, type: str, run: Callable[["Actor"], Any], info: dict[str, Any] | None = None) -> Any:
+    def group(self, label: str, type: str, run: Callable[[Actor], Any], info: dict[str, Any] | None = None) -> Any:
         """Run steps under a child of their own; `run(actor)` performs them through the child's actor."""
         raise NotImplementedError
 
@@ -135,7 +135,7 @@ class Actor:
         return self.group(f"action {name}", "action", lambda actor: spec.perform(actor, given),
                           {"action": {"type": name, "slots": jsonable(given)}})
 
-    def attempt(self, number: int, run: Callable[["Actor"], Any]) -> Any:
+    def attempt(self, number: int, run: Callable[[Actor], Any]) -> Any:
         return self.group(f"attempt {number}", "attempt", run)
 
 
@@ -161,7 +161,7 @@ class DirectActor(Actor):
             child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, FailureRecord(exc.type_name, exc.message).to_json()
             raise
         finally:
             child.update(info)
@@ -174,5 +174,5 @@ class DirectActor(Actor):
             child["status"] = Status.SUCCEEDED.value
             return value
         except Failure as exc:
-            child["status"], child["failure"] = Status.FAILED.value, {"type": exc.type_name, "message": exc.message}
+            child["status"], child["failure"] = Status.FAILED.value, FailureRecord(exc.type_name, exc.message).to_json()
             raise

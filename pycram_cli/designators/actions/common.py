@@ -2,15 +2,16 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from typing import Any
 
 from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure
 from ...kinds import KINDS, Robots, location_goals
 from ...planning.reach import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...robots import Robot
-from ...world import Object
 from ...signature import Problem
+from ...world import Object
 from .actor import Actor, Finder, as_failure
 
 #: how many poses (or spots) an action tries before it gives up
@@ -99,8 +100,11 @@ def try_choices(actor: Actor, finder: Finder, attempt: Callable[[Actor, Any], An
             if not failures:
                 raise
             raise _gave_up(what, failures, exc) from exc
+        def run(child: Actor, chosen: Any = choice) -> Any:
+            return attempt(child, chosen)
+
         try:
-            return actor.attempt(number, lambda a, c=choice: attempt(a, c))
+            return actor.attempt(number, run)
         except Failure as exc:
             if (isinstance(exc, LocationFailure) and not past_locations) or not isinstance(exc, retry_on):
                 raise
@@ -112,7 +116,7 @@ def _gave_up(what: str, failures: list[Failure], last: LocationFailure | None) -
     tail = failures[-1]
     more = f"; {last.message}" if last is not None else f" ({len(failures)} choices tried)"
     error = type(tail)(f"{what}: {tail.message}{more}", **tail.details)
-    error.failures = failures  # type: ignore[attr-defined]
+    error.failures = failures
     return error
 
 

@@ -16,8 +16,9 @@ Slot kinds are the ones motion designators and queries use (`pycram_cli.kinds`),
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from ...kinds import NOTHING_KNOWN, Robots
 from ...signature import Param, Problem, Registry, Signature
@@ -42,7 +43,7 @@ class Action(HasSlots):
     needs: tuple[str, ...] = ()  # what the robot must have: "mobile base", "head", "camera", "arms"
     returns: str = ""  # what `as:` binds, for people
 
-    def perform(self, actor: "Actor", slots: Mapping[str, Any]) -> Any:
+    def perform(self, actor: Actor, slots: Mapping[str, Any]) -> Any:
         """Run the action with its declared defaults filled in."""
         return self.run(actor, self.signature.bind(slots))
 

@@ -6,8 +6,10 @@ followed by the next candidate before the action fails.
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Mapping
 from dataclasses import replace
-from typing import Any, Mapping
+from typing import Any
 
 from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure, ManipulationFailure, ReasoningFailure
@@ -226,7 +228,8 @@ def _transport(actor: Actor, slots: Mapping[str, Any]) -> Any:
         _put_back(actor, found, was, taken_from)
         raise
     actor.action("park-arms", {})
-    if torso is not None and abs(_torso(actor) - torso) > 1e-6:  # raised or lowered to reach: back as it was
+    now = _torso(actor)
+    if torso is not None and now is not None and abs(now - torso) > 1e-6:  # raised or lowered to reach: back as it was
         actor.motion("moving-torso", {"position": torso})
     answer = actor.query("stable", {"object": found})
     if not answer:  # with what it does: tips over and lies still, keeps moving, or rocks
@@ -252,10 +255,8 @@ def _seal(actor: Actor, container: Any, joint: str, handle: str) -> None:
     still succeeds."""
     if is_closed(container, joint):
         return
-    try:
+    with contextlib.suppress(Failure):
         actor.action("close", {"handle": handle, "part-of": container})
-    except Failure:
-        pass
 
 
 def _put_back(actor: Actor, obj: Any, was: list[float], taken_from: Any) -> None:

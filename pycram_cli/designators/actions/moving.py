@@ -1,7 +1,8 @@
 """`navigate`, `park-arms`, `move-torso`, `look-at`: actions that move the robot's body."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ...failures import ManipulationFailure, NavigationFailure
 from ...kinds import arm_words

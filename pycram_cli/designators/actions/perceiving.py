@@ -1,13 +1,14 @@
 """`detect` and `search`: finding objects with the camera."""
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from ...failures import Failure, LocationFailure, NavigationFailure, PerceptionFailure, ReachabilityFailure
 from ...locations import handle_of, opening_joint
 from ...reasoning.supporting import support_points
-from ...world import Object
 from ...signature import Param, Signature
+from ...world import Object
 from ..declaration import ANY_ARM, drives
 from .actor import Actor, Finder
 from .common import go, object_of, try_choices

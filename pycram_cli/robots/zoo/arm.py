@@ -10,8 +10,25 @@ import math
 import random
 from dataclasses import dataclass, field
 
-from .model import (ALONG_Y, BLACK, COUNTER_TOP, GRIPPER_KINDS, ORIGIN, X_AXIS, Z_AXIS, Gripper, Joint, Link, Names,
-                    Shape, Tree, Vec3, box, seeded, tube_x)
+from .model import (
+    ALONG_Y,
+    BLACK,
+    COUNTER_TOP,
+    GRIPPER_KINDS,
+    ORIGIN,
+    X_AXIS,
+    Z_AXIS,
+    Gripper,
+    Joint,
+    Link,
+    Names,
+    Shape,
+    Tree,
+    Vec3,
+    box,
+    seeded,
+    tube_x,
+)
 
 
 @dataclass(frozen=True)

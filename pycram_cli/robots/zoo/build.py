@@ -7,12 +7,32 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 from .arm import ArmPlan, BodyPlan, build_arm, build_gripper, plan_arm, plan_body
-from .model import (ALONG_Y, ARM_NAMES, BLACK, CAMERA_KINDS, COLOURS, OPTICAL_RPY, ORIGIN, Z_AXIS, Camera, Head, Joint,
-                    Link, Names, Shape, Tree, Vec3, ZooRobot, box, seeded, seeded_names)
+from .model import (
+    ALONG_Y,
+    ARM_NAMES,
+    BLACK,
+    CAMERA_KINDS,
+    COLOURS,
+    OPTICAL_RPY,
+    ORIGIN,
+    Z_AXIS,
+    Camera,
+    Head,
+    Joint,
+    Link,
+    Names,
+    Shape,
+    Tree,
+    Vec3,
+    ZooRobot,
+    box,
+    seeded,
+    seeded_names,
+)
 from .park import Obstacle, ParkProblem, find_park
 
 # -- the whole robot ---------------------------------------------------------------------------------------------

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -99,7 +99,8 @@ def _joint_xml(joint: Joint) -> list[str]:
     if joint.axis is not None:
         lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
     if joint.type != "fixed":
-        bounds = f'lower="{fmt(joint.lower)}" upper="{fmt(joint.upper)}" ' if joint.lower is not None else ""
+        bounds = (f'lower="{fmt(joint.lower)}" upper="{fmt(joint.upper)}" '
+                  if joint.lower is not None and joint.upper is not None else "")
         lines.append(f'    <limit {bounds}effort="{fmt(joint.effort)}" velocity="{fmt(joint.velocity)}"/>')
     lines.append("  </joint>")
     return lines
@@ -211,7 +212,8 @@ def write_world(robot: ZooRobot, folder: Path, base: Sequence[float] = (0.0, 0.7
         if line.startswith("#"):
             continue  # the template's own comments speak of the PR2 and of paths relative to it
         if line.startswith("description:"):
-            line = f"description: {robot.name} (robot zoo, seed {robot.seed}) in the IAI kitchen, breakfast items on the sink counter"
+            line = (f"description: {robot.name} (robot zoo, seed {robot.seed}) in the IAI kitchen, "
+                    "breakfast items on the sink counter")
         lines.append(line)
     lines += block + source[end:]
     world = folder / f"{robot.name}_kitchen.yaml"

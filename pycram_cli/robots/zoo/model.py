@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import math
 import random
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import Iterable, Sequence
 
 Vec3 = tuple[float, float, float]
 
@@ -213,7 +213,7 @@ class Tree:
         self.joints: list[Joint] = []
 
     def add(self, joint: Joint, link: Link) -> str:
-        if joint.child != link.name or joint.parent not in {l.name for l in self.links}:
+        if joint.child != link.name or joint.parent not in {known.name for known in self.links}:
             raise ValueError(f"{joint.name}: broken tree at {link.name}")
         self.joints.append(joint)
         self.links.append(link)
@@ -227,8 +227,8 @@ class Tree:
 
 def box(lo: Sequence[float], hi: Sequence[float], rgba=COLOURS[0]) -> Shape:
     """An axis-aligned box spanning the corners lo and hi."""
-    return Shape("box", tuple(round(h - l, 6) for l, h in zip(lo, hi)),
-                 tuple(round((l + h) / 2, 6) for l, h in zip(lo, hi)), ORIGIN, rgba)  # type: ignore[arg-type]
+    return Shape("box", tuple(round(h - low, 6) for low, h in zip(lo, hi)),
+                 tuple(round((low + h) / 2, 6) for low, h in zip(lo, hi)), ORIGIN, rgba)  # type: ignore[arg-type]
 
 
 def tube_x(radius: float, x0: float, x1: float, rgba=COLOURS[0]) -> Shape:

@@ -9,8 +9,8 @@ rated at once.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
@@ -88,6 +88,12 @@ class ParkProblem:
     sight: tuple[float, float] | None  # the camera (x, z) on the body; the parked arm stays below its view of the counter
 
 
+def _limits(joint: Joint) -> tuple[float, float]:
+    """An arm joint's range (the zoo's arm joints are all limited)."""
+    assert joint.lower is not None and joint.upper is not None, joint.name
+    return joint.lower, joint.upper
+
+
 def _candidates(problem: ParkProblem, steps: int = 13) -> np.ndarray:
     """Joint values (N, arm joints) to try: the pan at 0, ±45°, ±90° or ±135°, the rolls and slides at 0, the pitches
     on a grid."""
@@ -96,9 +102,11 @@ def _candidates(problem: ParkProblem, steps: int = 13) -> np.ndarray:
         joint = next(j for j in problem.joints if j.name == name)
         if name == problem.arm_joints[0]:
             pans = (0.0, math.pi / 4, -math.pi / 4, math.pi / 2, -math.pi / 2, 3 * math.pi / 4, -3 * math.pi / 4)
-            axes.append(np.array([v for v in pans if joint.lower <= v <= joint.upper]))
+            low, high = _limits(joint)
+            axes.append(np.array([v for v in pans if low <= v <= high]))
         elif name in problem.up_sign:
-            axes.append(np.linspace(joint.lower, joint.upper, steps + 2)[1:-1])
+            low, high = _limits(joint)
+            axes.append(np.linspace(low, high, steps + 2)[1:-1])
         else:
             axes.append(np.array([0.0]))
     return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
