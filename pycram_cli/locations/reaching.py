@@ -85,7 +85,7 @@ class ArmTests:
                 if position is None:
                     continue
                 holdable = True
-                solution = reach(robot, arm, position, orientation)
+                solution = reach(robot, arm, position, orientation, best_effort=False)  # only whether
                 if not solution.success:
                     continue
                 if spec.accessing is not None:

@@ -106,7 +106,7 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
         for value in pull_values(part.get_joint_position(joint), goal):
             part.reset_joints({joint: value})
             tool = compose(part.get_link_position_and_orientation(handle), held)
-            solution = reach(robot, arm, tool[0], tool[1])
+            solution = reach(robot, arm, tool[0], tool[1], best_effort=False)  # only whether (and the joints then)
             if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
                 return False
             body.reset_joints(solution.joint_positions)

@@ -256,7 +256,7 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
         here, middle = reach_each(robot, arm, [(target, orientation, None),
                                                (target, orientation, middle_of_ranges(robot, arm))],
-                                  enough=lambda k, s: k == 0 and s.success)
+                                  enough=lambda k, s: k == 0 and s.success, best_effort=False)  # only whether
         assert here is not None
         solution = here if here.success else middle
     return solution.joint_positions if solution is not None and solution.success else None

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import pybullet as p
 
-from ..errors import did_you_mean
+from ..errors import BadValue, UnknownName, did_you_mean
 from ..quiet import silenced
 from .bullet_world import BulletWorld, WorldError
 from .meshes import read_mesh
@@ -136,13 +136,13 @@ class Object:
         try:
             return self._joint_ids[name]
         except KeyError:
-            raise KeyError(_unknown(f"object '{self.name}' has no joint", name, self._joint_ids)) from None
+            raise UnknownName(_unknown(f"object '{self.name}' has no joint", name, self._joint_ids)) from None
 
     def get_link_id(self, name: str) -> int:
         try:
             return self._link_ids[name]
         except KeyError:
-            raise KeyError(_unknown(f"object '{self.name}' has no link", name, self._link_ids)) from None
+            raise UnknownName(_unknown(f"object '{self.name}' has no link", name, self._link_ids)) from None
 
     def get_link_name(self, link_id: int) -> str:
         return self._link_names[link_id]
@@ -434,7 +434,7 @@ class Object:
         Attachments are bilateral (either side can detach); attaching an attached pair again changes nothing.
         """
         if other is self:
-            raise ValueError(f"object '{self.name}' cannot be attached to itself")
+            raise BadValue(f"object '{self.name}' cannot be attached to itself")
         if other.world is not self.world:
             raise WorldError(f"'{self.name}' and '{other.name}' are in different worlds")
         if other in self.attachments:
@@ -452,7 +452,7 @@ class Object:
     def detach(self, other: Object) -> None:
         att = self.attachments.pop(other, None)
         if att is None:
-            raise ValueError(f"'{self.name}' and '{other.name}' are not attached")
+            raise BadValue(f"'{self.name}' and '{other.name}' are not attached")
         other.attachments.pop(self, None)
         self.world.mark_changed(self)
         self.world.mark_changed(other)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from pycram_cli.plan.observer import Observing
 from pycram_cli.planning.contacts import supports_from_below
 from pycram_cli.scenario import golden, prepare
 
@@ -28,7 +29,7 @@ def inside(world):
     return found
 
 
-class StepChecker:
+class StepChecker(Observing):
     """Looks at the world after every step of the plan that moved something or asked about it."""
 
     def __init__(self, world) -> None:
