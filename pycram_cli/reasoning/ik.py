@@ -33,7 +33,7 @@ import numpy as np
 from ..errors import BadValue
 from ..robots import Robot, description_for
 from ..world.pose import Quat, Vec3, check_position, check_quaternion
-from .kinematics import Chain, _kinematics, _transform, chain_for
+from .kinematics import Chain, chain_for, kinematics_of, transform
 
 if TYPE_CHECKING:
     from ..world import Object
@@ -76,14 +76,14 @@ class _Problem:
     """
 
     def __init__(self, robot: Object, chain: Chain, variable: Sequence[str]) -> None:
-        kin = _kinematics(chain, variable)
+        kin = kinematics_of(chain, variable)
         base_pos, base_orn = robot.get_com_pose()  # the chain starts at the base's centre of mass
         current = robot.get_joint_positions(kin.read) if kin.read else {}
         layout = self.layout = kin.layout(current)
         lead, self._after, self._turned, self._turned2 = layout.lead, layout.after, layout.turned, layout.turned2
         #: everything of the robot's state the answers depend on: the base's pose and the chain's joint values
         self.state = (tuple(base_pos), tuple(base_orn), tuple(current[name] for name in kin.read))
-        start = _transform(base_pos, base_orn)
+        start = transform(base_pos, base_orn)
         for factor in lead:
             start = start @ factor
         self.start = start  # the first variable joint's frame in the world, before its motion
@@ -468,7 +468,7 @@ def solve_link_each(
         raise BadValue("IK queries: expected an orientation for every target or for none")
     targets = [np.asarray(check_position(position, "IK target position")) for position, _, _ in queries]
     rotations = [None if orientation is None else
-                 _transform((0, 0, 0), check_quaternion(orientation, "IK target orientation"))[:3, :3]
+                 transform((0, 0, 0), check_quaternion(orientation, "IK target orientation"))[:3, :3]
                  for _, orientation, _ in queries]
     link_index = robot.get_link_id(tool_link)
     names = list(joints) if joints is not None else _arm_joints(robot, tool_link)
@@ -553,6 +553,6 @@ def _verdict(solution: dict[str, float], pos: Sequence[float], orn: Sequence[flo
     pos_err = float(np.linalg.norm(target - np.asarray(pos)))
     ang_err = None
     if target_rot is not None:
-        ang_err = _angle(target_rot, _transform((0, 0, 0), orn)[:3, :3])
+        ang_err = _angle(target_rot, transform((0, 0, 0), orn)[:3, :3])
     ok = pos_err <= threshold and (ang_err is None or ang_err <= angle_threshold)
     return IKSolution(ok, solution, pos_err, ang_err)

@@ -20,7 +20,8 @@ if TYPE_CHECKING:
     from ..world import Object
 
 
-def _transform(position: Sequence[float], orientation: Sequence[float]) -> np.ndarray:
+def transform(position: Sequence[float], orientation: Sequence[float]) -> np.ndarray:
+    """The 4×4 homogeneous transform of a pose (position, quaternion x, y, z, w)."""
     x, y, z, w = orientation
     t = np.eye(4)
     t[:3, :3] = [
@@ -66,7 +67,7 @@ class Chain:
     body: int
     joints: list[_ChainJoint]
     tool_com_to_link: np.ndarray  # tool centre of mass -> tool link frame
-    #: what searches over its joints need, per tuple of variable joints (`_kinematics`)
+    #: what searches over its joints need, per tuple of variable joints (`kinematics_of`)
     kinematics: dict[tuple[str, ...], _Kinematics] = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
@@ -79,9 +80,9 @@ class Chain:
             norm = float(np.linalg.norm(axis))
             joints.append(_ChainJoint(
                 index=index, name=joint.name, kind=joint.type,
-                parent_to_joint=_transform(*joint.parent_frame),
+                parent_to_joint=transform(*joint.parent_frame),
                 axis=axis / norm if norm > 0 else axis,
-                link_to_com=_transform(*joint.inertial_frame),
+                link_to_com=transform(*joint.inertial_frame),
                 lower=joint.lower if joint.limited else -math.inf,
                 upper=joint.upper if joint.limited else math.inf,
             ))
@@ -132,7 +133,7 @@ def _skew(v: np.ndarray) -> np.ndarray:
 
 class _Kinematics:
     """What a search needs of a chain and its variable joints that does not depend on where the robot stands: made
-    once per chain and joints (`_kinematics`), the constant transforms between the variable joints once per value of
+    once per chain and joints (`kinematics_of`), the constant transforms between the variable joints once per value of
     the chain's other joints (a torso raised or lowered), so that a search only reads the base's pose."""
 
     def __init__(self, chain: Chain, variable: Sequence[str]) -> None:
@@ -219,7 +220,8 @@ class _Layout:
     lever: float
 
 
-def _kinematics(chain: Chain, variable: Sequence[str]) -> _Kinematics:
+def kinematics_of(chain: Chain, variable: Sequence[str]) -> _Kinematics:
+    """The chain's forward kinematics over the `variable` joints (made once per chain and joints)."""
     key = tuple(variable)
     found = chain.kinematics.get(key)
     if found is None:
