@@ -2,9 +2,12 @@
 
 On Linux, PyBullet's GUI client opens the X display from its own thread and, when that
 fails, prints "cannot connect to X server" and ends the whole process with exit code 1
-(the code the CLI uses for "the plan failed"). So the display is opened once here, with
-libX11 through ctypes (the same library PyBullet loads), and a `NoDisplayError` says
-what to do instead. Other platforms have a window system of their own: nothing to ask.
+(the code the CLI uses for "the plan failed"); when the display has no OpenGL (GLX), it
+prints "Error in gladLoadGLX" and ends it with exit code 0, as if all went well. Both
+messages go to a terminal that is silenced at that moment. So the display is opened once
+here, with libX11 through ctypes (the same library PyBullet loads), its GLX version is
+asked through libGL as PyBullet's loader asks it, and a `NoDisplayError` says what to do
+instead. Other platforms have a window system of their own: nothing to ask.
 """
 from __future__ import annotations
 
@@ -46,7 +49,25 @@ def display_problem() -> str | None:
         time.sleep(0.2 * (attempt + 1))
     if not handle:
         return f"no display (cannot open DISPLAY={name!r})"
-    x11.XCloseDisplay(handle)
+    try:
+        return _opengl_problem(handle, name)
+    finally:
+        x11.XCloseDisplay(handle)
+
+
+def _opengl_problem(handle: int, name: str) -> str | None:
+    """Why PyBullet's window could not draw on the open display `handle`, or None: the window needs libGL and the
+    display's GLX extension (asked for its version, as PyBullet's GL loader does before it gives up)."""
+    library = ctypes.util.find_library("GL") or "libGL.so.1"
+    try:
+        gl = ctypes.CDLL(library)
+    except OSError:
+        return f"no OpenGL library to draw on display {name!r} with (install libgl1)"
+    gl.glXQueryVersion.restype = ctypes.c_int
+    gl.glXQueryVersion.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int)]
+    major, minor = ctypes.c_int(0), ctypes.c_int(0)
+    if not gl.glXQueryVersion(handle, ctypes.byref(major), ctypes.byref(minor)):
+        return f"display {name!r} has no OpenGL (its X server lacks the GLX extension)"
     return None
 
 
