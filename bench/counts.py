@@ -26,8 +26,9 @@ import io
 import json
 import sys
 from collections import Counter
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
@@ -81,11 +82,8 @@ def count(plan: str, world: str | None) -> dict[str, Any]:
 
     args = ["run", plan, *(["--world", world] if world else []), "--json", "-q"]
     out = io.StringIO()
-    with counting() as counts, contextlib.redirect_stdout(out):
-        try:
-            cli.main(args, prog_name="pycram", standalone_mode=False)
-        except SystemExit:
-            pass
+    with counting() as counts, contextlib.redirect_stdout(out), contextlib.suppress(SystemExit):
+        cli.main(args, prog_name="pycram", standalone_mode=False)
     answer = json.loads(out.getvalue())
     return {"status": answer["status"], **{column: counts[column] for column, *_ in COUNTED}}
 
