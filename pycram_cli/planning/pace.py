@@ -1,0 +1,136 @@
+"""How far each moving part of a robot can travel over a step of a straight joint-space path: the spacing of checks.
+
+A path q(t) = q₀ + t·Δq (t from 0 to 1) is checked at some values of t; between two checks each moving part (a
+mover: a link, or an object it holds) may travel at most its clearance T, so that it cannot pass into anything in
+between (`motion.py`). This module bounds a mover's travel over a step of length h from where the step starts, in
+two ways, and a step is as long as the better of the two allows (both hold, so the smaller bound does).
+
+*The lever bound.* A point p of mover k moves at ‖ṗ‖ ≤ Σᵢ |Δqᵢ|·rᵢₖ per unit of t, summed over the moving joints
+i above k, where rᵢₖ is p's distance from joint i's axis (1 for a prismatic joint). That distance changes only as
+the joints below i move p, so by no more than p's own travel: while p travels at most T, rᵢₖ ≤ rᵢₖ(0) + T, where
+rᵢₖ(0), the lever, is the farthest corner of k's box from the axis (the farthest point of a box from a line is a
+corner). So travel(h) ≤ h·(base + T·weight) with base = Σᵢ |Δqᵢ|·rᵢₖ(0), weight = Σᵢ |Δqᵢ|.
+
+*The pace bound.* The lever bound adds up every joint's contribution as if all pushed the same way; they seldom
+do (a shoulder and an elbow turning against each other move the hand far less than either alone). The velocity
+of p is ṗ = Σᵢ Δqᵢ·wᵢ(p), wᵢ = aᵢ × (p − oᵢ) for a revolute joint with unit axis aᵢ through oᵢ, wᵢ = aᵢ for a
+prismatic one: the Jacobian of p times Δq. Where the step starts it is affine in p (a rigid motion), so its
+length is convex in p and largest at a corner of k's box, which holds every point of k: `speed`, the largest
+‖J(c)·Δq‖ over the 8 corners c, bounds ‖ṗ(0)‖ for every point of k. Over the step the Jacobian changes; in the
+frame of joint i's child link aᵢ and oᵢ are fixed, so wᵢ changes only (1) as that frame turns, by an angle of at
+most u·Θᵢ after u of the step, Θᵢ = Σ |Δqⱼ| over the revolute joints j at or above i (angles of composed
+rotations add at most; a vector of length ‖wᵢ‖ ≤ rᵢₖ(0) turned by θ moves by at most θ·‖wᵢ‖), and (2) as p moves
+in that frame, which only the joints below i do, at most u·Λᵢ far, Λᵢ = Σ |Δqⱼ|·(rⱼₖ(0) + T) over the moving
+joints j below i and above k (‖a × d‖ ≤ ‖d‖; prismatic joints: wᵢ = aᵢ only turns). So ‖ṗ(u) − ṗ(0)‖ ≤ u·A,
+A = Σᵢ |Δqᵢ|·(Θᵢ·rᵢₖ(0) + Λᵢ) = curve + T·bend, and travel(h) ≤ ∫₀ʰ (speed + u·A) du = h·speed + h²·A/2.
+
+Both bounds assume that p has travelled at most T (the levers grown by T); the step h chosen makes the bound T at
+h, and a bound that grows with h keeps the travel within T until h, so the assumption holds all the way (were
+it broken first at some u < h, the bound there, below T, would contradict it). Nothing here reads the world:
+`motion.Motion` gives the boxes, the joints' frames and which joints are above which mover.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the 8 corners of a box from its (lo, hi) pair: which of the two each coordinate comes from
+_CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+_AXES = np.arange(3)[None, :]
+
+
+def corners(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The 8 corners of each box, (boxes, 8, 3), from the boxes' low and high corners, (boxes, 3) each."""
+    return np.stack([lo, hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)
+
+
+def levers(points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic: np.ndarray,
+           below: np.ndarray) -> np.ndarray:
+    """rᵢₖ, (joints, movers): the farthest corner of mover k's box (`points`, from `corners`) from joint i's axis
+    (through `origins[i]` along the unit `axes[i]`) where k hangs below joint i (`below[i, k]`), else 0; 1 for a
+    prismatic joint above it."""
+    rel = points[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
+    along = np.einsum("nmcd,nd->nmc", rel, axes)
+    perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
+    return np.where(below, np.where(prismatic[:, None], 1.0, perpendicular), 0.0)
+
+
+@dataclass(frozen=True)
+class Pace:
+    """For each mover, bounds of its travel over a step of h (a fraction of the path) from where it is now, given
+    that it travels at most T: h·(base + T·weight) (levers) and h·speed + h²·(curve + T·bend)/2 (Jacobian)."""
+
+    base: np.ndarray
+    weight: np.ndarray
+    speed: np.ndarray
+    curve: np.ndarray
+    bend: np.ndarray
+
+    @staticmethod
+    def of_levers(base: np.ndarray, weight: np.ndarray) -> Pace:
+        """The lever bound alone (the pace bound never the better one)."""
+        endless = np.full(len(base), math.inf)
+        return Pace(base, weight, endless, endless, np.zeros(len(base)))
+
+    def moving(self) -> np.ndarray:
+        """Which movers move at all along the path."""
+        return (self.base + self.weight) > 0.0
+
+    def rates(self, travel: np.ndarray) -> np.ndarray:
+        """The lever bound of each mover's speed (travel per unit of the path) while it travels at most `travel`."""
+        return self.base + travel * self.weight
+
+    def steps(self, travel: np.ndarray) -> np.ndarray:
+        """The longest step (fraction of the path) after which each mover has travelled at most `travel` (inf for
+        a mover that does not move)."""
+        moving = self.moving()
+        lever = np.divide(travel, self.rates(travel), out=np.full(len(travel), math.inf), where=moving)
+        bend = self.curve + travel * self.bend
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            # h·speed + h²·bend/2 = travel, solved for h (written so that bend = 0 gives travel / speed)
+            jacobian = 2.0 * travel / (self.speed + np.sqrt(self.speed * self.speed + 2.0 * bend * travel))
+        jacobian = np.where(np.isfinite(self.speed), jacobian, 0.0)
+        return np.where(moving, np.maximum(lever, jacobian), math.inf)
+
+    def needed(self, step: float, k: int) -> float:
+        """The travel mover k must be allowed for a step of `step` (inf: none is enough): `steps` inverted."""
+        lever = math.inf
+        if step * self.weight[k] < 1.0:
+            lever = step * float(self.base[k]) / (1.0 - step * float(self.weight[k]))
+        jacobian = math.inf
+        if math.isfinite(self.speed[k]) and step * step * self.bend[k] < 2.0:
+            jacobian = ((step * float(self.speed[k]) + step * step * float(self.curve[k]) / 2.0)
+                        / (1.0 - step * step * float(self.bend[k]) / 2.0))
+        return min(lever, jacobian)
+
+
+def pace(delta: np.ndarray, points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic: np.ndarray,
+         below: np.ndarray, inner: np.ndarray) -> Pace:
+    """Both bounds for a step of the path q₀ + t·`delta` from where the movers are now (see the module's text).
+
+    `points`: each mover's box corners, (movers, 8, 3); `origins`, `axes`: each moving joint's axis (a point on it
+    and its unit direction) in the world; `prismatic[i]`; `below[i, k]`: mover k hangs below joint i;
+    `inner[i, j]`: joint i hangs below joint j (i ≠ j)."""
+    size = np.abs(delta)
+    lever = levers(points, origins, axes, prismatic, below)  # (joints, movers)
+    weight = (below * size[:, None]).sum(axis=0)
+    base = size @ lever
+    # ‖J(c)·Δq‖ at every corner c: Σᵢ Δqᵢ·(aᵢ × (c − oᵢ)), or Δqᵢ·aᵢ for a prismatic joint, over the joints above k
+    rel = points[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
+    columns = np.cross(np.broadcast_to(axes[:, None, None, :], rel.shape), rel)
+    columns = np.where(prismatic[:, None, None, None], axes[:, None, None, :], columns)
+    velocity = np.einsum("nm,nmcd->mcd", below * delta[:, None], columns)
+    speed = np.sqrt(np.einsum("mcd,mcd->mc", velocity, velocity)).max(axis=1)
+    # Θᵢ: the revolute joints at or above i; Λᵢ (without T, and T's factor): the joints below i and above k
+    turning = np.where(prismatic, 0.0, size)
+    above = inner.astype(float)  # above[i, j]: joint j is above joint i
+    theta = turning + above @ turning
+    spin = theta[:, None] * lever  # Θᵢ·rᵢₖ (a prismatic joint's column, its unit axis, turns as well)
+    revolute = ~prismatic[:, None]
+    sliding = np.where(revolute, above.T @ (size[:, None] * lever), 0.0)  # Σ over j below i of |Δqⱼ|·rⱼₖ
+    moved = np.where(revolute, above.T @ (size[:, None] * below), 0.0)  # Σ over j below i (and above k) of |Δqⱼ|
+    curve = np.einsum("n,nm->m", size, below * (spin + sliding))
+    bend = np.einsum("n,nm->m", size, below * moved)
+    return Pace(base, weight, speed, curve, bend)
