@@ -47,7 +47,7 @@ from ..failures import ManipulationFailure
 from ..robots import Robot
 from ..world import Object
 from ..world.pose import quat_to_matrix, quats_to_matrices
-from .pace import Pace, corners, levers, pace
+from .pace import Pace, Pacer, corners, levers
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
 PENETRATION = 0.001
@@ -439,6 +439,7 @@ class Motion:
         hits: list[Hit] = []
         total = 0.0
         levers, since = None, np.zeros(below.shape[1])
+        pacer = Pacer(delta, self._prismatic, below, inner)
         try:
             while True:
                 self._put(start + t * delta)
@@ -450,7 +451,7 @@ class Motion:
                         levers, since = self._local_levers(*boxes, below), np.zeros(below.shape[1])
                     rates = Pace.of_levers(size @ levers + since * weights, weights)
                 else:  # no part travels farther than the better of the lever and the Jacobian bound (pace.py)
-                    rates = pace(delta, corners(*boxes), *self._axes(), self._prismatic, below, inner)
+                    rates = pacer.at(corners(*boxes), *self._axes())
                 clear, hits = self.clearances(boxes, rates)
                 if hits:
                     break

@@ -51,9 +51,10 @@ def levers(points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic:
     """rᵢₖ, (joints, movers): the farthest corner of mover k's box (`points`, from `corners`) from joint i's axis
     (through `origins[i]` along the unit `axes[i]`) where k hangs below joint i (`below[i, k]`), else 0; 1 for a
     prismatic joint above it."""
-    rel = points[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
-    along = np.einsum("nmcd,nd->nmc", rel, axes)
-    perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
+    rel = points.reshape(1, -1, 3) - origins[:, None, :]  # (joints, movers · 8, 3): few numpy calls (a check's hot path)
+    along = np.matmul(rel, axes[:, :, None])[:, :, 0]
+    square = np.einsum("nkd,nkd->nk", rel, rel)
+    perpendicular = np.sqrt(np.maximum(square - along * along, 0.0)).reshape(len(origins), -1, 8).max(axis=2)
     return np.where(below, np.where(prismatic[:, None], 1.0, perpendicular), 0.0)
 
 
@@ -87,11 +88,11 @@ class Pace:
         a mover that does not move)."""
         moving = self.moving()
         lever = np.divide(travel, self.rates(travel), out=np.full(len(travel), math.inf), where=moving)
+        # h·speed + h²·bend/2 = travel, solved for h (written so that bend = 0 gives travel / speed; an endless speed,
+        # the levers alone, gives 0)
         bend = self.curve + travel * self.bend
-        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-            # h·speed + h²·bend/2 = travel, solved for h (written so that bend = 0 gives travel / speed)
-            jacobian = 2.0 * travel / (self.speed + np.sqrt(self.speed * self.speed + 2.0 * bend * travel))
-        jacobian = np.where(np.isfinite(self.speed), jacobian, 0.0)
+        below = self.speed + np.sqrt(self.speed * self.speed + 2.0 * bend * travel)
+        jacobian = np.divide(2.0 * travel, below, out=np.full(len(travel), math.inf), where=below > 0.0)
         return np.where(moving, np.maximum(lever, jacobian), math.inf)
 
     def needed(self, step: float, k: int) -> float:
@@ -106,31 +107,47 @@ class Pace:
         return min(lever, jacobian)
 
 
-def pace(delta: np.ndarray, points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic: np.ndarray,
-         below: np.ndarray, inner: np.ndarray) -> Pace:
-    """Both bounds for a step of the path q₀ + t·`delta` from where the movers are now (see the module's text).
+#: [a]× = a @ _SKEW reshaped to 3×3: the matrix of the cross product a × ·
+_SKEW = np.zeros((3, 9))
+for _m, _j, _l, _sign in ((0, 1, 2, -1.0), (0, 2, 1, 1.0), (1, 0, 2, 1.0), (1, 2, 0, -1.0), (2, 0, 1, -1.0),
+                          (2, 1, 0, 1.0)):
+    _SKEW[_m, 3 * _j + _l] = _sign
 
-    `points`: each mover's box corners, (movers, 8, 3); `origins`, `axes`: each moving joint's axis (a point on it
-    and its unit direction) in the world; `prismatic[i]`; `below[i, k]`: mover k hangs below joint i;
-    `inner[i, j]`: joint i hangs below joint j (i ≠ j)."""
-    size = np.abs(delta)
-    lever = levers(points, origins, axes, prismatic, below)  # (joints, movers)
-    weight = (below * size[:, None]).sum(axis=0)
-    base = size @ lever
-    # ‖J(c)·Δq‖ at every corner c: Σᵢ Δqᵢ·(aᵢ × (c − oᵢ)), or Δqᵢ·aᵢ for a prismatic joint, over the joints above k
-    rel = points[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
-    columns = np.cross(np.broadcast_to(axes[:, None, None, :], rel.shape), rel)
-    columns = np.where(prismatic[:, None, None, None], axes[:, None, None, :], columns)
-    velocity = np.einsum("nm,nmcd->mcd", below * delta[:, None], columns)
-    speed = np.sqrt(np.einsum("mcd,mcd->mc", velocity, velocity)).max(axis=1)
-    # Θᵢ: the revolute joints at or above i; Λᵢ (without T, and T's factor): the joints below i and above k
-    turning = np.where(prismatic, 0.0, size)
-    above = inner.astype(float)  # above[i, j]: joint j is above joint i
-    theta = turning + above @ turning
-    spin = theta[:, None] * lever  # Θᵢ·rᵢₖ (a prismatic joint's column, its unit axis, turns as well)
-    revolute = ~prismatic[:, None]
-    sliding = np.where(revolute, above.T @ (size[:, None] * lever), 0.0)  # Σ over j below i of |Δqⱼ|·rⱼₖ
-    moved = np.where(revolute, above.T @ (size[:, None] * below), 0.0)  # Σ over j below i (and above k) of |Δqⱼ|
-    curve = np.einsum("n,nm->m", size, below * (spin + sliding))
-    bend = np.einsum("n,nm->m", size, below * moved)
-    return Pace(base, weight, speed, curve, bend)
+
+class Pacer:
+    """The bounds of a path q₀ + t·`delta` (see the module's text), what of them stays the same along it computed
+    once: `at` then gives a step's `Pace` from where the movers are (a path's checks call it at each).
+
+    `prismatic[i]`: moving joint i slides; `below[i, k]`: mover k hangs below joint i; `inner[i, j]`: joint i
+    hangs below joint j (i ≠ j)."""
+
+    def __init__(self, delta: np.ndarray, prismatic: np.ndarray, below: np.ndarray, inner: np.ndarray) -> None:
+        size = np.abs(delta)
+        self._prismatic, self._below = prismatic, below
+        # Θᵢ: |Δq| summed over the revolute joints at or above i
+        turning = np.where(prismatic, 0.0, size)
+        theta = turning + inner.astype(float) @ turning
+        # the pace bound's A = Σᵢ |Δqᵢ|·(Θᵢ·rᵢₖ + Λᵢ) over the joints above k, Λᵢ (revolute i only) =
+        # Σⱼ |Δqⱼ|·(rⱼₖ + T) over the joints j below i and above k; summed by j instead, every joint i above j
+        # being above k too: A = Σⱼ |Δqⱼ|·rⱼₖ·(Θⱼ + (Θⱼ − |Δqⱼ| if revolute)) + T·Σⱼ |Δqⱼ|·(Θⱼ − |Δqⱼ| if revolute)
+        outer = theta - turning  # |Δq| of the revolute joints strictly above each joint
+        self._rows = np.stack([size, size * (theta + outer)])  # base and curve: · levers
+        self.weight = size @ below.astype(float)
+        self.bend = (size * outer) @ below.astype(float)
+        self._share = (below * delta[:, None]).T  # (movers, joints): each mover's Δq
+        self._sliding = prismatic[:, None]
+
+    def at(self, points: np.ndarray, origins: np.ndarray, axes: np.ndarray) -> Pace:
+        """The bounds for a step from here: `points`, each mover's box corners (movers, 8, 3; `corners`); `origins`
+        and `axes`, each moving joint's axis in the world (a point on it, its unit direction)."""
+        lever = levers(points, origins, axes, self._prismatic, self._below)  # (joints, movers)
+        base, curve = self._rows @ lever
+        # ‖J(c)·Δq‖ at every corner c: Σᵢ Δqᵢ·(aᵢ × (c − oᵢ)), or Δqᵢ·aᵢ for a prismatic joint, over the joints above
+        # k, = ω × c + b: mover k's rigid motion, ω = Σᵢ Δqᵢ·aᵢ over its revolute joints, b the rest
+        skews = (axes @ _SKEW).reshape(-1, 3, 3)  # [aᵢ]×
+        moments = np.where(self._sliding, axes, -np.matmul(skews, origins[:, :, None])[:, :, 0])
+        omega = self._share @ np.where(self._sliding, 0.0, axes)
+        turn = (omega @ _SKEW).reshape(-1, 3, 3)  # [ω]×
+        velocity = np.matmul(points, turn.transpose(0, 2, 1)) + (self._share @ moments)[:, None, :]  # (movers, 8, 3)
+        speed = np.sqrt(np.einsum("mcd,mcd->mc", velocity, velocity).max(axis=1))
+        return Pace(base, self.weight, speed, curve, self.bend)

@@ -60,11 +60,12 @@ def assert_sound(m: motion.Motion, goal: dict[str, float]) -> None:
     start, end = m._endpoints(goal)
     delta = end - start
     below, inner = m._nesting()
+    pacer = pace.Pacer(delta, m._prismatic, below, inner)
     checked = 0
     try:
         for t in np.linspace(0.0, 0.9, 10):
             m._put(start + t * delta)
-            bound = pace.pace(delta, pace.corners(*m._mover_boxes()), *m._axes(), m._prismatic, below, inner)
+            bound = pacer.at(pace.corners(*m._mover_boxes()), *m._axes())
             levers_only = pace.Pace.of_levers(bound.base, bound.weight)
             for travel in TRAVELS:
                 allowed = np.full(len(bound.base), travel)
@@ -134,20 +135,20 @@ def count_checks(monkeypatch: pytest.MonkeyPatch, m: motion.Motion, goal: dict[s
     and what it runs into."""
     calls = []
     original = motion.Motion.clearances
-    real_pace = motion.pace
+    real_at = motion.Pacer.at
 
     def counted(self: motion.Motion, *args: object, **kwargs: object) -> object:
         calls.append(1)
         return original(self, *args, **kwargs)
 
-    def lever_pace(*args: object) -> pace.Pace:
-        found = real_pace(*args)  # type: ignore[arg-type]
+    def lever_pace(self: pace.Pacer, *args: np.ndarray) -> pace.Pace:
+        found = real_at(self, *args)
         return pace.Pace.of_levers(found.base, found.weight)
 
     with monkeypatch.context() as patch:
         patch.setattr(motion.Motion, "clearances", counted)
         if levers_only:
-            patch.setattr(motion, "pace", lever_pace)
+            patch.setattr(motion.Pacer, "at", lever_pace)
         fraction, hits, _ = m.walk(goal)
     motion._MEMO.pop(m.world, None)
     return len(calls), fraction, [(h.mover, h.obstacle.name) for h in hits]
@@ -167,3 +168,10 @@ def test_a_known_motion_takes_fewer_checks_than_with_the_levers_alone(counter, m
     assert blocked[2] and blocked[2][0] == blocked_levers[2][0]
     assert blocked[1] == pytest.approx(blocked_levers[1], abs=0.05)
     assert blocked[0] < blocked_levers[0]
+
+
+def test_the_torso_rising_while_the_arm_reaches_stays_within_the_bound(counter):
+    """A sliding joint above turning ones: the Jacobian's columns of both kinds add up with their signs."""
+    robot, joints, out = counter
+    torso = robot.body.get_joint_positions(["torso_lift_joint"])["torso_lift_joint"]
+    assert_sound(motion.Motion(robot, ["torso_lift_joint", *joints]), {"torso_lift_joint": torso + 0.2, **out})
