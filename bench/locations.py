@@ -54,7 +54,7 @@ PYCRAM_FIGURE = "no pose in 5.3 s"
 def first_pose(world: Any, location: dict[str, Any], cold: bool = True) -> Any:
     forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks its questions afresh
     if cold:
-        floor_maps._MAPS.pop(world, None)
+        world.cache.forget(floor_maps.MAPS)
     return locate(world, location).next()
 
 

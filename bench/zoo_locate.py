@@ -42,7 +42,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
     try:
         times, found = [], True
         for _ in range(repeat):
-            floor_maps._MAPS.pop(world, None)
+            world.cache.forget(floor_maps.MAPS)
             forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
             with world.snapshot():
                 start = time.perf_counter()
