@@ -28,7 +28,8 @@ sys.path.insert(0, str(REPO))
 from pycram_cli.failures import LocationFailure  # noqa: E402
 from pycram_cli.locations import locate  # noqa: E402
 from pycram_cli.locations import floor as floor_maps  # noqa: E402
-from pycram_cli.reasoning.ik import forget_answers  # noqa: E402
+from pycram_cli.reasoning.ik import ANSWERS  # noqa: E402
+from pycram_cli.world.cache import forget_everywhere  # noqa: E402
 from pycram_cli.robots.zoo import generate, write_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
@@ -43,7 +44,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
         times, found = [], True
         for _ in range(repeat):
             world.cache.forget(floor_maps.MAPS)
-            forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
+            forget_everywhere(ANSWERS)  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
             with world.snapshot():
                 start = time.perf_counter()
                 try:
