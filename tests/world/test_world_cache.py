@@ -11,6 +11,7 @@ import weakref
 import pytest
 
 from pycram_cli import Object
+from pycram_cli.reasoning import ik
 from pycram_cli.reasoning.kinematics import chain_for
 from pycram_cli.reasoning.visibility import _drawn_boxes
 from pycram_cli.world import BulletWorld
@@ -43,6 +44,21 @@ def test_two_worlds_do_not_share_answers(two_worlds):
     assert chain_b is not chain_a and chain_for(arm_a, arm_a.get_link_id("hand")) is chain_a  # each kept in its world
     first.cache.table("answers", first)["question"] = "first"
     assert second.cache.table("answers", second) == {}
+
+
+def test_two_worlds_search_the_same_ik_question_each_for_itself(two_worlds, monkeypatch):
+    (first, second), arms = two_worlds
+    searches = []
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    answers = [ik.solve_link(arm, "hand", (0.4, 0.2, 0.2), joints=["shoulder", "slide"]) for arm in arms]
+    assert answers[0] == answers[1] and answers[0].success and len(searches) == 2  # the second world searched too
+    assert ik.ANSWERS in first.cache.names() and ik.ANSWERS in second.cache.names()
+    ik.solve_link(arms[0], "hand", (0.4, 0.2, 0.2), joints=["shoulder", "slide"])
+    assert len(searches) == 2  # asked again in the first world: kept there
+    first.cache.forget(ik.ANSWERS)
+    ik.solve_link(arms[0], "hand", (0.4, 0.2, 0.2), joints=["shoulder", "slide"])
+    assert len(searches) == 3
 
 
 def test_a_worlds_answers_go_with_the_world(data_dir):
