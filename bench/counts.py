@@ -14,8 +14,8 @@ every machine and under any load: a before/after comparison of a change to the c
 - *queries*: PyBullet closest-point queries (`BulletWorld._closest_rows`: what a check measures exactly, and
   every other distance asked);
 - *walks*: straight joint-space paths followed check by check (`Motion._follow`; remembered walks are not);
-- *ik*: inverse-kinematics searches run (`ik._search_groups`, one per batch of queries not answered from memory),
-  and *ik queries*, the targets asked of `solve_link_each` (answered from memory or not);
+- *ik*: inverse-kinematics searches started (`ik_search.search_groups` as ik.py calls it, one per batch of queries
+  not answered from memory), and *ik queries*, the targets asked of `ik.link_solutions` (from memory or not);
 - *searches*: joint-space path searches run (`paths._Search.run`; remembered ones are not).
 """
 from __future__ import annotations
@@ -46,8 +46,8 @@ COUNTED: tuple[tuple[str, Any, str, Callable[..., int]], ...] = (
     ("checks", motion.Motion, "clearances", lambda *a, **k: 1),
     ("queries", BulletWorld, "_closest_rows", lambda *a, **k: 1),
     ("walks", motion.Motion, "_follow", lambda *a, **k: 1),
-    ("ik", ik, "_search_groups", lambda *a, **k: 1),
-    ("ik queries", ik, "solve_link_each", lambda robot, link, queries, *a, **k: len(queries)),
+    ("ik", ik, "search_groups", lambda *a, **k: 1),
+    ("ik queries", ik, "link_solutions", lambda robot, link, queries, *a, **k: len(queries)),
     ("searches", paths._Search, "run", lambda *a, **k: 1),
 )
 

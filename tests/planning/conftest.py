@@ -16,9 +16,9 @@ from pycram_cli.robots import Robot
 def world(kitchen: BulletWorld) -> Iterator[BulletWorld]:
     """The module's kitchen (tests/conftest.py), put back after the test, with no walks or searches remembered."""
     with kitchen.snapshot():
-        motion._MEMO.pop(kitchen, None)
+        kitchen.cache.forget(motion.MEMO)
         yield kitchen
-        motion._MEMO.pop(kitchen, None)
+        kitchen.cache.forget(motion.MEMO)
 
 
 @pytest.fixture

@@ -150,7 +150,7 @@ def count_checks(monkeypatch: pytest.MonkeyPatch, m: motion.Motion, goal: dict[s
         if levers_only:
             patch.setattr(motion.Pacer, "at", lever_pace)
         fraction, hits, _ = m.walk(goal)
-    motion._MEMO.pop(m.world, None)
+    m.world.cache.forget(motion.MEMO)
     return len(calls), fraction, [(h.mover, h.obstacle.name) for h in hits]
 
 
