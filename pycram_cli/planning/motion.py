@@ -339,10 +339,11 @@ class Motion:
         """`below[i, k]`: mover k hangs below moving joint i; `inner[i, j]`: moving joint i hangs below joint j."""
         parts = self._parts()
         below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
+        pairs = {(i, j) for ancestors in set(parts) for position, i in enumerate(ancestors) for j in ancestors[:position]}
         inner = np.zeros((len(self.joints), len(self.joints)), dtype=bool)
-        for ancestors in parts:
-            for position, i in enumerate(ancestors):
-                inner[i, list(ancestors[:position])] = True
+        if pairs:
+            rows, columns = zip(*pairs)
+            inner[list(rows), list(columns)] = True
         return below.reshape(len(self.joints), len(parts)), inner
 
     def _levers(self) -> np.ndarray:

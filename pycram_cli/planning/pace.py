@@ -36,14 +36,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: the 8 corners of a box from its (lo, hi) pair: which of the two each coordinate comes from
-_CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
-_AXES = np.arange(3)[None, :]
+#: the 8 corners of a box from its (lo, hi) pair: where each coordinate comes from the high corner
+_CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=bool)
 
 
 def corners(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """The 8 corners of each box, (boxes, 8, 3), from the boxes' low and high corners, (boxes, 3) each."""
-    return np.stack([lo, hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)
+    return np.where(_CORNER_BITS[None, :, :], hi[:, None, :], lo[:, None, :])
+
+
+def _farthest(points: np.ndarray, origins: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """(joints, movers): the farthest of each mover's corners from each joint's axis (few numpy calls: hot path)."""
+    rel = points.reshape(1, -1, 3) - origins[:, None, :]  # (joints, movers · 8, 3)
+    along = np.matmul(rel, axes[:, :, None])[:, :, 0]
+    square = np.einsum("nkd,nkd->nk", rel, rel)
+    return np.sqrt(np.maximum(square - along * along, 0.0).reshape(len(origins), -1, 8).max(axis=2))
 
 
 def levers(points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic: np.ndarray,
@@ -51,11 +58,7 @@ def levers(points: np.ndarray, origins: np.ndarray, axes: np.ndarray, prismatic:
     """rᵢₖ, (joints, movers): the farthest corner of mover k's box (`points`, from `corners`) from joint i's axis
     (through `origins[i]` along the unit `axes[i]`) where k hangs below joint i (`below[i, k]`), else 0; 1 for a
     prismatic joint above it."""
-    rel = points.reshape(1, -1, 3) - origins[:, None, :]  # (joints, movers · 8, 3): few numpy calls (a check's hot path)
-    along = np.matmul(rel, axes[:, :, None])[:, :, 0]
-    square = np.einsum("nkd,nkd->nk", rel, rel)
-    perpendicular = np.sqrt(np.maximum(square - along * along, 0.0)).reshape(len(origins), -1, 8).max(axis=2)
-    return np.where(below, np.where(prismatic[:, None], 1.0, perpendicular), 0.0)
+    return np.where(below, np.where(prismatic[:, None], 1.0, _farthest(points, origins, axes)), 0.0)
 
 
 @dataclass(frozen=True)
@@ -123,7 +126,8 @@ class Pacer:
 
     def __init__(self, delta: np.ndarray, prismatic: np.ndarray, below: np.ndarray, inner: np.ndarray) -> None:
         size = np.abs(delta)
-        self._prismatic, self._below = prismatic, below
+        self._turned = below & ~prismatic[:, None]  # the levers: the farthest corners where k turns about i,
+        self._slid = (below & prismatic[:, None]).astype(float)  # 1 where it slides along i, else 0
         # Θᵢ: |Δq| summed over the revolute joints at or above i
         turning = np.where(prismatic, 0.0, size)
         theta = turning + inner.astype(float) @ turning
@@ -140,7 +144,7 @@ class Pacer:
     def at(self, points: np.ndarray, origins: np.ndarray, axes: np.ndarray) -> Pace:
         """The bounds for a step from here: `points`, each mover's box corners (movers, 8, 3; `corners`); `origins`
         and `axes`, each moving joint's axis in the world (a point on it, its unit direction)."""
-        lever = levers(points, origins, axes, self._prismatic, self._below)  # (joints, movers)
+        lever = _farthest(points, origins, axes) * self._turned + self._slid  # `levers`, (joints, movers)
         base, curve = self._rows @ lever
         # ‖J(c)·Δq‖ at every corner c: Σᵢ Δqᵢ·(aᵢ × (c − oᵢ)), or Δqᵢ·aᵢ for a prismatic joint, over the joints above
         # k, = ω × c + b: mover k's rigid motion, ω = Σᵢ Δqᵢ·aᵢ over its revolute joints, b the rest
