@@ -45,7 +45,8 @@ from ..failures import ManipulationFailure
 from ..robots import Robot
 from ..world import Object
 from ..world.pose import quat_to_matrix, quats_to_matrices
-from .pace import Pace, Pacer, corners, levers
+from .pace import Pace, Pacer, corners
+from .pace import levers as levers_of
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
 PENETRATION = 0.001
@@ -91,7 +92,6 @@ def followers(body: Object) -> list[Object]:
                 found.append(child)
                 frontier.append(child)
     return found
-
 
 
 class Motion:
@@ -333,7 +333,7 @@ class Motion:
     def _local_levers(self, m_lo: np.ndarray, m_hi: np.ndarray, below: np.ndarray) -> np.ndarray:
         """rᵢₖ now, (joints, movers): the farthest corner of mover k's box from joint i's axis where k hangs below
         joint i (`below[i, k]`), else 0; 1 for a prismatic joint above it (`pace.levers`)."""
-        return levers(corners(m_lo, m_hi), *self._axes(), self._prismatic, below)
+        return levers_of(corners(m_lo, m_hi), *self._axes(), self._prismatic, below)
 
     def _nesting(self) -> tuple[np.ndarray, np.ndarray]:
         """`below[i, k]`: mover k hangs below moving joint i; `inner[i, j]`: moving joint i hangs below joint j."""
