@@ -25,8 +25,8 @@ Why
     * Masses are the real link masses (rounded); inertias are computed from
       the primitives, assuming uniform density.
 
-The script uses the standard library and numpy only and needs nothing from
-the original description to run.  Its output is deterministic, so a test can
+The script uses numpy and pycram's URDF writer (pycram_cli/robots/urdf_writer.py)
+only and needs nothing from the original description to run.  Its output is deterministic, so a test can
 check that the shipped ``pr2.urdf`` is up to date.
 
 Usage::
@@ -40,11 +40,26 @@ import argparse
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 
+from pycram_cli.robots.urdf_writer import (
+    Joint,
+    Limit,
+    Numbers,
+    Visual,
+    check_tree,
+    general,
+    inertia_about,
+    link_xml,
+    urdf_text,
+    volume,
+)
+
 Vec3 = tuple[float, float, float]
+#: how the file spells numbers: 12 significant digits, 6 for masses, inertias and colours
+NUMBERS = Numbers(general, 12, 6, 6, 6)
 
 HALF_PI = math.pi / 2
 X_AXIS: Vec3 = (1.0, 0.0, 0.0)
@@ -65,31 +80,6 @@ FRAME_INERTIA = 1e-5
 # --------------------------------------------------------------------------
 # Data model
 # --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Limit:
-    """A joint's ``<limit>``; continuous joints have no lower/upper."""
-
-    lower: float | None
-    upper: float | None
-    effort: float
-    velocity: float
-
-
-@dataclass(frozen=True)
-class Joint:
-    """One joint exactly as in the real PR2 description."""
-
-    name: str
-    type: str
-    parent: str
-    child: str
-    xyz: Vec3 = ORIGIN
-    rpy: Vec3 = ORIGIN
-    axis: Vec3 | None = None
-    limit: Limit | None = None
-    mimic: str | None = None  # mimicked joint (multiplier 1, offset 0)
-
-
 @dataclass(frozen=True)
 class Shape:
     """A primitive in link coordinates.
@@ -374,42 +364,6 @@ def all_links() -> dict[str, Link]:
 # --------------------------------------------------------------------------
 # Inertia
 # --------------------------------------------------------------------------
-def _rotation(rpy: Vec3) -> np.ndarray:
-    """URDF fixed-axis roll-pitch-yaw: R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
-    ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
-    rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def _volume(shape: Shape) -> float:
-    if shape.kind == "box":
-        return float(np.prod(shape.dims))
-    if shape.kind == "cylinder":
-        radius, length = shape.dims
-        return math.pi * radius**2 * length
-    if shape.kind == "sphere":
-        return 4.0 / 3.0 * math.pi * shape.dims[0] ** 3
-    raise ValueError(f"unknown shape kind {shape.kind!r}")
-
-
-def _own_inertia(shape: Shape, mass: float) -> np.ndarray:
-    """Inertia tensor of a solid primitive about its centre, in link axes."""
-    if shape.kind == "box":
-        sx, sy, sz = shape.dims
-        diag = [sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2]
-        local = np.diag([mass / 12.0 * d for d in diag])
-    elif shape.kind == "cylinder":
-        radius, length = shape.dims
-        side = mass * (3 * radius**2 + length**2) / 12.0
-        local = np.diag([side, side, mass * radius**2 / 2.0])
-    else:
-        local = np.eye(3) * (0.4 * mass * shape.dims[0] ** 2)
-    rot = _rotation(shape.rpy)
-    return rot @ local @ rot.T
-
-
 def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
     """(mass, centre of mass, diagonal inertia) of a link of uniform density.
 
@@ -420,110 +374,25 @@ def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
     solids = [s for s in link.shapes if s.collision]
     if link.mass is None or not solids:
         return FRAME_MASS, np.zeros(3), np.full(3, FRAME_INERTIA)
-    volumes = np.array([_volume(s) for s in solids])
+    volumes = np.array([volume(s) for s in solids])
     masses = link.mass * volumes / volumes.sum()
-    centers = np.array([s.xyz for s in solids], dtype=float)
-    com = (masses[:, None] * centers).sum(axis=0) / link.mass
-    tensor = np.zeros((3, 3))
-    for shape, mass, center in zip(solids, masses, centers):
-        d = center - com
-        tensor += _own_inertia(shape, mass) + mass * (d @ d * np.eye(3) - np.outer(d, d))
-    return link.mass, com, np.diag(tensor).copy()
+    com, diag = inertia_about(solids, masses, link.mass)
+    return link.mass, com, diag
 
 
-# --------------------------------------------------------------------------
-# URDF writer
-# --------------------------------------------------------------------------
-def fmt(value: float, digits: int = 12) -> str:
-    """Stable, short number formatting (no '-0', no trailing zeros)."""
-    text = f"{float(value) + 0.0:.{digits}g}"
-    return "0" if text in ("-0", "0") else text
-
-
-def fmt3(values: Iterable[float], digits: int = 12) -> str:
-    return " ".join(fmt(v, digits) for v in values)
-
-
-def _geometry_xml(shape: Shape) -> str:
-    if shape.kind == "box":
-        return f'<box size="{fmt3(shape.dims)}"/>'
-    if shape.kind == "cylinder":
-        return f'<cylinder radius="{fmt(shape.dims[0])}" length="{fmt(shape.dims[1])}"/>'
-    return f'<sphere radius="{fmt(shape.dims[0])}"/>'
-
-
-def link_xml(link: Link) -> list[str]:
-    mass, com, diag = inertial(link)
-    lines = [f'  <link name="{link.name}">',
-             "    <inertial>",
-             f'      <origin xyz="{fmt3(com, 6)}" rpy="0 0 0"/>',
-             f'      <mass value="{fmt(mass, 6)}"/>',
-             f'      <inertia ixx="{fmt(diag[0], 6)}" ixy="0" ixz="0" '
-             f'iyy="{fmt(diag[1], 6)}" iyz="0" izz="{fmt(diag[2], 6)}"/>',
-             "    </inertial>"]
-    for shape in link.shapes:
-        origin = f'<origin xyz="{fmt3(shape.xyz)}" rpy="{fmt3(shape.rpy)}"/>'
-        rgba = fmt3(MATERIALS[shape.material], 6)
-        lines += ["    <visual>",
-                  f"      {origin}",
-                  f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                  f'      <material name="{shape.material}"><color rgba="{rgba}"/></material>',
-                  "    </visual>"]
-        if shape.collision:
-            lines += ["    <collision>",
-                      f"      {origin}",
-                      f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                      "    </collision>"]
-    lines.append("  </link>")
-    return lines
-
-
-def joint_xml(joint: Joint) -> list[str]:
-    lines = [f'  <joint name="{joint.name}" type="{joint.type}">',
-             f'    <parent link="{joint.parent}"/>',
-             f'    <child link="{joint.child}"/>',
-             f'    <origin xyz="{fmt3(joint.xyz)}" rpy="{fmt3(joint.rpy)}"/>']
-    if joint.axis is not None:
-        lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
-    if joint.limit is not None:
-        lim = joint.limit
-        bounds = ""
-        if lim.lower is not None and lim.upper is not None:
-            bounds = f'lower="{fmt(lim.lower)}" upper="{fmt(lim.upper)}" '
-        lines.append(f'    <limit {bounds}effort="{fmt(lim.effort)}" velocity="{fmt(lim.velocity)}"/>')
-    if joint.mimic is not None:
-        lines.append(f'    <mimic joint="{joint.mimic}" multiplier="1" offset="0"/>')
-    lines.append("  </joint>")
-    return lines
-
-
-def check_tree(joints: Sequence[Joint], links: dict[str, Link]) -> None:
-    """Fail loudly on a broken table: every link used once, parents defined first."""
-    seen = {ROOT_LINK}
-    for joint in joints:
-        if joint.parent not in seen:
-            raise ValueError(f"{joint.name}: parent {joint.parent} not defined before use")
-        if joint.child in seen:
-            raise ValueError(f"{joint.name}: child {joint.child} already in the tree")
-        seen.add(joint.child)
-    if seen != set(links):
-        raise ValueError(f"links without joints or joints without links: {seen ^ set(links)}")
+def _link_xml(link: Link) -> list[str]:
+    visuals = [Visual(s, s.material, MATERIALS[s.material], s.collision) for s in link.shapes]
+    return link_xml(link.name, inertial(link), visuals, NUMBERS)
 
 
 def build_urdf() -> str:
     """The complete URDF text."""
     links = all_links()
-    check_tree(JOINTS, links)
-    lines = ['<?xml version="1.0"?>',
-             "<!-- GENERATED by resources/robots/pr2/generate.py - do not edit by hand.",
-             "     Kinematics: PR2 (iai_pr2_description); geometry: simplified primitives. -->",
-             '<robot name="pr2">']
-    lines += link_xml(links[ROOT_LINK])
-    for joint in JOINTS:
-        lines += joint_xml(joint)
-        lines += link_xml(links[joint.child])
-    lines.append("</robot>")
-    return "\n".join(lines) + "\n"
+    check_tree(ROOT_LINK, JOINTS, links)
+    comment = ["<!-- GENERATED by resources/robots/pr2/generate.py - do not edit by hand.",
+               "     Kinematics: PR2 (iai_pr2_description); geometry: simplified primitives. -->"]
+    return urdf_text("pr2", comment, ROOT_LINK, JOINTS,
+                     lambda name: _link_xml(links[name]), NUMBERS)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
