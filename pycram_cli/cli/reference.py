@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
 import click
@@ -20,11 +21,24 @@ from ..designators import DESIGNATORS
 from ..designators.actions import ACTIONS
 from ..kinds import KIND_ALIASES, KINDS, LOCATION_KEYS
 from ..reasoning import QUERIES
+from ..signature import Param
 from .main import COMMANDS, cli
 
 
 def _cell(text: object) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def _slots(slots: Sequence[Param], one_of: Sequence[str]) -> list[str]:
+    """A designator's or action's slots as a table, and which of them to give at least one of."""
+    lines = ["| slot | | value | default | meaning |", "|---|---|---|---|---|"]
+    for slot in slots:
+        need = "required" if slot.required else ("one of" if slot.name in one_of else "optional")
+        lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default_text or '-')} | "
+                     f"{_cell(slot.doc)} |")
+    if one_of:
+        lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in one_of)}."]
+    return [*lines, ""]
 
 
 def _command(command: click.Command, path: str, help_text: str, parent: click.Context) -> list[str]:
@@ -67,15 +81,7 @@ def render() -> str:
     for spec in DESIGNATORS.values():
         needs = f" Needs a robot with: {', '.join(spec.needs)}." if spec.needs else ""
         lines += [f"### `{spec.name}`", "", f"{spec.doc} Performed by the `{spec.module}` process module "
-                  f"(drives: {spec.resource or 'nothing'}).{needs}", "",
-                  "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
-        for slot in spec.slots:
-            need = "required" if slot.required else ("one of" if slot.name in spec.one_of else "optional")
-            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default_text or '-')} | "
-                         f"{_cell(slot.doc)} |")
-        if spec.one_of:
-            lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in spec.one_of)}."]
-        lines.append("")
+                  f"(drives: {spec.resource or 'nothing'}).{needs}", "", *_slots(spec.slots, spec.one_of)]
     lines += ["## Action designators", "",
               "Written in a plan as `- action: TYPE` with the slots beside it (`pick-up` and `place` are motion "
               "designators too: `- pick-up: {...}` is the motion). Slots left open are inferred; `as:` binds what the "
@@ -84,14 +90,7 @@ def render() -> str:
         needs = f" Needs a robot with: {', '.join(action.needs)}." if action.needs else ""
         gives = f" Gives: {action.returns}." if action.returns else ""
         lines += [f"### action `{action.name}`", "", f"{action.doc}{gives}{needs}", "",
-                  "| slot | | value | default | meaning |", "|---|---|---|---|---|"]
-        for slot in action.slots:
-            need = "required" if slot.required else ("one of" if slot.name in action.one_of else "optional")
-            lines.append(f"| `{slot.name}` | {need} | {_cell(KINDS[slot.kind].doc)} | {_cell(slot.default_text or '-')} | "
-                         f"{_cell(slot.doc)} |")
-        if action.one_of:
-            lines += ["", f"Give at least one of: {', '.join(f'`{s}`' for s in action.one_of)}."]
-        lines.append("")
+                  *_slots(action.slots, action.one_of)]
     lines += ["## Location designators", "", "A slot of kind `location` is a mapping with these keys "
               "(`pycram locate` resolves one from the command line):", "", "| key | takes |", "|---|---|"]
     lines += [f"| `{key}` | {_cell(doc)} |" for key, doc in LOCATION_KEYS.items()]
