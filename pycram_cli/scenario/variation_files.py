@@ -17,7 +17,7 @@ from ..kinds import Robots, param_kind
 from ..plan import Plan, WorldFacts
 from ..plan.params import type_problem
 from ..plan.syntax import Param, plain
-from ..schema import check_keys, describe, expect, is_number, names_only, number_list
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, string_entry
 from ..world.model_files import MESH_SUFFIXES, describe_model
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import ObjectSpec, Unreadable, WorldSpec, resolve_file
@@ -258,12 +258,7 @@ def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[Inp
             errors.append(InputError(f"expected 'keep' or a mapping {{type, file}}, got {describe(entry)}", at,
                                      key="swap"))
             continue
-        count = len(errors)
-        check_keys(entry, SWAP_KEYS, SWAP_REQUIRED, "swap", errors)
-        for key in SWAP_REQUIRED:
-            if key in entry:
-                expect(entry[key], str, entry.loc(key, True), key, errors)
-        if len(errors) != count:
+        if not string_entry(entry, SWAP_KEYS, SWAP_REQUIRED, SWAP_REQUIRED, "swap", errors):
             continue
         swap = _parse_swap(entry, base, errors)
         if swap is not None:
