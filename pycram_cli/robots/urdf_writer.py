@@ -1,16 +1,20 @@
 """Writing a robot's URDF from primitive shapes: inertia from the shapes, links, joints, and the tree in order.
 
 What: `rpy_matrix`, the inertia of boxes, cylinders and spheres (`volume`, `inertia_about`), the number spellings
-(`general`, `fixed`, `Numbers`), `link_xml`, `joint_xml` (with `Joint` and `Limit`), `check_tree` and `urdf_text`.
+(`general`, `fixed`, `Numbers`), `link_xml`, `joint_xml` (with `Joint` and `Limit`), `check_tree` and `urdf_text`;
+for robots written from tables (the bundled PR2 and Fetch): `Shape`, `Link`, `box`, `cylinder_x`, `cylinder_z`,
+`link_inertial`, `table_urdf` and the scripts' command line, `generator_main`.
 Why one module: the bundled robots' generators (resources/robots/{pr2,fetch}/generate.py) and the robot zoo
 (robots/zoo/files.py) write the same URDF; each keeps only its tables, its masses and how it spells numbers, so the
 files they write stay byte for byte what they were.
 """
 from __future__ import annotations
 
+import argparse
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Protocol
 
 import numpy as np
@@ -236,3 +240,93 @@ def urdf_text(name: str, comment: Sequence[str], root: str, joints: Sequence[Joi
         lines += link(joint.child)
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
+
+
+# -- robots written from tables: the bundled PR2 and Fetch (resources/robots/*/generate.py) -----------------------
+
+#: mass and inertia of links that are only coordinate frames
+FRAME_MASS = 0.01
+FRAME_INERTIA = 1e-5
+ALONG_X: Vec3 = (0.0, math.pi / 2, 0.0)  # rpy turning a cylinder's z axis onto x
+
+
+@dataclass(frozen=True)
+class Shape:
+    """A primitive in link coordinates, coloured by a material's name; `collision=False` for one only drawn.
+
+    `dims` is (sx, sy, sz) for a box, (radius, length) for a cylinder (whose axis is its local z, turned by `rpy`)
+    and (radius,) for a sphere.
+    """
+
+    kind: str
+    dims: tuple[float, ...]
+    xyz: Vec3
+    rpy: Vec3
+    material: str
+    collision: bool = True
+
+
+@dataclass(frozen=True)
+class Link:
+    """A link; `mass=None` marks a frame-only link without geometry."""
+
+    name: str
+    mass: float | None = None
+    shapes: tuple[Shape, ...] = ()
+
+
+def box(lo: Vec3, hi: Vec3, material: str) -> Shape:
+    """An axis-aligned box spanning the corners `lo` and `hi`."""
+    size = tuple(h - low for low, h in zip(lo, hi))
+    centre = tuple((low + h) / 2 for low, h in zip(lo, hi))
+    return Shape("box", size, centre, ORIGIN, material)  # type: ignore[arg-type]  # three of each
+
+
+def cylinder_x(radius: float, x0: float, x1: float, material: str, y: float = 0.0, z: float = 0.0) -> Shape:
+    """A cylinder along the link's x axis from `x0` to `x1`."""
+    return Shape("cylinder", (radius, x1 - x0), ((x0 + x1) / 2, y, z), ALONG_X, material)
+
+
+def cylinder_z(radius: float, z0: float, z1: float, material: str, x: float = 0.0, y: float = 0.0) -> Shape:
+    """A cylinder along the link's z axis from `z0` to `z1`."""
+    return Shape("cylinder", (radius, z1 - z0), (x, y, (z0 + z1) / 2), ORIGIN, material)
+
+
+def link_inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
+    """(mass, centre of mass, diagonal inertia) of a link of uniform density.
+
+    The solids are the collision shapes, or the drawn ones for a link that has only those (the Fetch's wheels); a
+    link without mass or shapes gets a token inertia.
+    """
+    solids = [s for s in link.shapes if s.collision] or list(link.shapes)
+    if link.mass is None or not solids:
+        return FRAME_MASS if link.mass is None else link.mass, np.zeros(3), np.full(3, FRAME_INERTIA)
+    volumes = np.array([volume(s) for s in solids])
+    masses = link.mass * volumes / volumes.sum()
+    com, diag = inertia_about(solids, masses, link.mass)
+    return link.mass, com, diag
+
+
+def table_urdf(name: str, comment: Sequence[str], root: str, joints: Sequence[Joint], links: dict[str, Link],
+               materials: dict[str, tuple[float, float, float, float]]) -> str:
+    """The URDF of a robot written from tables, its numbers to 12 significant digits (6 for masses, inertias and
+    colours); ValueError for a broken tree."""
+    check_tree(root, joints, links)
+    numbers = Numbers(general, 12, 6, 6, 6)
+
+    def link_text(link_name: str) -> list[str]:
+        link = links[link_name]
+        visuals = [Visual(s, s.material, materials[s.material], s.collision) for s in link.shapes]
+        return link_xml(link.name, link_inertial(link), visuals, numbers)
+
+    return urdf_text(name, comment, root, joints, link_text, numbers)
+
+
+def generator_main(doc: str, default_output: Path, build: Callable[[], str], argv: Sequence[str] | None) -> None:
+    """A generator script's command line: write the URDF to `--output` (default: `default_output`)."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--output", type=Path, default=default_output,
+                        help=f"where to write the URDF (default: {default_output.name} next to this script)")
+    args = parser.parse_args(argv)
+    args.output.write_text(build(), encoding="utf-8", newline="\n")
+    print(f"wrote {args.output}")

@@ -27,7 +27,7 @@ Why
     * Masses are the real link masses (rounded); inertias are computed from
       the primitives, assuming uniform density.
 
-The script uses numpy and pycram's URDF writer (pycram_cli/robots/urdf_writer.py)
+The script uses pycram's URDF writer (pycram_cli/robots/urdf_writer.py)
 only and needs nothing from the original description to run.  Its output is deterministic, so a test can
 check that the shipped ``fetch.urdf`` is up to date.
 
@@ -38,30 +38,23 @@ Usage::
 """
 from __future__ import annotations
 
-import argparse
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
-
-import numpy as np
 
 from pycram_cli.robots.urdf_writer import (
     Joint,
     Limit,
-    Numbers,
-    Visual,
-    check_tree,
-    general,
-    inertia_about,
-    link_xml,
-    urdf_text,
-    volume,
+    Link,
+    Shape,
+    box,
+    cylinder_x,
+    cylinder_z,
+    generator_main,
+    table_urdf,
 )
 
 Vec3 = tuple[float, float, float]
-#: how the file spells numbers: 12 significant digits, 6 for masses, inertias and colours
-NUMBERS = Numbers(general, 12, 6, 6, 6)
 
 HALF_PI = math.pi / 2
 X_AXIS: Vec3 = (1.0, 0.0, 0.0)
@@ -74,38 +67,6 @@ ORIGIN: Vec3 = (0.0, 0.0, 0.0)
 OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parent / "fetch.urdf"
-
-#: Mass and inertia of links that are only coordinate frames.
-FRAME_MASS = 0.01
-FRAME_INERTIA = 1e-5
-
-
-# --------------------------------------------------------------------------
-# Data model
-# --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Shape:
-    """A primitive in link coordinates.
-
-    ``dims`` is (sx, sy, sz) for a box and (radius, length) for a cylinder
-    (whose axis is its local z, turned by ``rpy``).
-    """
-
-    kind: str
-    dims: tuple[float, ...]
-    xyz: Vec3
-    rpy: Vec3
-    material: str
-    collision: bool = True
-
-
-@dataclass(frozen=True)
-class Link:
-    """A link; ``mass=None`` marks a frame-only link without geometry."""
-
-    name: str
-    mass: float | None = None
-    shapes: tuple[Shape, ...] = ()
 
 
 # --------------------------------------------------------------------------
@@ -190,36 +151,16 @@ MATERIALS: dict[str, tuple[float, float, float, float]] = {
     "wheel_black": (0.1, 0.1, 0.1, 1.0),
 }
 
-CYLINDER_ALONG_X: Vec3 = (0.0, HALF_PI, 0.0)
 CYLINDER_ALONG_Y: Vec3 = (HALF_PI, 0.0, 0.0)
 
 #: Radius of the arm's link tubes and joint housings (the real meshes are 0.104 m across).
 ARM_RADIUS = 0.052
 
 
-def box(lo: Vec3, hi: Vec3, material: str) -> Shape:
-    """An axis-aligned box spanning the corners ``lo`` and ``hi``."""
-    size = tuple(h - l for l, h in zip(lo, hi))
-    center = tuple((l + h) / 2 for l, h in zip(lo, hi))
-    return Shape("box", size, center, ORIGIN, material)
-
-
-def cylinder_x(radius: float, x0: float, x1: float, material: str,
-               y: float = 0.0, z: float = 0.0) -> Shape:
-    """A cylinder along the link's x axis from ``x0`` to ``x1``."""
-    return Shape("cylinder", (radius, x1 - x0), ((x0 + x1) / 2, y, z), CYLINDER_ALONG_X, material)
-
-
 def cylinder_y(radius: float, y0: float, y1: float, material: str, x: float = 0.0, z: float = 0.0,
                collision: bool = True) -> Shape:
     """A cylinder along the link's y axis from ``y0`` to ``y1``."""
     return Shape("cylinder", (radius, y1 - y0), (x, (y0 + y1) / 2, z), CYLINDER_ALONG_Y, material, collision)
-
-
-def cylinder_z(radius: float, z0: float, z1: float, material: str,
-               x: float = 0.0, y: float = 0.0) -> Shape:
-    """A cylinder along the link's z axis from ``z0`` to ``z1``."""
-    return Shape("cylinder", (radius, z1 - z0), (x, y, (z0 + z1) / 2), ORIGIN, material)
 
 
 def body_links() -> list[Link]:
@@ -336,48 +277,15 @@ def all_links() -> dict[str, Link]:
     return {link.name: link for link in links}
 
 
-# --------------------------------------------------------------------------
-# Inertia
-# --------------------------------------------------------------------------
-def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
-    """(mass, centre of mass, diagonal inertia) of a link of uniform density.
-
-    The solids are the collision shapes, or the visual ones for a link that has
-    only those (the wheels).  Products of inertia are dropped (PyBullet only
-    uses the diagonal); the diagonal of a valid inertia tensor is positive and
-    obeys the triangle inequality, so the result is still physically plausible.
-    """
-    solids = [s for s in link.shapes if s.collision] or list(link.shapes)
-    if link.mass is None or not solids:
-        return FRAME_MASS if link.mass is None else link.mass, np.zeros(3), np.full(3, FRAME_INERTIA)
-    volumes = np.array([volume(s) for s in solids])
-    masses = link.mass * volumes / volumes.sum()
-    com, diag = inertia_about(solids, masses, link.mass)
-    return link.mass, com, diag
-
-
-def _link_xml(link: Link) -> list[str]:
-    visuals = [Visual(s, s.material, MATERIALS[s.material], s.collision) for s in link.shapes]
-    return link_xml(link.name, inertial(link), visuals, NUMBERS)
-
-
 def build_urdf() -> str:
     """The complete URDF text."""
-    links = all_links()
-    check_tree(ROOT_LINK, JOINTS, links)
     comment = ["<!-- GENERATED by resources/robots/fetch/generate.py - do not edit by hand.",
                "     Kinematics: Fetch (fetch_description 0.8.3); geometry: simplified primitives. -->"]
-    return urdf_text("fetch", comment, ROOT_LINK, JOINTS,
-                     lambda name: _link_xml(links[name]), NUMBERS)
+    return table_urdf("fetch", comment, ROOT_LINK, JOINTS, all_links(), MATERIALS)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT,
-                        help=f"where to write the URDF (default: {DEFAULT_OUTPUT.name} next to this script)")
-    args = parser.parse_args(argv)
-    args.output.write_text(build_urdf(), encoding="utf-8", newline="\n")
-    print(f"wrote {args.output}")
+    generator_main(__doc__, DEFAULT_OUTPUT, build_urdf, argv)
 
 
 if __name__ == "__main__":
