@@ -247,7 +247,14 @@ def urdf_text(name: str, comment: Sequence[str], root: str, joints: Sequence[Joi
 #: mass and inertia of links that are only coordinate frames
 FRAME_MASS = 0.01
 FRAME_INERTIA = 1e-5
-ALONG_X: Vec3 = (0.0, math.pi / 2, 0.0)  # rpy turning a cylinder's z axis onto x
+HALF_PI = math.pi / 2
+X_AXIS: Vec3 = (1.0, 0.0, 0.0)
+Y_AXIS: Vec3 = (0.0, 1.0, 0.0)
+Z_AXIS: Vec3 = (0.0, 0.0, 1.0)
+NEG_Z_AXIS: Vec3 = (0.0, 0.0, -1.0)
+#: rpy of the optical frames (x-forward camera frame -> z forward, x right, y down), as the real robots' files write it
+OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
+ALONG_X: Vec3 = (0.0, HALF_PI, 0.0)  # rpy turning a cylinder's z axis onto x
 
 
 @dataclass(frozen=True)

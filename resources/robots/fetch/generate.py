@@ -38,15 +38,21 @@ Usage::
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Sequence
 
 from pycram_cli.robots.urdf_writer import (
+    HALF_PI,
+    NEG_Z_AXIS,
+    OPTICAL_RPY,
+    X_AXIS,
+    Y_AXIS,
+    Z_AXIS,
     Joint,
     Limit,
     Link,
     Shape,
+    Vec3,
     box,
     cylinder_x,
     cylinder_z,
@@ -54,17 +60,7 @@ from pycram_cli.robots.urdf_writer import (
     table_urdf,
 )
 
-Vec3 = tuple[float, float, float]
-
-HALF_PI = math.pi / 2
-X_AXIS: Vec3 = (1.0, 0.0, 0.0)
-Y_AXIS: Vec3 = (0.0, 1.0, 0.0)
-Z_AXIS: Vec3 = (0.0, 0.0, 1.0)
 NEG_Y_AXIS: Vec3 = (0.0, -1.0, 0.0)
-NEG_Z_AXIS: Vec3 = (0.0, 0.0, -1.0)
-ORIGIN: Vec3 = (0.0, 0.0, 0.0)
-#: rpy of the optical frames: x-forward camera frame -> z-forward, x-right, y-down.
-OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parent / "fetch.urdf"
 
@@ -72,27 +68,23 @@ DEFAULT_OUTPUT = Path(__file__).resolve().parent / "fetch.urdf"
 # --------------------------------------------------------------------------
 # Kinematics: facts of the Fetch (fetch_description/robots/fetch.urdf)
 # --------------------------------------------------------------------------
-def _lim(lower: float | None, upper: float | None, effort: float, velocity: float) -> Limit:
-    return Limit(lower, upper, effort, velocity)
-
-
 # Listed depth-first from the root, in the order PyBullet numbers the real
 # model's joints.  The real file gives the wheel, torso and torso_fixed joints
 # a roll of -6.123e-17 rad (a float artefact of 0); it is written as 0 here.
 JOINTS: tuple[Joint, ...] = (
     # ---- drive wheels
     Joint("r_wheel_joint", "continuous", "base_link", "r_wheel_link",
-          xyz=(0.0012914, -0.18738, 0.055325), axis=Y_AXIS, limit=_lim(None, None, 8.85, 17.4)),
+          xyz=(0.0012914, -0.18738, 0.055325), axis=Y_AXIS, limit=Limit(None, None, 8.85, 17.4)),
     Joint("l_wheel_joint", "continuous", "base_link", "l_wheel_link",
-          xyz=(0.0012914, 0.18738, 0.055325), axis=Y_AXIS, limit=_lim(None, None, 8.85, 17.4)),
+          xyz=(0.0012914, 0.18738, 0.055325), axis=Y_AXIS, limit=Limit(None, None, 8.85, 17.4)),
     # ---- torso lift
     Joint("torso_lift_joint", "prismatic", "base_link", "torso_lift_link",
-          xyz=(-0.086875, 0.0, 0.37743), axis=Z_AXIS, limit=_lim(0.0, 0.38615, 450.0, 0.1)),
+          xyz=(-0.086875, 0.0, 0.37743), axis=Z_AXIS, limit=Limit(0.0, 0.38615, 450.0, 0.1)),
     # ---- head and head camera (Primesense Carmine 1.09)
     Joint("head_pan_joint", "revolute", "torso_lift_link", "head_pan_link",
-          xyz=(0.053125, 0.0, 0.603001417713939), axis=Z_AXIS, limit=_lim(-1.57, 1.57, 0.32, 1.57)),
+          xyz=(0.053125, 0.0, 0.603001417713939), axis=Z_AXIS, limit=Limit(-1.57, 1.57, 0.32, 1.57)),
     Joint("head_tilt_joint", "revolute", "head_pan_link", "head_tilt_link",
-          xyz=(0.14253, 0.0, 0.057999), axis=Y_AXIS, limit=_lim(-0.76, 1.45, 0.68, 1.57)),
+          xyz=(0.14253, 0.0, 0.057999), axis=Y_AXIS, limit=Limit(-0.76, 1.45, 0.68, 1.57)),
     Joint("head_camera_joint", "fixed", "head_tilt_link", "head_camera_link", xyz=(0.055, 0.0, 0.0225)),
     Joint("head_camera_rgb_joint", "fixed", "head_camera_link", "head_camera_rgb_frame", xyz=(0.0, 0.02, 0.0)),
     Joint("head_camera_rgb_optical_joint", "fixed", "head_camera_rgb_frame", "head_camera_rgb_optical_frame",
@@ -103,28 +95,28 @@ JOINTS: tuple[Joint, ...] = (
           "head_camera_depth_optical_frame", rpy=OPTICAL_RPY),
     # ---- arm
     Joint("shoulder_pan_joint", "revolute", "torso_lift_link", "shoulder_pan_link",
-          xyz=(0.119525, 0.0, 0.34858), axis=Z_AXIS, limit=_lim(-1.6056, 1.6056, 33.82, 1.256)),
+          xyz=(0.119525, 0.0, 0.34858), axis=Z_AXIS, limit=Limit(-1.6056, 1.6056, 33.82, 1.256)),
     Joint("shoulder_lift_joint", "revolute", "shoulder_pan_link", "shoulder_lift_link",
-          xyz=(0.117, 0.0, 0.06), axis=Y_AXIS, limit=_lim(-1.221, 1.518, 131.76, 1.454)),
+          xyz=(0.117, 0.0, 0.06), axis=Y_AXIS, limit=Limit(-1.221, 1.518, 131.76, 1.454)),
     Joint("upperarm_roll_joint", "continuous", "shoulder_lift_link", "upperarm_roll_link",
-          xyz=(0.219, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 76.94, 1.571)),
+          xyz=(0.219, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 76.94, 1.571)),
     Joint("elbow_flex_joint", "revolute", "upperarm_roll_link", "elbow_flex_link",
-          xyz=(0.133, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.251, 2.251, 66.18, 1.521)),
+          xyz=(0.133, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.251, 2.251, 66.18, 1.521)),
     Joint("forearm_roll_joint", "continuous", "elbow_flex_link", "forearm_roll_link",
-          xyz=(0.197, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 29.35, 1.571)),
+          xyz=(0.197, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 29.35, 1.571)),
     Joint("wrist_flex_joint", "revolute", "forearm_roll_link", "wrist_flex_link",
-          xyz=(0.1245, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.16, 2.16, 25.7, 2.268)),
+          xyz=(0.1245, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.16, 2.16, 25.7, 2.268)),
     Joint("wrist_roll_joint", "continuous", "wrist_flex_link", "wrist_roll_link",
-          xyz=(0.1385, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 7.36, 2.268)),
+          xyz=(0.1385, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 7.36, 2.268)),
     # gripper_link is the point between the finger pads (the real tool frame)
     Joint("gripper_axis", "fixed", "wrist_roll_link", "gripper_link", xyz=(0.16645, 0.0, 0.0)),
     Joint("r_gripper_finger_joint", "prismatic", "gripper_link", "r_gripper_finger_link",
-          xyz=(0.0, 0.015425, 0.0), axis=Y_AXIS, limit=_lim(0.0, 0.05, 60.0, 0.05)),
+          xyz=(0.0, 0.015425, 0.0), axis=Y_AXIS, limit=Limit(0.0, 0.05, 60.0, 0.05)),
     Joint("l_gripper_finger_joint", "prismatic", "gripper_link", "l_gripper_finger_link",
-          xyz=(0.0, -0.015425, 0.0), axis=NEG_Y_AXIS, limit=_lim(0.0, 0.05, 60.0, 0.05)),
+          xyz=(0.0, -0.015425, 0.0), axis=NEG_Y_AXIS, limit=Limit(0.0, 0.05, 60.0, 0.05)),
     # ---- body parts
     Joint("bellows_joint", "prismatic", "torso_lift_link", "bellows_link",
-          axis=NEG_Z_AXIS, limit=_lim(0.0, 0.4, 5.0, 0.1)),
+          axis=NEG_Z_AXIS, limit=Limit(0.0, 0.4, 5.0, 0.1)),
     Joint("bellows_joint2", "fixed", "torso_lift_link", "bellows_link2"),
     Joint("estop_joint", "fixed", "base_link", "estop_link",
           xyz=(-0.12465, 0.23892, 0.31127), rpy=(1.5708, 0.0, 0.0)),

@@ -36,15 +36,22 @@ Usage::
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Sequence
 
 from pycram_cli.robots.urdf_writer import (
+    HALF_PI,
+    NEG_Z_AXIS,
+    OPTICAL_RPY,
+    ORIGIN,
+    X_AXIS,
+    Y_AXIS,
+    Z_AXIS,
     Joint,
     Limit,
     Link,
     Shape,
+    Vec3,
     box,
     cylinder_x,
     cylinder_z,
@@ -52,16 +59,6 @@ from pycram_cli.robots.urdf_writer import (
     table_urdf,
 )
 
-Vec3 = tuple[float, float, float]
-
-HALF_PI = math.pi / 2
-X_AXIS: Vec3 = (1.0, 0.0, 0.0)
-Y_AXIS: Vec3 = (0.0, 1.0, 0.0)
-Z_AXIS: Vec3 = (0.0, 0.0, 1.0)
-NEG_Z_AXIS: Vec3 = (0.0, 0.0, -1.0)
-ORIGIN: Vec3 = (0.0, 0.0, 0.0)
-#: rpy of the optical frames: x-forward camera link -> z-forward, x-right, y-down.
-OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parent / "pr2.urdf"
 
@@ -69,22 +66,18 @@ DEFAULT_OUTPUT = Path(__file__).resolve().parent / "pr2.urdf"
 # --------------------------------------------------------------------------
 # Kinematics: facts of the PR2 (from iai_pr2_description's pr2.urdf)
 # --------------------------------------------------------------------------
-def _lim(lower: float | None, upper: float | None, effort: float, velocity: float) -> Limit:
-    return Limit(lower, upper, effort, velocity)
-
-
 # Listed depth-first from the root; the URDF is written in this order, which is
 # also the order of PyBullet's joint indices.
 JOINTS: tuple[Joint, ...] = (
     # ---- base and torso
     Joint("base_footprint_joint", "fixed", "base_footprint", "base_link", xyz=(0.0, 0.0, 0.051)),
     Joint("torso_lift_joint", "prismatic", "base_link", "torso_lift_link",
-          xyz=(-0.05, 0.0, 0.739675), axis=Z_AXIS, limit=_lim(0.0, 0.33, 10000, 0.013)),
+          xyz=(-0.05, 0.0, 0.739675), axis=Z_AXIS, limit=Limit(0.0, 0.33, 10000, 0.013)),
     # ---- head and wide stereo camera
     Joint("head_pan_joint", "revolute", "torso_lift_link", "head_pan_link",
-          xyz=(-0.01707, 0.0, 0.38145), axis=Z_AXIS, limit=_lim(-3.007, 3.007, 2.645, 6)),
+          xyz=(-0.01707, 0.0, 0.38145), axis=Z_AXIS, limit=Limit(-3.007, 3.007, 2.645, 6)),
     Joint("head_tilt_joint", "revolute", "head_pan_link", "head_tilt_link",
-          xyz=(0.068, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.471238, 1.39626, 18, 5)),
+          xyz=(0.068, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.471238, 1.39626, 18, 5)),
     Joint("head_plate_frame_joint", "fixed", "head_tilt_link", "head_plate_frame",
           xyz=(0.0232, 0.0, 0.0645)),
     Joint("sensor_mount_frame_joint", "fixed", "head_plate_frame", "sensor_mount_link"),
@@ -96,65 +89,65 @@ JOINTS: tuple[Joint, ...] = (
     # ---- right arm
     Joint("r_shoulder_pan_joint", "revolute", "torso_lift_link", "r_shoulder_pan_link",
           xyz=(0.0, -0.188, 0.0), axis=Z_AXIS,
-          limit=_lim(-2.2853981634, 0.714601836603, 30, 2.088)),
+          limit=Limit(-2.2853981634, 0.714601836603, 30, 2.088)),
     Joint("r_shoulder_lift_joint", "revolute", "r_shoulder_pan_link", "r_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.5236, 1.3963, 30, 2.082)),
+          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
     Joint("r_upper_arm_roll_joint", "revolute", "r_shoulder_lift_link", "r_upper_arm_roll_link",
-          axis=X_AXIS, limit=_lim(-3.9, 0.8, 30, 3.27)),
+          axis=X_AXIS, limit=Limit(-3.9, 0.8, 30, 3.27)),
     Joint("r_upper_arm_joint", "fixed", "r_upper_arm_roll_link", "r_upper_arm_link"),
     Joint("r_elbow_flex_joint", "revolute", "r_upper_arm_link", "r_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.3213, 0.0, 30, 3.3)),
+          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
     Joint("r_forearm_roll_joint", "continuous", "r_elbow_flex_link", "r_forearm_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 30, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
     Joint("r_forearm_joint", "fixed", "r_forearm_roll_link", "r_forearm_link"),
     Joint("r_wrist_flex_joint", "revolute", "r_forearm_link", "r_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.18, 0.0, 10, 3.078)),
+          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
     Joint("r_wrist_roll_joint", "continuous", "r_wrist_flex_link", "r_wrist_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 10, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
     Joint("r_gripper_palm_joint", "fixed", "r_wrist_roll_link", "r_gripper_palm_link"),
     Joint("r_gripper_l_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5)),
+          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
     Joint("r_gripper_l_finger_tip_joint", "revolute", "r_gripper_l_finger_link",
           "r_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_r_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5),
+          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
           mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_r_finger_tip_joint", "revolute", "r_gripper_r_finger_link",
           "r_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_tool_joint", "fixed", "r_gripper_palm_link", "r_gripper_tool_frame",
           xyz=(0.18, 0.0, 0.0)),
     # ---- left arm
     Joint("l_shoulder_pan_joint", "revolute", "torso_lift_link", "l_shoulder_pan_link",
           xyz=(0.0, 0.188, 0.0), axis=Z_AXIS,
-          limit=_lim(-0.714601836603, 2.2853981634, 30, 2.088)),
+          limit=Limit(-0.714601836603, 2.2853981634, 30, 2.088)),
     Joint("l_shoulder_lift_joint", "revolute", "l_shoulder_pan_link", "l_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.5236, 1.3963, 30, 2.082)),
+          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
     Joint("l_upper_arm_roll_joint", "revolute", "l_shoulder_lift_link", "l_upper_arm_roll_link",
-          axis=X_AXIS, limit=_lim(-0.8, 3.9, 30, 3.27)),
+          axis=X_AXIS, limit=Limit(-0.8, 3.9, 30, 3.27)),
     Joint("l_upper_arm_joint", "fixed", "l_upper_arm_roll_link", "l_upper_arm_link"),
     Joint("l_elbow_flex_joint", "revolute", "l_upper_arm_link", "l_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.3213, 0.0, 30, 3.3)),
+          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
     Joint("l_forearm_roll_joint", "continuous", "l_elbow_flex_link", "l_forearm_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 30, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
     Joint("l_forearm_joint", "fixed", "l_forearm_roll_link", "l_forearm_link"),
     Joint("l_wrist_flex_joint", "revolute", "l_forearm_link", "l_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.18, 0.0, 10, 3.078)),
+          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
     Joint("l_wrist_roll_joint", "continuous", "l_wrist_flex_link", "l_wrist_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 10, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
     Joint("l_gripper_palm_joint", "fixed", "l_wrist_roll_link", "l_gripper_palm_link"),
     Joint("l_gripper_l_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5)),
+          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
     Joint("l_gripper_l_finger_tip_joint", "revolute", "l_gripper_l_finger_link",
           "l_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_r_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5),
+          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
           mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_r_finger_tip_joint", "revolute", "l_gripper_r_finger_link",
           "l_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_tool_joint", "fixed", "l_gripper_palm_link", "l_gripper_tool_frame",
           xyz=(0.18, 0.0, 0.0)),
 )
