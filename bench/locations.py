@@ -42,7 +42,8 @@ import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 from pycram_cli.locations import locate, parse_location  # noqa: E402
 from pycram_cli.locations import floor as floor_maps  # noqa: E402
 from pycram_cli.locations import BasePoseResolution, Candidates  # noqa: E402
-from pycram_cli.reasoning.ik import forget_answers  # noqa: E402
+from pycram_cli.reasoning.ik import ANSWERS  # noqa: E402
+from pycram_cli.world.cache import forget_everywhere  # noqa: E402
 from pycram_cli.robots import Robot  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
@@ -52,9 +53,9 @@ PYCRAM_FIGURE = "no pose in 5.3 s"
 
 
 def first_pose(world: Any, location: dict[str, Any], cold: bool = True) -> Any:
-    forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks its questions afresh
+    forget_everywhere(ANSWERS)  # IK answers are kept per robot state (reasoning/ik.py): each run asks its questions afresh
     if cold:
-        floor_maps._MAPS.pop(world, None)
+        world.cache.forget(floor_maps.MAPS)
     return locate(world, location).next()
 
 

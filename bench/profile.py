@@ -52,8 +52,10 @@ import pycram_cli  # noqa: E402
 
 #: phase -> its entry points ("module:function" or "module:Class.method"), in the order they are reported
 PHASES: dict[str, tuple[str, ...]] = {
-    "IK": ("pycram_cli.reasoning.ik:solve", "pycram_cli.reasoning.ik:solve_each",
-           "pycram_cli.reasoning.ik:solve_link", "pycram_cli.reasoning.ik:solve_link_each",
+    # (`ik.solutions` and `link_solutions` are iterators, run as their callers ask: their work is timed inside)
+    "IK": ("pycram_cli.reasoning.ik:solve", "pycram_cli.reasoning.ik:solve_link",
+           "pycram_cli.reasoning.ik:_Batch.__init__", "pycram_cli.reasoning.ik_search:_GroupSearch.measure",
+           "pycram_cli.reasoning.ik_search:_GroupSearch.finished", "pycram_cli.reasoning.ik_search:_GroupSearch.step",
            "pycram_cli.reasoning.ik:forward_pose"),
     "path checks / collision": (
         "pycram_cli.planning.motion:Motion.__init__", "pycram_cli.planning.motion:Motion.walk",

@@ -42,7 +42,8 @@ sys.path.insert(0, str(REPO))
 from pycram_cli import load_world  # noqa: E402  (imports pybullet quietly)
 import pybullet as p  # noqa: E402
 from pycram_cli.reasoning import blocking, contact, occluding, reachable, stable, supporting, visible  # noqa: E402
-from pycram_cli.reasoning.ik import forget_answers  # noqa: E402
+from pycram_cli.reasoning.ik import ANSWERS  # noqa: E402
+from pycram_cli.world.cache import forget_everywhere  # noqa: E402
 from pycram_cli.robots import description_for  # noqa: E402
 from pycram_cli.world.pose import quat_multiply  # noqa: E402
 
@@ -166,7 +167,7 @@ def median_ms(func: Callable[[], Any], repeat: int) -> tuple[float, Any]:
     answer = func()  # warm-up (first-use caches)
     times = []
     for _ in range(repeat):
-        forget_answers()  # each repetition a first question: IK answers are kept per robot state (reasoning/ik.py)
+        forget_everywhere(ANSWERS)  # each repetition a first question: IK answers are kept per robot state (reasoning/ik.py)
         start = time.perf_counter()
         answer = func()
         times.append(time.perf_counter() - start)

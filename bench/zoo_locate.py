@@ -28,7 +28,8 @@ sys.path.insert(0, str(REPO))
 from pycram_cli.failures import LocationFailure  # noqa: E402
 from pycram_cli.locations import locate  # noqa: E402
 from pycram_cli.locations import floor as floor_maps  # noqa: E402
-from pycram_cli.reasoning.ik import forget_answers  # noqa: E402
+from pycram_cli.reasoning.ik import ANSWERS  # noqa: E402
+from pycram_cli.world.cache import forget_everywhere  # noqa: E402
 from pycram_cli.robots.zoo import generate, write_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
 
@@ -42,8 +43,8 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
     try:
         times, found = [], True
         for _ in range(repeat):
-            floor_maps._MAPS.pop(world, None)
-            forget_answers()  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
+            world.cache.forget(floor_maps.MAPS)
+            forget_everywhere(ANSWERS)  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
             with world.snapshot():
                 start = time.perf_counter()
                 try:

@@ -352,9 +352,6 @@ def test_the_check_finds_imports_anywhere_in_a_file(tmp_path):
 MODULE_LINES = 600
 #: a function longer than this says why, in a `# long: ...` comment on the line above its `def` (or its decorators)
 FUNCTION_LINES = 60
-#: long functions in modules other branches of issue 25 are reshaping (reasoning/ik.py: ik; planning/paths.py:
-#: perf); each goes from this list once it is split or says why
-LONG_PENDING = {"reasoning/ik.py:_search_groups", "reasoning/ik.py:solve_link_each"}
 
 
 def long_functions(path: Path, limit: int = FUNCTION_LINES) -> list[str]:
@@ -381,7 +378,7 @@ def test_every_long_function_says_why():
     found = []
     for path in sorted(PACKAGE_DIR.rglob("*.py")):
         where = path.relative_to(PACKAGE_DIR).as_posix()
-        found += [f"{where}:{text}" for text in long_functions(path) if f"{where}:{text.split(' ')[0]}" not in LONG_PENDING]
+        found += [f"{where}:{text}" for text in long_functions(path)]
     assert not found, (f"functions over {FUNCTION_LINES} lines without a `# long: why` comment above them:\n"
                        + "\n".join(found))
 

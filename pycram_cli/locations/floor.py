@@ -17,8 +17,6 @@ nothing in it moves (`floor_map`): the next location in the same state reuses it
 from __future__ import annotations
 
 import math
-import threading
-import weakref
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -30,7 +28,7 @@ from ..world.pose import yaw_quaternion
 
 if TYPE_CHECKING:
     from ..robots import Robot
-    from ..world import BulletWorld, Object
+    from ..world import Object
 
 #: grid cell size (m)
 RESOLUTION = 0.02
@@ -313,8 +311,8 @@ def exact_collisions(robot: Object, held: Sequence[Object], x: float, y: float, 
 
 # -- the floor map, kept while the world stands still ----------------------------------------------------------
 
-_MAPS: weakref.WeakKeyDictionary[BulletWorld, tuple[tuple, FloorMap]] = weakref.WeakKeyDictionary()
-_MAPS_LOCK = threading.Lock()  # worlds may resolve locations in threads of their own
+#: the world's cache table of its floor map (world/cache.py)
+MAPS = "floor map"
 
 
 def _signature(robot: Robot, held: Sequence[Object]) -> tuple:
@@ -337,16 +335,11 @@ def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> Floo
     """The floor map for the world as it is (built again whenever anything has moved). `saved`: the caller
     restores the world afterwards (building turns the robot in place)."""
     world = robot.world
-    key = _signature(robot, held)
-    with _MAPS_LOCK:
-        cached = _MAPS.get(world)
-    if cached is not None and cached[0] == key:
-        return cached[1]
-    if saved:
-        built = build(robot.body, held)
-    else:
+
+    def built() -> FloorMap:
+        if saved:
+            return build(robot.body, held)
         with world.snapshot():
-            built = build(robot.body, held)
-    with _MAPS_LOCK:
-        _MAPS[world] = (key, built)
-    return built
+            return build(robot.body, held)
+
+    return world.cache.kept(MAPS, world, _signature(robot, held), built)

@@ -30,7 +30,6 @@ tool frame goes where that puts the grasp point.
 from __future__ import annotations
 
 import math
-import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -60,13 +59,10 @@ class Grasp:
     depth: float = 0.0  # how far the tool frame is in from the side of the object's box it comes through (m)
 
 
-_AXES: weakref.WeakKeyDictionary[Object, dict[str, np.ndarray]] = weakref.WeakKeyDictionary()
-
-
 def tool_axes(robot: Robot, arm: str) -> np.ndarray:
     """The arm's tool frame as a grasp sees it: columns (approach, closing, the third), in the tool frame
-    (robots/tool.py reads them from the model), kept per robot body."""
-    cache = _AXES.setdefault(robot.body, {})
+    (robots/tool.py reads them from the model), kept per robot body in the world's cache."""
+    cache: dict[str, np.ndarray] = robot.body.world.cache.table("tool axes", robot.body)
     if arm not in cache:
         cache[arm] = model_tool_axes(robot.body, robot.description.arm(arm))
     return cache[arm]

@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import InputError, Location
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
-from ..reasoning.ik import solve
+from ..reasoning.ik import Settings, solve
 from ..robots import Robot
 from ..world.pose import compose, invert, matrix_to_quat, yaw_quaternion
 from .contacts import collisions
@@ -226,8 +226,8 @@ def _move_wrist(robot: Robot, arm: str, target: Sequence[float]) -> None:
     joints = list(robot.description.arm(arm).joints)
     blocked: list[str] = []
     for eye, orientation in _viewpoints(robot, arm, target):
-        solution = solve(robot, arm, tuple(eye), orientation, frame=camera.frame, joints=joints, threshold=0.03,
-                         angle_threshold=WRIST_ANGLE)
+        solution = solve(robot, arm, tuple(eye), orientation, frame=camera.frame, joints=joints,
+                         settings=Settings(threshold=0.03, angle_threshold=WRIST_ANGLE))
         if not solution.success:
             continue
         with body.joints_kept(joints):

@@ -34,8 +34,6 @@ geometry comes from the world (`closest_points`, boxes); nothing here calls PyBu
 from __future__ import annotations
 
 import math
-import weakref
-from collections import OrderedDict
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -62,7 +60,8 @@ PRECISION = 0.001
 STILL = 1e-5
 #: how many walks and searches each world remembers (the newest; see `Motion.situation`)
 MEMO_SIZE = 512
-_MEMO: weakref.WeakKeyDictionary[Any, OrderedDict[tuple, Any]] = weakref.WeakKeyDictionary()
+#: the world's cache table of them (world/cache.py)
+MEMO = "motion checks"
 
 
 @dataclass(frozen=True)
@@ -158,19 +157,12 @@ class Motion:
         """What was found for `key` (a situation and the question asked in it) in this world, or None."""
         if key is None:
             return None
-        memo = _MEMO.get(self.world)
-        found = memo.get(key) if memo is not None else None
-        if found is not None:
-            memo.move_to_end(key)  # type: ignore[union-attr]
-        return found
+        return self.world.cache.memo(MEMO, self.world, MEMO_SIZE).recall(key)
 
     def remember(self, key: tuple | None, answer: Any) -> None:
         if key is None:
             return
-        memo = _MEMO.setdefault(self.world, OrderedDict())
-        memo[key] = answer
-        while len(memo) > MEMO_SIZE:
-            memo.popitem(last=False)
+        self.world.cache.memo(MEMO, self.world, MEMO_SIZE).remember(key, answer)
 
     def _holder(self, obj: Object) -> int | None:
         """The robot link `obj` hangs from (through other held objects, if need be)."""

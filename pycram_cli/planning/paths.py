@@ -16,7 +16,7 @@ from ..robots import Robot
 from ..world import Object
 from . import motion
 from .motion import Motion
-from .reach import arm_configuration, middle_of_ranges, reach_each, reach_from_middle, solve_tool
+from .reach import arm_configuration, middle_of_ranges, reach_from_middle, reach_solutions, solve_tool
 
 # -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
 
@@ -254,11 +254,14 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         toward = toward / (np.linalg.norm(toward) or 1.0) * back
         target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
         # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
-        here, middle = reach_each(robot, arm, [(target, orientation, None),
-                                               (target, orientation, middle_of_ranges(robot, arm))],
-                                  enough=lambda k, s: k == 0 and s.success, best_effort=False)  # only whether
-        assert here is not None
-        solution = here if here.success else middle
+        found: dict[int, IKSolution] = {}
+        for k, answer in reach_solutions(robot, arm, [(target, orientation, None),
+                                                      (target, orientation, middle_of_ranges(robot, arm))],
+                                         best_effort=False):  # only whether
+            found[k] = answer
+            if k == 0 and answer.success:
+                break
+        solution = found[0] if found[0].success else found.get(1)
     return solution.joint_positions if solution is not None and solution.success else None
 
 

@@ -31,7 +31,7 @@ from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
 from .grasps import Grasp, gripper_values, holdable_grasps, wanted_orientation
-from .reach import close_on, reach, reach_from, reach_near, reach_near_each, set_gripper
+from .reach import close_on, near_solutions, reach, reach_from, reach_near, set_gripper
 
 #: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
 APPROACH = 0.10
@@ -123,9 +123,11 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             best = (solution.position_error, solution)
         return False
 
-    # every way's pre-grasp pose near where the arm is, searched a few at a time (`reach_near_each`)
-    reach_near_each(robot, arm, [(offset_along(c.position, c.approach, -(c.depth + APPROACH)), c.orientation)
-                                 for c in candidates], attempt)
+    # every way's pre-grasp pose near where the arm is, searched a few at a time (`near_solutions`), until one holds
+    for k, pre in near_solutions(robot, arm, [(offset_along(c.position, c.approach, -(c.depth + APPROACH)),
+                                               c.orientation) for c in candidates]):
+        if attempt(k, pre):
+            break
     if taken:
         return taken[0]
     if blocked:

@@ -4,7 +4,8 @@ what is in the way in `paths.py`."""
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -12,7 +13,7 @@ import numpy as np
 from ..errors import did_you_mean
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words, gripper_words
-from ..reasoning.ik import IKSolution, Query, solve, solve_each
+from ..reasoning.ik import IKSolution, Query, Settings, solutions, solve
 from ..robots import Robot
 from ..world.pose import angle_between, quat_inverse, quat_multiply, quat_to_matrix
 from . import motion
@@ -22,15 +23,17 @@ from .grasps import gripper_values, tool_axes
 #: with objects' sides: a looser angle would hold a square carton askew)
 REACH = 0.01
 REACH_ANGLE = math.radians(2.0)
+#: how reaching asks inverse kinematics, for a solution (the nearest configuration when none reaches) or only whether
+REACHING = Settings(threshold=REACH, angle_threshold=REACH_ANGLE)
+REACHING_VERDICT = replace(REACHING, best_effort=False)
 
 
 def reach(robot: Robot, arm: str, position: Sequence[float], orientation: Sequence[float] | None,
           best_effort: bool = True) -> IKSolution:
     """The arm's joints that bring its tool within REACH (and REACH_ANGLE) of a pose. `best_effort=False`, for a caller
     that needs only whether: a pose out of the arm's reach by a distance bound fails at once, without the search for
-    the nearest configuration (`ik.solve_link_each`)."""
-    return solve(robot, arm, position, orientation, threshold=REACH, angle_threshold=REACH_ANGLE,
-                 best_effort=best_effort)
+    the nearest configuration (`ik.Settings`)."""
+    return solve(robot, arm, position, orientation, settings=REACHING if best_effort else REACHING_VERDICT)
 
 
 #: an IK solution that turns some joint of the arm farther than this from where it is (rad) is compared with one
@@ -43,88 +46,84 @@ def reach_near(robot: Robot, arm: str, position: Sequence[float], orientation: S
     is, but may settle on a twisted solution far from it (an arm that would then have to sweep through everything in
     front of the robot to get there); then it is also solved from the middle of the joints' ranges (an arm held out in
     front, elbow out), and the solution that moves the arm least is taken. Both are searched at once."""
-    found: list[IKSolution] = []
-
-    def take(k: int, solution: IKSolution) -> bool:
-        found.append(solution)
-        return True  # one target: enough
-
-    reach_near_each(robot, arm, [(position, orientation)], take)
-    return found[0]
+    for _, solution in near_solutions(robot, arm, [(position, orientation)]):
+        return solution
+    raise AssertionError("one target gives one solution")
 
 
-#: `reach_near_each` searches the targets of this many at a time (more cost a little more each while the first may do)
+#: `near_solutions` searches the targets of this many at a time (more cost a little more each while the first may do)
 NEAR_BATCH = 4
 
+Target = tuple[Sequence[float], "Sequence[float] | None"]
 
-def reach_near_each(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[float], Sequence[float] | None]],
-                    take: Callable[[int, IKSolution], bool]) -> None:
-    """`reach_near` for each target in turn: `take(k, solution)` gets target k's solution, in order, and ends it all by
-    returning True. The targets are searched NEAR_BATCH at a time in one batched search (`ik.solve_each`), so that
-    ways to hold an object that all fail cost about one search; each solution is exactly `reach_near`'s."""
-    body = robot.body
-    names = list(robot.description.arm(arm).joints)
-    current = body.get_joint_positions(names)
+
+def near_solutions(robot: Robot, arm: str, targets: Sequence[Target]) -> Iterator[tuple[int, IKSolution]]:
+    """`reach_near` for each target in turn, yielding `(k, solution)` in target order; the caller stops when it has the
+    one it needs (break). The targets are searched NEAR_BATCH at a time in one batched search (`ik.solutions`), so
+    that ways to hold an object that all fail cost about one search; each solution is exactly `reach_near`'s."""
     middle = middle_of_ranges(robot, arm)
+    chooser = _Nearer(robot, arm)
+    for first, batch in _near_batches(targets):
+        answers: dict[int, IKSolution] = {}  # by query: target k from where the arm is (2k) and from the middle (2k+1)
+        handed = 0  # how many of the batch's targets have been handed over
+        queries = [(position, orientation, start) for position, orientation in batch for start in (None, middle)]
+        for g, solution in reach_solutions(robot, arm, queries):
+            answers[g] = solution
+            while handed < len(batch) and (chosen := chooser.decided(answers, handed)) is not None:
+                yield first + handed, chosen
+                handed += 1
+            if handed == len(batch):
+                break
 
-    def spread(s: IKSolution) -> float:
-        return max((abs(s.joint_positions[n] - current[n]) for n in names if n in s.joint_positions), default=0.0)
 
-    def moved(s: IKSolution) -> float:
-        return sum(abs(s.joint_positions[n] - current[n]) for n in names)
-
-    batches: list[tuple[int, Sequence[tuple[Sequence[float], Sequence[float] | None]]]] = []
+def _near_batches(targets: Sequence[Target]) -> list[tuple[int, Sequence[Target]]]:
+    """The targets NEAR_BATCH at a time (with their first index), each batch with an orientation for every target or
+    for none."""
+    batches: list[tuple[int, Sequence[Target]]] = []
     first = 0
-    while first < len(targets):  # NEAR_BATCH at a time, each with an orientation for every target or for none
+    while first < len(targets):
         end = first + 1
         while end < min(len(targets), first + NEAR_BATCH) and \
                 (targets[end][1] is None) == (targets[first][1] is None):
             end += 1
         batches.append((first, targets[first:end]))
         first = end
-    for first, batch in batches:
-        answers: dict[int, IKSolution] = {}
-        handed = [0]  # how many of the batch's targets have been handed over
-        ended = [False]
+    return batches
 
-        # (each batch's closures are called only within its own iteration: the loop's values are bound as defaults)
-        def decided(k: int, answers: dict[int, IKSolution] = answers) -> IKSolution | None:
-            here, other = answers.get(2 * k), answers.get(2 * k + 1)
-            if here is None:
-                return None
-            if here.success and spread(here) <= FAR:
-                return here
-            if other is None:
-                return None
-            if other.success and (not here.success or moved(other) < moved(here)):
-                return other
+
+class _Nearer:
+    """Which of a target's two solutions (from where the arm is, from the middle of its ranges) `reach_near` takes."""
+
+    def __init__(self, robot: Robot, arm: str) -> None:
+        self.names = list(robot.description.arm(arm).joints)
+        self.current = robot.body.get_joint_positions(self.names)
+
+    def spread(self, s: IKSolution) -> float:
+        return max((abs(s.joint_positions[n] - self.current[n]) for n in self.names if n in s.joint_positions),
+                   default=0.0)
+
+    def moved(self, s: IKSolution) -> float:
+        return sum(abs(s.joint_positions[n] - self.current[n]) for n in self.names)
+
+    def decided(self, answers: Mapping[int, IKSolution], k: int) -> IKSolution | None:
+        """Target k's solution once the answers found so far decide it, else None."""
+        here, other = answers.get(2 * k), answers.get(2 * k + 1)
+        if here is None:
+            return None
+        if here.success and self.spread(here) <= FAR:
             return here
-
-        def found(g: int, solution: IKSolution, answers: dict[int, IKSolution] = answers, handed: list[int] = handed,
-                  batch: Sequence[Any] = batch, first: int = first, ended: list[bool] = ended) -> bool:
-            answers[g] = solution
-            while handed[0] < len(batch):
-                chosen = decided(handed[0])
-                if chosen is None:
-                    return False
-                handed[0] += 1
-                if take(first + handed[0] - 1, chosen):
-                    ended[0] = True
-                    return True
-            return True
-
-        queries = [(position, orientation, start) for position, orientation in batch for start in (None, middle)]
-        reach_each(robot, arm, queries, found)
-        if ended[0]:
-            return
+        if other is None:
+            return None
+        if other.success and (not here.success or self.moved(other) < self.moved(here)):
+            return other
+        return here
 
 
-def reach_each(robot: Robot, arm: str, queries: Sequence[Query],
-               enough: Callable[[int, IKSolution], bool] | None = None, best_effort: bool = True) -> list[IKSolution | None]:
-    """`reach` for each query (target position, orientation, start configuration), searched at once
-    (`ik.solve_each`)."""
-    return solve_each(robot, arm, queries, threshold=REACH, angle_threshold=REACH_ANGLE, enough=enough,
-                      best_effort=best_effort)
+def reach_solutions(robot: Robot, arm: str, queries: Sequence[Query],
+                    best_effort: bool = True) -> Iterator[tuple[int, IKSolution]]:
+    """`reach` for each query (target position, orientation, start configuration), searched at once, as they are found
+    (`ik.solutions`)."""
+    return solutions(robot, arm, queries, settings=REACHING if best_effort else REACHING_VERDICT)
 
 
 def middle_of_ranges(robot: Robot, arm: str) -> dict[str, float]:

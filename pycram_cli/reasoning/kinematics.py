@@ -9,7 +9,6 @@ other joints (a torso), so that an iteration of the search multiplies only what 
 from __future__ import annotations
 
 import math
-import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -91,12 +90,9 @@ class Chain:
         return cls(robot.id, joints, _inverse(joints[-1].link_to_com) if joints else np.eye(4))
 
 
-#: chains already built, per robot and tool link (forgotten with the robot)
-_CHAINS: weakref.WeakKeyDictionary[Object, dict[int, Chain]] = weakref.WeakKeyDictionary()
-
-
 def chain_for(robot: Object, link_index: int) -> Chain:
-    cache = _CHAINS.setdefault(robot, {})
+    """The chain from the robot's base to a link: built once per robot and link, kept in the world's cache."""
+    cache: dict[int, Chain] = robot.world.cache.table("kinematic chains", robot)
     chain = cache.get(link_index)
     if chain is None:
         chain = cache[link_index] = Chain.build(robot, link_index)

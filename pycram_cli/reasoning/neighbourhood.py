@@ -28,7 +28,6 @@ are spawned up to 1 mm above their support; a stable object moves less than 1 mm
 """
 from __future__ import annotations
 
-import weakref
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -161,23 +160,20 @@ def find(world: BulletWorld, obj: Object, seconds: float) -> Neighbourhood:
     return Neighbourhood(ordered, kept, parked, boxes, loose)
 
 
-_JOINT_BOXES: weakref.WeakKeyDictionary[Object, tuple[tuple, dict[int, np.ndarray]]] = weakref.WeakKeyDictionary()
-
-
 def _joint_boxes(obj: Object) -> dict[int, np.ndarray]:
     """For each movable joint of `obj` (by index): the box of everything it moves (its child link's subtree),
-    kept while the object's pose and joint positions stay."""
+    kept (in the world's cache) while the object's pose and joint positions stay."""
     key = (obj.get_com_pose(), tuple(obj.get_joint_positions().values()))
-    cached = _JOINT_BOXES.get(obj)
-    if cached is not None and cached[0] == key:
-        return cached[1]
+    return obj.world.cache.kept("joint boxes", obj, key, lambda: _build_joint_boxes(obj))
+
+
+def _build_joint_boxes(obj: Object) -> dict[int, np.ndarray]:
     links = {j.index: np.array(obj.get_aabb(j.index), dtype=float) for j in obj.joints}
     boxes = {}
     for joint in obj.movable_joints:
         moved = [box for index, box in links.items() if _descends(obj, index, joint.index)]
         stacked = np.array(moved)
         boxes[joint.index] = np.array([stacked[:, 0].min(axis=0), stacked[:, 1].max(axis=0)])
-    _JOINT_BOXES[obj] = (key, boxes)
     return boxes
 
 

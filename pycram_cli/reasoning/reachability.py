@@ -26,7 +26,7 @@ from ..signature import Param
 from ..world import Object
 from ..world.pose import check_position, check_quaternion, quat_multiply
 from ._common import attached_descendants
-from .ik import solve_link
+from .ik import Settings, solve_link
 from .query import Call, QueryAnswer, QuerySpec, declare_query, degrees, finite, mm, parameters, place
 
 if TYPE_CHECKING:
@@ -116,7 +116,8 @@ def _solve(target: Any, robot: Object, gripper_link: str, grasp: Any, threshold:
     wanted = grasp_orientation(robot, grasp)
     if wanted is None:
         wanted = orientation
-    return solve_link(robot, gripper_link, position, wanted, threshold=threshold, angle_threshold=angle_threshold)
+    return solve_link(robot, gripper_link, position, wanted,
+                      settings=Settings(threshold=threshold, angle_threshold=angle_threshold))
 
 
 def reachable(target: Any, robot: Object, gripper_link: str, grasp: Any = None, threshold: float = REACH,

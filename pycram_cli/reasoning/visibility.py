@@ -27,7 +27,6 @@ seen: an object outside the view is 0 % visible.
 from __future__ import annotations
 
 import math
-import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -252,18 +251,16 @@ def _seen_parts(world: BulletWorld, obj: Object, cam: CameraPose,
     return parts
 
 
-_SCENES: weakref.WeakKeyDictionary[BulletWorld, tuple] = weakref.WeakKeyDictionary()
-
-
 def _scene_boxes(world: BulletWorld) -> tuple[list[Object], np.ndarray, list[int], np.ndarray, np.ndarray,
                                                 np.ndarray]:
     """Every drawn link of the world at once: the objects, each link's owner (index into them), link, box and
-    whether it has none; and how many links each object draws. Kept while the world's version stays."""
-    version = world.version
-    cached = _SCENES.get(world)
-    if cached is not None and cached[0] == version and len(cached[1]) == len(world.objects) \
-            and all(a is b for a, b in zip(cached[1], world.objects)):
-        return cached[1:]
+    whether it has none; and how many links each object draws. Kept (in the world's cache) while the world's version
+    and its objects (the very same, compared by identity) stay."""
+    return world.cache.kept("scene boxes", world, (world.version, tuple(world.objects)), lambda: _build_scene(world))
+
+
+def _build_scene(world: BulletWorld) -> tuple[list[Object], np.ndarray, list[int], np.ndarray, np.ndarray,
+                                              np.ndarray]:
     objects = list(world.objects)
     drawn = [_drawn_boxes(o) for o in objects]
     owners = np.concatenate([np.full(len(d[0]), i) for i, d in enumerate(drawn)] or [np.zeros(0)]).astype(int)
@@ -271,27 +268,22 @@ def _scene_boxes(world: BulletWorld) -> tuple[list[Object], np.ndarray, list[int
     boxes = np.concatenate([d[1] for d in drawn] or [np.zeros((0, 2, 3))])
     unbounded = np.concatenate([d[2] for d in drawn] or [np.zeros(0, dtype=bool)])
     counts = np.array([len(d[0]) for d in drawn])
-    _SCENES[world] = (version, objects, owners, links, boxes, unbounded, counts)
     return objects, owners, links, boxes, unbounded, counts
-
-
-_BOXES: weakref.WeakKeyDictionary[Object, tuple[int, list[int], np.ndarray, np.ndarray]] = weakref.WeakKeyDictionary()
 
 
 def _drawn_boxes(obj: Object) -> tuple[list[int], np.ndarray, np.ndarray]:
     """The links `obj` draws, their boxes (n, 2, 3) grown by MARGIN, and which have no box (no collision shape);
-    kept while the object's version stays."""
-    version = obj.version
-    cached = _BOXES.get(obj)
-    if cached is not None and cached[0] == version:
-        return cached[1], cached[2], cached[3]
+    kept (in the world's cache) while the object's version stays."""
+    return obj.world.cache.kept("drawn boxes", obj, obj.version, lambda: _build_drawn_boxes(obj))
+
+
+def _build_drawn_boxes(obj: Object) -> tuple[list[int], np.ndarray, np.ndarray]:
     drawn = obj.drawn_links()
     links = [link for link, _ in drawn]
     boxes = np.array([obj.get_aabb(link) for link in links], dtype=float).reshape(-1, 2, 3)
     boxes[:, 0] -= MARGIN
     boxes[:, 1] += MARGIN
     unbounded = np.array([not has_collision for _, has_collision in drawn], dtype=bool)
-    _BOXES[obj] = (version, links, boxes, unbounded)
     return links, boxes, unbounded
 
 

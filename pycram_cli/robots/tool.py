@@ -13,7 +13,6 @@ description leaves out of the gripper (`approach`, `coupling`, `grasp_point`) is
 """
 from __future__ import annotations
 
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -124,14 +123,11 @@ def _within(values: tuple[float, ...], lo: float, hi: float) -> bool:
     return all(lo - 1e-9 <= v <= hi + 1e-9 for v in values)
 
 
-_HANDS: weakref.WeakKeyDictionary[Object, dict[tuple, Hand]] = weakref.WeakKeyDictionary()
-
-
 def hand(body: Object, arm: ArmDescription) -> Hand:
     """The arm's hand as the model has it (kept per body: it is first read when the robot is loaded, its fingers
-    tried closed and put back)."""
+    tried closed and put back; in the world's cache)."""
     key = (arm.name, arm.tool_frame, arm.palm_link, arm.joints[-1] if arm.joints else "", arm.gripper)
-    cache = _HANDS.setdefault(body, {})
+    cache: dict[tuple, Hand] = body.world.cache.table("hands", body)
     if key not in cache:
         cache[key] = _read_hand(body, arm)
     return cache[key]

@@ -19,6 +19,7 @@ import numpy as np
 import pybullet as p
 
 from ..quiet import silenced
+from .cache import WorldCache
 from .camera import segmentation
 from .display import check_display
 from .events import Event
@@ -139,6 +140,8 @@ class BulletWorld(GuiWindow):
         self._copy_watchers: list[Callable[[BulletWorld], None]] = []  # the same, for the prospection copy's steps
         #: a replay of a run on this world is being recorded (plan/replay.py): steps may keep details for it
         self.recording_replay = False
+        #: what the layers above work out about this world and its objects (cache.py): it goes with the world
+        self.cache = WorldCache()
         self._view: ViewRenderer | None = None  # made on the first picture_of
         self._captions: dict[int, int] = {}  # the GUI's caption text items by line, once shown
         self._prospection: Prospection | None = None  # made on the first query that tries things out
@@ -203,6 +206,7 @@ class BulletWorld(GuiWindow):
             with contextlib.suppress(Exception):
                 hook()
         self._view = None
+        self.cache.forget()
         if self._prospection is not None:
             with contextlib.suppress(Exception):
                 self._prospection.close()

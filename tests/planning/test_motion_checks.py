@@ -24,9 +24,9 @@ def kitchen():
 @pytest.fixture
 def world(kitchen):
     with kitchen.snapshot():
-        motion._MEMO.pop(kitchen, None)
+        kitchen.cache.forget(motion.MEMO)
         yield kitchen
-        motion._MEMO.pop(kitchen, None)
+        kitchen.cache.forget(motion.MEMO)
 
 
 def at_the_counter(world):

@@ -196,22 +196,22 @@ def test_a_target_z_names_the_surface_at_that_height(world):
 
 def test_the_ways_to_hold_an_object_are_handed_over_in_order_each_as_reach_near_finds_it(world):
     from pycram_cli.planning.pick_place import grasp_orientation
-    from pycram_cli.planning.reach import reach_near, reach_near_each
+    from pycram_cli.planning.reach import near_solutions, reach_near
     perform(world, "moving", COUNTER)
     robot = Robot.of(world)
     top = grasp_orientation(robot, "top")
     targets = [((1.25, 0.6 + 0.05 * k, 1.05), top) for k in range(6)]  # more than one batch
-    handed: list[int] = []
-    reach_near_each(robot, "right", targets, lambda k, s: handed.append(k) is None and False)
-    assert handed == list(range(6))
+    assert [k for k, _ in near_solutions(robot, "right", targets)] == list(range(6))
     answers: dict[int, object] = {}
-    reach_near_each(robot, "right", targets, lambda k, s: answers.setdefault(k, s) is None or k == 2)
-    assert sorted(answers) == [0, 1, 2]  # ends where the taker says it has what it needs
+    for k, solution in near_solutions(robot, "right", targets):
+        answers[k] = solution
+        if k == 2:
+            break
+    assert sorted(answers) == [0, 1, 2]  # ends where the caller says it has what it needs
     for k, solution in answers.items():
         assert solution == reach_near(robot, "right", *targets[k])  # bitwise what a search of its own gives
     mixed = [targets[0], ((1.25, 0.6, 1.05), None), targets[1]]  # with and without an orientation
-    got: list = []
-    reach_near_each(robot, "right", mixed, lambda k, s: got.append(s) is None and False)
+    got = [solution for _, solution in near_solutions(robot, "right", mixed)]
     assert got == [reach_near(robot, "right", *target) for target in mixed]
 
 

@@ -9,9 +9,11 @@ import pybullet as p
 import pytest
 from scenes import COUNTER_POSE, fingerprint
 
-from pycram_cli.reasoning.ik import IKSolution, chain_for, forward_pose, solve, solve_each, solve_link, solve_link_each
+import pycram_cli.reasoning.ik as ik
+from pycram_cli.reasoning.ik import IKSolution, Settings, forward_pose, link_solutions, solutions, solve, solve_link
+from pycram_cli.reasoning.ik_search import Problem
+from pycram_cli.reasoning.kinematics import chain_for
 from pycram_cli.robots import Robot
-from pycram_cli.reasoning.ik import _Problem as Problem
 from pycram_cli.world.pose import angle_between, quat_multiply
 
 LEFT, RIGHT = "l_gripper_tool_frame", "r_gripper_tool_frame"
@@ -19,6 +21,17 @@ LEFT_ARM = ["l_shoulder_pan_joint", "l_shoulder_lift_joint", "l_upper_arm_roll_j
             "l_forearm_roll_joint", "l_wrist_flex_joint", "l_wrist_roll_joint"]
 FRONT = (0.0, 0.0, 0.0, 1.0)
 TOP = (0.0, 0.7071068, 0.0, 0.7071068)
+
+
+def in_order(found, count):
+    """The answers an iterator of `(k, answer)` yielded, by query (None: not yielded)."""
+    got = dict(found)
+    return [got.get(k) for k in range(count)]
+
+
+def forget(robot):
+    """Forget the IK answers the robot's world keeps for it."""
+    robot.world.cache.forget(ik.ANSWERS, owner=robot)
 
 
 @pytest.fixture
@@ -107,7 +120,7 @@ def test_the_threshold_decides_success(at_counter):
     far = (1.35, 0.7, 0.4)  # a little below what the arm reaches
     best = solve_link(at_counter.robot, RIGHT, far)
     assert not best
-    assert solve_link(at_counter.robot, RIGHT, far, threshold=best.position_error + 0.01)
+    assert solve_link(at_counter.robot, RIGHT, far, settings=Settings(threshold=best.position_error + 0.01))
 
 
 def test_solve_is_deterministic_bitwise(at_counter):
@@ -132,7 +145,7 @@ def test_a_robots_arm_is_solved_for_its_tool_frame_and_its_joints(at_counter):
     assert solution == solve_link(at_counter.robot, LEFT, (1.2, 0.9, 1.0), FRONT, joints=LEFT_ARM)  # bitwise
     assert sorted(solution.joint_positions) == sorted(robot.arm("left").joints)
     queries = [((1.2, 0.9, 1.0), FRONT, None), ((3.0, 0.7, 1.0), FRONT, None)]
-    assert solve_each(robot, "left", queries) == solve_link_each(at_counter.robot, LEFT, queries)
+    assert in_order(solutions(robot, "left", queries), 2) == in_order(link_solutions(at_counter.robot, LEFT, queries), 2)
     wrist = solve(robot, "left", (1.1, 0.9, 1.0), frame="l_wrist_roll_link")  # another link the arm moves
     assert wrist == solve_link(at_counter.robot, "l_wrist_roll_link", (1.1, 0.9, 1.0), joints=LEFT_ARM)
     with pytest.raises(KeyError, match="has no arm 'middle'"):
@@ -146,7 +159,7 @@ def test_unknown_links_and_joints_are_reported(scene):
         solve_link(scene.robot, LEFT, (1, 1, 1), joints=["l_elbow"])
 
 
-# -- several targets at once (solve_link_each) -------------------------------------------------------------------
+# -- several targets at once (link_solutions) -------------------------------------------------------------------
 
 
 def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_counter):
@@ -154,7 +167,7 @@ def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_
     middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
     queries = [((1.2, 0.9, 1.0), FRONT, None), ((1.25, 0.85, 0.95), TOP, middle),
                ((3.0, 0.7, 1.0), FRONT, None), ((1.3, 1.0, 1.05), TOP, None)]  # the third out of reach
-    together = solve_link_each(robot, LEFT, queries)
+    together = in_order(link_solutions(robot, LEFT, queries), len(queries))
     alone = []
     for position, orientation, start in queries:
         with robot.joints_kept(LEFT_ARM):
@@ -168,48 +181,61 @@ def test_several_targets_solved_at_once_get_the_very_answers_each_gets_alone(at_
 def test_solving_from_several_starts_can_stop_at_the_first_answer_that_will_do(at_counter):
     robot = at_counter.robot
     middle = {name: (robot.joint(name).lower + robot.joint(name).upper) / 2.0 for name in LEFT_ARM}
-    seen = []
-    answers = solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), FRONT, middle)],
-                              enough=lambda k, s: seen.append(k) is None and k == 0 and s.success)
+    seen, answers = [], {}
+    for k, answer in link_solutions(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), FRONT, middle)]):
+        seen.append(k)
+        answers[k] = answer
+        if k == 0 and answer.success:
+            break
     assert answers[0] == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
-    assert seen[-1] == 0 and (answers[1] is None) == (seen == [0])  # the other start's answer was not waited for
+    assert seen[-1] == 0 and (1 not in answers) == (seen == [0])  # the other start's answer was not waited for
+
+
+def test_a_stopped_search_lets_go_of_the_world(at_counter):
+    import threading
+
+    robot = at_counter.robot
+    forget(robot)
+    for _ in link_solutions(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.3, 1.0, 1.05), FRONT, None)]):
+        break
+    taken = []
+    other = threading.Thread(target=lambda: taken.append(robot.world.lock.acquire(timeout=5)) or robot.world.lock.release())
+    other.start()
+    other.join()
+    assert taken == [True]
 
 
 def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_are_refused(at_counter):
     robot = at_counter.robot
     with pytest.raises(ValueError, match="orientation for every target or for none"):
-        solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)])
+        list(link_solutions(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, None), ((1.2, 0.9, 1.0), None, None)]))
     with pytest.raises(ValueError, match="got torso_lift_joint"):
-        solve_link_each(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})])
+        list(link_solutions(robot, LEFT, [((1.2, 0.9, 1.0), FRONT, {"torso_lift_joint": 0.1})]))
 
 
 # -- the same question again -----------------------------------------------------------------------------------------
 
 
 def test_the_same_question_in_the_same_state_is_answered_without_searching_again(at_counter, monkeypatch):
-    import pycram_cli.reasoning.ik as ik
-
     robot = at_counter.robot
     searches = []
-    search = ik._search_groups
-    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
-    ik.forget_answers(robot)
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    forget(robot)
     first = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
     first.joint_positions.clear()  # what a caller does with its answer does not change the one kept
     again = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
     assert len(searches) == 1
-    ik.forget_answers(robot)
+    forget(robot)
     assert again == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT) and len(searches) == 2  # bitwise the same
 
 
 def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
-    import pycram_cli.reasoning.ik as ik
-
     robot = at_counter.robot
     searches = []
-    search = ik._search_groups
-    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
-    ik.forget_answers(robot)
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    forget(robot)
     before = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
     with robot.joints_kept(["torso_lift_joint"]):
         robot.reset_joints({"torso_lift_joint": 0.2})  # a joint of the chain that IK does not move
@@ -225,21 +251,17 @@ def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
 
 
 def test_a_target_beyond_the_arms_reach_fails_at_once_when_only_the_verdict_is_asked(at_counter, monkeypatch):
-    import pycram_cli.reasoning.ik as ik
-
     robot = at_counter.robot
     searches = []
-    search = ik._search_groups
-    monkeypatch.setattr(ik, "_search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
-    ik.forget_answers(robot)
-    far = solve_link(robot, LEFT, (3.0, 0.7, 1.0), best_effort=False)
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    forget(robot)
+    far = solve_link(robot, LEFT, (3.0, 0.7, 1.0), settings=Settings(best_effort=False))
     assert not far and far.joint_positions == {} and far.position_error > 1.0 and searches == []
     assert not solve_link(robot, LEFT, (3.0, 0.7, 1.0)).success and len(searches) == 1  # the best effort searches
 
 
 def test_the_reach_bound_never_refuses_what_the_search_reaches(at_counter):
-    import pycram_cli.reasoning.ik as ik
-
     robot = at_counter.robot
     rng = np.random.default_rng(5)
     refused = reached = 0
@@ -250,11 +272,12 @@ def test_the_reach_bound_never_refuses_what_the_search_reaches(at_counter):
         orientation = None if orientation is None else tuple(v / norm for v in orientation)
         for tool in (LEFT, RIGHT):
             for threshold, angle in ((0.01, 0.035), (0.3, 0.6)):
-                ik.forget_answers(robot)
-                full = solve_link(robot, tool, target, orientation, threshold=threshold, angle_threshold=angle)
-                ik.forget_answers(robot)
-                quick = solve_link(robot, tool, target, orientation, threshold=threshold, angle_threshold=angle,
-                                   best_effort=False)
+                forget(robot)
+                settings = Settings(threshold=threshold, angle_threshold=angle)
+                full = solve_link(robot, tool, target, orientation, settings=settings)
+                forget(robot)
+                quick = solve_link(robot, tool, target, orientation,
+                                   settings=Settings(threshold=threshold, angle_threshold=angle, best_effort=False))
                 assert quick.success == full.success
                 refused += not quick.joint_positions
                 reached += full.success
