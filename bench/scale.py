@@ -139,6 +139,19 @@ def median_of(func: Callable[[], float], repeat: int) -> float:
 # -- the parts -------------------------------------------------------------------------------------------------
 
 
+def three_queries(o: dict[str, Any], seen: str, stable_label: str, stable_target: float, quick: bool) -> list[Row]:
+    """Rows for `visible` (of `seen`), `occluding` (the spoon) and `stable` (the milk, within `stable_target` ms),
+    each against today's code; both parts of the scale benchmark start with these."""
+    fast, slow = (9, 5) if quick else (41, 15)
+    rows: list[Row] = []
+    compare(rows, f"visible {seen}", lambda: visible(o[seen]), lambda: today.visible(o[seen]), 5.0, fast, slow)
+    compare(rows, "occluding spoon", lambda: occluding(o["spoon"]), lambda: today.occluding(o["spoon"]), 5.0,
+            fast, slow)
+    compare(rows, stable_label, lambda: stable(o["milk"]), lambda: today.stable(o["milk"]), stable_target,
+            max(5, fast // 3), max(3, slow // 3))
+    return rows
+
+
 def design_part(quick: bool) -> bool:
     world = scenes.design_world()
     if world is None:
@@ -146,15 +159,9 @@ def design_part(quick: bool) -> bool:
         return True
     world.simulate(1.0)  # let the design's objects settle (the spoon keeps rocking in its drawer)
     o = {x.name: x for x in world.objects}
-    fast, slow = (9, 5) if quick else (41, 15)
-    rows: list[Row] = []
     load_before = os.getloadavg()[0]
     print("benchmarking the design's scene on the real models", file=sys.stderr)
-    compare(rows, "visible milk", lambda: visible(o["milk"]), lambda: today.visible(o["milk"]), 5.0, fast, slow)
-    compare(rows, "occluding spoon", lambda: occluding(o["spoon"]), lambda: today.occluding(o["spoon"]), 5.0,
-            fast, slow)
-    compare(rows, "stable milk (resting)", lambda: stable(o["milk"]), lambda: today.stable(o["milk"]), 50.0,
-            max(5, fast // 3), max(3, slow // 3))
+    rows = three_queries(o, "milk", "stable milk (resting)", 50.0, quick)
     repeat = 3 if quick else 7
     ours = median_of(lambda: sync_per_query(world, o["milk"], stable), repeat)
     base = median_of(lambda: sync_per_query(world, o["milk"], today.stable), repeat)
@@ -171,15 +178,9 @@ def design_part(quick: bool) -> bool:
 def crowded_part(quick: bool) -> bool:
     world = scenes.crowded_world(200)
     o = {x.name: x for x in world.objects}
-    fast, slow = (9, 5) if quick else (41, 15)
-    rows: list[Row] = []
     load_before = os.getloadavg()[0]
     print("benchmarking the bundled world with 200 extra cubes", file=sys.stderr)
-    compare(rows, "visible bottle", lambda: visible(o["bottle"]), lambda: today.visible(o["bottle"]), 5.0, fast, slow)
-    compare(rows, "occluding spoon", lambda: occluding(o["spoon"]), lambda: today.occluding(o["spoon"]), 5.0,
-            fast, slow)
-    compare(rows, "stable milk", lambda: stable(o["milk"]), lambda: today.stable(o["milk"]), 60.0,
-            max(5, fast // 3), max(3, slow // 3))
+    rows = three_queries(o, "bottle", "stable milk", 60.0, quick)
     met = print_table("the bundled world with 200 extra small objects on the counter and the floor (medians)", rows,
                       None if quick else "scale_crowded", load_before)
     world.exit()

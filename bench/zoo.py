@@ -441,18 +441,22 @@ class _Scene:
                 return True
         return False
 
+    def _stands_around(self, centre: Sequence[float]) -> list[tuple[float, float]]:
+        """Where the base may stand to work at `centre`: a grid of STEP from 0.2 m to the arm's length + 0.3 m away,
+        nearest first."""
+        radius = self.length + 0.3
+        steps = int(radius / STEP)
+        offsets = sorted((math.hypot(i * STEP, k * STEP), i, k) for i in range(-steps, steps + 1)
+                         for k in range(-steps, steps + 1) if 0.2 <= math.hypot(i * STEP, k * STEP) <= radius)
+        return [(centre[0] + i * STEP, centre[1] + k * STEP) for _, i, k in offsets]
+
     def takes(self, name: str, at: Sequence[float] | None = None) -> bool:
         """Whether the robot can take object `name` (standing at `at`, else where it stands): see the docstring."""
         grasps = self.grasps(name, at)
         if not grasps:
             return False
         target = grasps[0].position
-        radius = self.length + 0.3
-        steps = int(radius / STEP)
-        poses = sorted((math.hypot(i * STEP, k * STEP), i, k) for i in range(-steps, steps + 1)
-                       for k in range(-steps, steps + 1) if 0.2 <= math.hypot(i * STEP, k * STEP) <= radius)
-        for _, i, k in poses:
-            x, y = target[0] + i * STEP, target[1] + k * STEP
+        for x, y in self._stands_around(target):
             yaw = math.atan2(target[1] - y, target[0] - x)
             self._rest((x, y, yaw))
             if self._touches(None, BASE_SLACK):  # deeper in the kitchen than the base may move: no start
@@ -496,12 +500,7 @@ class _Scene:
                 for closing in ((0.0, 0.0, 1.0), across) for sign in (1, -1)]
         ignore = frozenset({handle, drawer})  # the gripper holds the handle, on the drawer's front
         try:
-            radius = self.length + 0.3
-            steps = int(radius / STEP)
-            starts = sorted((math.hypot(i * STEP, k * STEP), i, k) for i in range(-steps, steps + 1)
-                            for k in range(-steps, steps + 1) if 0.2 <= math.hypot(i * STEP, k * STEP) <= radius)
-            for _, i, k in starts:
-                x, y = closed[0] + i * STEP, closed[1] + k * STEP
+            for x, y in self._stands_around(closed):
                 if (x - closed[0]) * pull[0] + (y - closed[1]) * pull[1] <= 0.0:  # behind the drawer's front
                     continue
                 yaw = math.atan2(closed[1] - y, closed[0] - x)

@@ -65,6 +65,18 @@ def check_keys(mapping: LMap, allowed: Iterable[str], required: Iterable[str], c
             errors.append(InputError(f"missing required key '{key}' in {context}", mapping.loc(), key=key))
 
 
+def string_entry(entry: LMap, allowed: Iterable[str], required: Iterable[str], strings: Iterable[str], context: str,
+                  errors: list[InputError]) -> bool:
+    """Check a mapping of a list (a swap's model, an attachment): its keys, and that those of `strings` it has are
+    strings. True when that added no error."""
+    count = len(errors)
+    check_keys(entry, allowed, required, context, errors)
+    for key in strings:
+        if key in entry:
+            expect(entry[key], str, entry.loc(key, True), key, errors)
+    return len(errors) == count
+
+
 def is_numeric(value: Any) -> bool:
     """An int or float (not a bool), whatever its size."""
     return isinstance(value, (int, float)) and not isinstance(value, bool)

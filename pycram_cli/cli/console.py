@@ -8,7 +8,7 @@ from __future__ import annotations
 import json
 import shutil
 import sys
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 from rich.console import Console
@@ -17,6 +17,7 @@ from rich.text import Text
 
 from ..errors import InputError
 from ..jsonable import jsonable
+from ..paths import Found
 
 # Piped output is not cut to 80 columns: tables stay one row per line for grep and friends.
 # No emoji codes: `file:100:3` must not print as `file💯3`.
@@ -37,27 +38,25 @@ def is_quiet() -> bool:
     return _quiet
 
 
-def info(message: str) -> None:
-    if _quiet:
-        return
+def _diagnostic(label: str, style: str, message: str) -> None:
+    """`label: message` on stderr, the label coloured on a terminal."""
     if err.is_terminal:
-        err.print(_labelled("info", "cyan", message))
+        err.print(_labelled(label, style, message))
     else:
-        err.print(f"info: {message}", markup=False)
+        err.print(f"{label}: {message}", markup=False)
+
+
+def info(message: str) -> None:
+    if not _quiet:
+        _diagnostic("info", "cyan", message)
 
 
 def warning(message: str) -> None:
-    if err.is_terminal:
-        err.print(_labelled("warning", "yellow", message))
-    else:
-        err.print(f"warning: {message}", markup=False)
+    _diagnostic("warning", "yellow", message)
 
 
 def error(message: str) -> None:
-    if err.is_terminal:
-        err.print(_labelled("error", "bold red", message))
-    else:
-        err.print(f"error: {message}", markup=False)
+    _diagnostic("error", "bold red", message)
 
 
 def success(message: str) -> None:
@@ -65,6 +64,21 @@ def success(message: str) -> None:
         out.print(_labelled("✓", "bold green", message, ""))
     else:
         out.print(message, markup=False)
+
+
+def show_found(found: Sequence[Found], entries: Sequence[dict[str, Any]], title: str, columns: Sequence[str],
+               cells: Callable[[dict[str, Any]], Sequence[str]], lines: Callable[[dict[str, Any]], list[str]]) -> None:
+    """A listing of plans or worlds (`paths.Found`, each with its entry) as `pycram plans` and `pycram worlds` show it:
+    a table on a terminal (name, origin, then `cells(entry)`), else a line a name with `lines(entry)` indented below
+    it; with --json the caller emits the entries instead."""
+    if out.is_terminal:
+        table(f"{len(entries)} {title}", ["name", "from", *columns],
+              [(e["name"], f.origin.replace("  ", "\n", 1), *cells(e)) for f, e in zip(found, entries)])
+        return
+    for f, e in zip(found, entries):
+        plain(f"{e['name']}  {f.origin}")
+        for line in lines(e):
+            plain(f"  {line}")
 
 
 def input_errors(errors: Sequence[InputError]) -> None:

@@ -61,12 +61,7 @@ def plans(as_json: bool) -> None:
     entries = [plan_entry(item) for item in found]
     if as_json:
         console.emit_json(entries)
-    elif console.out.is_terminal:
-        console.table(f"{len(entries)} plans", ["name", "from", "description", "parameters"],
-                      [(e["name"], f.origin.replace("  ", "\n", 1), "\n".join(about(e)),
-                        "\n".join(param_text(p) for p in e["params"]) or "-") for f, e in zip(found, entries)])
     else:
-        for f, e in zip(found, entries):
-            console.plain(f"{e['name']}  {f.origin}")
-            for line in [*about(e), *(param_text(p) for p in e["params"])]:
-                console.plain(f"  {line}")
+        console.show_found(found, entries, "plans", ["description", "parameters"],
+                           lambda e: ("\n".join(about(e)), "\n".join(param_text(p) for p in e["params"]) or "-"),
+                           lambda e: [*about(e), *(param_text(p) for p in e["params"])])

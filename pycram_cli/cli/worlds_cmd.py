@@ -52,18 +52,12 @@ def worlds(as_json: bool) -> None:
     entries = [world_entry(item) for item in found]
     if as_json:
         console.emit_json(entries)
-    elif console.out.is_terminal:
-        console.table(f"{len(entries)} worlds", ["name", "from", "description", "robot", "objects"],
-                      [(e["name"], f.origin.replace("  ", "\n", 1), "\n".join(about(e)),
-                        robot_text(e["robot"]) if not e["problems"] else "-", objects_text(e))
-                       for f, e in zip(found, entries)])
     else:
-        for f, e in zip(found, entries):
-            console.plain(f"{e['name']}  {f.origin}")
-            lines = about(e) + ([f"robot: {robot_text(e['robot'])}", f"objects: {objects_text(e)}"]
-                                if not e["problems"] else [])
-            for line in lines:
-                console.plain(f"  {line}")
+        console.show_found(found, entries, "worlds", ["description", "robot", "objects"],
+                           lambda e: ("\n".join(about(e)), robot_text(e["robot"]) if not e["problems"] else "-",
+                                      objects_text(e)),
+                           lambda e: about(e) + ([f"robot: {robot_text(e['robot'])}", f"objects: {objects_text(e)}"]
+                                                 if not e["problems"] else []))
 
 
 def about(entry: dict[str, Any]) -> list[str]:

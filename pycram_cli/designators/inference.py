@@ -9,19 +9,24 @@ from ..failures import GripperFailure, ReachabilityFailure
 from ..kinds import arm_phrase
 from ..planning.reach import reach
 from ..robots import Robot
-from ..world import Object
+from ..world import BulletWorld, Object
 
 
-def the_object(robot: Robot, value: Any, slot: str) -> Object:
-    """The object a slot names (or holds)."""
+def object_in(world: BulletWorld, value: Any, slot: str) -> Object:
+    """The object of `world` a slot names (or holds); an unknown name is an input error naming the slot."""
     if isinstance(value, Object):
         return value
-    found = robot.world.get_object_by_name(str(value))
+    found = world.get_object_by_name(str(value))
     if found is None:
-        names = [o.name for o in robot.world.objects]
+        names = [o.name for o in world.objects]
         raise InputError(f"no object '{value}'", Location(f"slot {slot}"), key=slot,
                          suggestion=did_you_mean(str(value), names))
     return found
+
+
+def the_object(robot: Robot, value: Any, slot: str) -> Object:
+    """The object a slot names (or holds), in the robot's world."""
+    return object_in(robot.world, value, slot)
 
 
 def free_arms(robot: Robot, preferred: str | None) -> list[str]:

@@ -214,17 +214,9 @@ def find_handle(world: BulletWorld, value: Any, key: str = "accessing") -> Handl
 def handle_of(obj: Object, joint: str) -> str | None:
     """The handle link a joint's drawer or door carries: a link named `*handle*` below the joint's link."""
     index = obj.joint(joint).index
-    below = [j for j in obj.joints if _descends(obj, j.index, index)]
+    below = [j for j in obj.joints if obj.hangs_below(j.index, index)]
     handles = [j.child_link for j in below if "handle" in j.child_link]
     return sorted(handles)[0] if handles else None
-
-
-def _descends(obj: Object, index: int, ancestor: int) -> bool:
-    while index != -1:
-        if index == ancestor:
-            return True
-        index = obj.joints[index].parent_index
-    return False
 
 
 def parse_location(world: BulletWorld, value: Any, for_object: Object | None = None) -> LocationSpec:

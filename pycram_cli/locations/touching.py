@@ -69,15 +69,6 @@ def touching(robot: Robot, held: Sequence[Object], allowed_objects: set[int], al
 
 
 
-def below(obj: Object, index: int, ancestor: int) -> bool:
-    """Whether link `index` of `obj` hangs below link `ancestor` (moves with it)."""
-    while index != -1:
-        if index == ancestor:
-            return True
-        index = obj.joints[index].parent_index
-    return False
-
-
 def allowed_contacts(world: BulletWorld, spec: LocationSpec) -> tuple[set[int], set[tuple[int, str]]]:
     """What the arm may touch at its final configuration (object ids, (object id, link) pairs): the target and what
     the target rests on."""
@@ -86,7 +77,7 @@ def allowed_contacts(world: BulletWorld, spec: LocationSpec) -> tuple[set[int], 
         handle = spec.accessing
         obj = handle.obj
         moving = obj.joint(handle.joint).index
-        parts = {obj.get_link_name(moving)} | {j.child_link for j in obj.joints if below(obj, j.index, moving)}
+        parts = {obj.get_link_name(moving)} | {j.child_link for j in obj.joints if obj.hangs_below(j.index, moving)}
         return set(), {(obj.id, link) for link in parts}
     if spec.placing is not None and spec.onto is not None:
         surface = spec.onto

@@ -30,7 +30,7 @@ from ..yamlsource import LMap
 from .context import is_reference, jsonable, references
 from .resources import ResourceAnalysis
 from .runtime import Record, Runtime
-from .syntax import Node, Parser, node_type, plain
+from .syntax import Node, Parser, node_type, plain, yaml11_on
 
 if TYPE_CHECKING:  # for annotations only: validate imports syntax, which the node classes extend
     from .validate import Validator
@@ -79,7 +79,7 @@ class ActionStep(Node):
                 continue
             slot = spec.slot(str(key))
             if slot is not None and slot.kind == "location" and isinstance(value, LMap) and True in value:
-                value = _on_key(value)  # YAML 1.1 reads an unquoted `on` as true
+                value = yaml11_on(value)  # YAML 1.1 reads an unquoted `on` as true
             if slot is not None and slot.kind == "location" and isinstance(value, LMap):
                 parser.names_only(value)
             slots[key] = value
@@ -179,16 +179,6 @@ def _known_items(v: Validator, value: Any) -> list[tuple[Any, str]]:
         return [(value, "")]
     return [(item, f" ({value})") for item in v.possible(value) or []
             if not (isinstance(item, str) and references(item))]
-
-
-def _on_key(mapping: LMap) -> LMap:
-    fixed = LMap()
-    fixed.where, fixed.key_where, fixed.value_where = mapping.where, {}, {}
-    for key, value in mapping.items():
-        name = "on" if key is True else key
-        fixed[name] = value
-        fixed.key_where[name], fixed.value_where[name] = mapping.loc(key), mapping.loc(key, True)
-    return fixed
 
 
 class PlanActor(Actor):

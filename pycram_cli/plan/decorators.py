@@ -121,17 +121,8 @@ class Try(Node):
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         body = parser.steps(step[head], step.loc(head, True), head)
-        handlers: list[tuple[str, Location, list[Node]]] = []
-        catch = step.get("catch")
-        if "catch" in step:
-            if not isinstance(catch, LMap) or not catch:
-                parser.error(f"expected a mapping of failure type to steps, got {describe(catch)}",
-                             step.loc("catch", True), key="catch",
-                             suggestion="e.g. catch: {PerceptionFailure: [{log: not seen}]}")
-            else:
-                for name in parser.names_only(catch):
-                    handlers.append((str(name), catch.loc(name), parser.steps(catch[name], catch.loc(name, True),
-                                                                              str(name))))
+        handlers = (parser.named_steps(step, "catch", "failure type to steps",
+                                       "e.g. catch: {PerceptionFailure: [{log: not seen}]}") if "catch" in step else [])
         return cls(head, step.loc(head), body, handlers)
 
     def parts(self) -> list[tuple[str, list[Node]]]:

@@ -388,24 +388,29 @@ class AssertStep(Node):
 
 
 # -- log, set, wait -------------------------------------------------------------------------------------------------
-@node_type("log")
-class LogStep(Node):
-    LEAF = True
-    DOC = "write a message ($variables are filled in) to the trace and the console"
+class _ValueStep(Node):
+    """A leaf step whose head holds one value, $references allowed: log's message, wait's seconds."""
 
-    def __init__(self, head: str, where: Location, message: Any, message_where: Location) -> None:
+    LEAF = True
+
+    def __init__(self, head: str, where: Location, value: Any, value_where: Location) -> None:
         super().__init__(head, where)
-        self.message, self.message_where = message, message_where
+        self.value, self.value_where = value, value_where
+
+    def check(self, v: Validator) -> None:
+        v.refs(self.value, self.value_where)
+
+
+@node_type("log")
+class LogStep(_ValueStep):
+    DOC = "write a message ($variables are filled in) to the trace and the console"
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
         return cls(head, step.loc(head), plain(step[head]), step.loc(head, True))
 
-    def check(self, v: Validator) -> None:
-        v.refs(self.message, self.message_where)
-
     def execute(self, ex: Runtime, tn: Record) -> Any:
-        message = display(ex.evaluate(self.message))
+        message = display(ex.evaluate(self.value))
         tn.info["message"] = message
         ex.log(tn, message)
         return None
@@ -461,13 +466,8 @@ def _seconds_problem(seconds: Any) -> str | None:
 
 
 @node_type("wait")
-class WaitStep(Node):
-    LEAF = True
+class WaitStep(_ValueStep):
     DOC = "sleep for some seconds (other branches go on; cancellation wakes it at once)"
-
-    def __init__(self, head: str, where: Location, seconds: Any, value_where: Location) -> None:
-        super().__init__(head, where)
-        self.seconds, self.value_where = seconds, value_where
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
@@ -478,15 +478,15 @@ class WaitStep(Node):
         return cls(head, step.loc(head), seconds, step.loc(head, True))
 
     def check(self, v: Validator) -> None:
-        v.refs(self.seconds, self.value_where)
-        if is_reference(self.seconds):  # a plan parameter's value (-p, else its default) is known before the run
-            for value in v.possible(self.seconds) or []:
+        super().check(v)
+        if is_reference(self.value):  # a plan parameter's value (-p, else its default) is known before the run
+            for value in v.possible(self.value) or []:
                 problem = _seconds_problem(value)
                 if problem:
-                    v.error(f"{problem} ({self.seconds})", self.value_where, key=self.head)
+                    v.error(f"{problem} ({self.value})", self.value_where, key=self.head)
 
     def execute(self, ex: Runtime, tn: Record) -> Any:
-        seconds = ex.evaluate(self.seconds)
+        seconds = ex.evaluate(self.value)
         problem = _seconds_problem(seconds)
         if problem:
             raise Failure(f"wait: {problem}")

@@ -133,17 +133,12 @@ class Project(Node):
                 parser.error(f"unknown key '{key}' in 'project'", body.loc(key), key=str(key),
                              suggestion=f"'project' takes: {', '.join(PROJECT_KEYS)}")
         alternatives: list[tuple[str, Location, list[Node]]] = []
-        given = body.get("alternatives")
         if "alternatives" not in body:
             parser.error("a 'project' step needs 'alternatives'", step.loc(head), key="alternatives")
-        elif not isinstance(given, LMap) or not given:
-            parser.error(f"expected a mapping of names to lists of steps, got {describe(given)}",
-                         body.loc("alternatives", True), key="alternatives",
-                         suggestion="e.g. alternatives: {left: [{pick-up: {object: milk, arm: left}}], right: [...]}")
         else:
-            for name in parser.names_only(given):
-                alternatives.append((str(name), given.loc(name), parser.steps(given[name], given.loc(name, True),
-                                                                              str(name))))
+            alternatives = parser.named_steps(
+                body, "alternatives", "names to lists of steps",
+                "e.g. alternatives: {left: [{pick-up: {object: milk, arm: left}}], right: [...]}")
         runs = _whole(parser, body, "runs", DEFAULT_RUNS, 1, MAX_PROJECTED)
         seed = _whole(parser, body, "seed", 0, 0, 2**32 - 1)
         choose = _choice(parser, body)

@@ -258,15 +258,21 @@ def _moved(before: dict[str, Any] | None, after: dict[str, Any]) -> bool:
                for a, b in zip(before[key], after[key]))
 
 
-def _merged(earlier: State, later: State) -> State:
-    """Two frames' changes as one: the later one's values where both changed something."""
-    merged: State = {name: dict(entry) for name, entry in earlier.items()}
-    for name, entry in later.items():
-        into = merged.setdefault(name, {})
+def apply_changes(state: State, changed: State) -> None:
+    """Bring `state` (by object name) up to date with a frame's `changed` entries: their values replace those of
+    `state`, a joint at a time (a change names only the joints that moved)."""
+    for name, entry in changed.items():
+        into = state.setdefault(name, {})
         joints = {**into.get("joints", {}), **entry.get("joints", {})}
         into.update(entry)
         if joints:
             into["joints"] = joints
+
+
+def _merged(earlier: State, later: State) -> State:
+    """Two frames' changes as one: the later one's values where both changed something."""
+    merged: State = {name: dict(entry) for name, entry in earlier.items()}
+    apply_changes(merged, later)
     return merged
 
 

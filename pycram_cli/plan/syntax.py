@@ -233,6 +233,17 @@ class Parser:
         return names_only(mapping, self.errors)
 
     # -- steps ---------------------------------------------------------------------
+    def named_steps(self, mapping: LMap, key: str, what: str, example: str) -> list[tuple[str, Location, list[Node]]]:
+        """`mapping[key]`, a mapping of names to lists of steps (`catch`, `alternatives`), as (name, where, steps)
+        in order; reports anything else as "expected a mapping of `what`" with `example` as the suggestion."""
+        given = mapping.get(key)
+        if not isinstance(given, LMap) or not given:
+            self.error(f"expected a mapping of {what}, got {describe(given)}", mapping.loc(key, True), key=key,
+                       suggestion=example)
+            return []
+        return [(str(name), given.loc(name), self.steps(given[name], given.loc(name, True), str(name)))
+                for name in self.names_only(given)]
+
     def steps(self, value: Any, where: Location, key: str) -> list[Node]:
         """A list of steps; a single step mapping is accepted as a list of one."""
         if isinstance(value, LMap):
@@ -268,7 +279,7 @@ class Parser:
 
     def _step(self, value: Any, where: Location) -> Node | None:
         if isinstance(value, LMap) and any(key is True for key in value):
-            value = _yaml11_on(value)
+            value = yaml11_on(value)
         if not isinstance(value, LMap):
             hint = None
             if isinstance(value, str):
@@ -438,7 +449,7 @@ def _article(word: str) -> str:
     return "an" if word[:1].lower() in "aeiou" else "a"
 
 
-def _yaml11_on(step: LMap) -> LMap:
+def yaml11_on(step: LMap) -> LMap:
     """YAML 1.1 reads an unquoted key `on` as true; in a step it can only mean the key `on`."""
     fixed = LMap()
     fixed.where, fixed.key_where, fixed.value_where = step.where, {}, {}

@@ -98,7 +98,7 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     index = part.joint(joint).index
-    moving = [(part, link) for link in range(len(part.joints)) if below_joint(part, link, index)]
+    moving = [(part, link) for link in range(len(part.joints)) if part.hangs_below(link, index)]
     hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links
     with part.joints_kept([joint]), body.joints_kept(names):
         body.reset_joints(at.joint_positions)
@@ -115,15 +115,6 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
             except ManipulationFailure:
                 return False
     return True
-
-
-def below_joint(part: Object, link: int, joint_index: int) -> bool:
-    """Whether `link` of `part` moves with the joint `joint_index` (its child link or below it)."""
-    while link != -1:
-        if link == joint_index:
-            return True
-        link = part.joints[link].parent_index
-    return False
 
 
 def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:

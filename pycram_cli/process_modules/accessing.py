@@ -8,7 +8,7 @@ from typing import Any
 from ..failures import ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
 from ..planning import motion
-from ..planning.drawers import below_joint, contents_of, drawer_pushes_into, held_pose, plan_handle_grasp, pull_values
+from ..planning.drawers import contents_of, drawer_pushes_into, held_pose, plan_handle_grasp, pull_values
 from ..planning.paths import move_from_above
 from ..planning.reach import back_off, close_on, set_gripper, solve_tool
 from ..robots import Robot
@@ -39,7 +39,7 @@ class Accessing(ProcessModule):
         riders = contents_of(part, joint.index)
         hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links  # what holds the handle
         # the hand holds the handle and moves with the drawer: the drawer's moving links are not in its way
-        moving = [(part, link) for link in range(len(part.joints)) if below_joint(part, link, joint.index)]
+        moving = [(part, link) for link in range(len(part.joints)) if part.hangs_below(link, joint.index)]
         for obj in riders:
             part.attach(obj, parent_link=part.get_link_name(joint.index))
         try:

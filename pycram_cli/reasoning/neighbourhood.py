@@ -171,18 +171,10 @@ def _build_joint_boxes(obj: Object) -> dict[int, np.ndarray]:
     links = {j.index: np.array(obj.get_aabb(j.index), dtype=float) for j in obj.joints}
     boxes = {}
     for joint in obj.movable_joints:
-        moved = [box for index, box in links.items() if _descends(obj, index, joint.index)]
+        moved = [box for index, box in links.items() if obj.hangs_below(index, joint.index)]
         stacked = np.array(moved)
         boxes[joint.index] = np.array([stacked[:, 0].min(axis=0), stacked[:, 1].max(axis=0)])
     return boxes
-
-
-def _descends(obj: Object, link: int, ancestor: int) -> bool:
-    while link >= 0:
-        if link == ancestor:
-            return True
-        link = obj.joints[link].parent_index
-    return False
 
 
 def _hits(lo: np.ndarray, hi: np.ndarray, boxes: np.ndarray) -> np.ndarray:

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..plan.replay import Point, focus_points
+from ..plan.replay import Point, apply_changes, focus_points
 from ..robots.description import description_for
 from ..world import BulletWorld, Object
 from ..world.camera import movable_objects, objects_camera, robot_camera
@@ -218,12 +218,7 @@ class Replayer:
                                                       for b in moved_bodies}
                 physics.append({"t": sub.get("t"), "poses": _flat(moved)})
             changed = step.get("changed") or {}
-            for name, entry in changed.items():
-                merged = state.setdefault(name, {})
-                joints = {**merged.get("joints", {}), **entry.get("joints", {})}
-                merged.update(entry)
-                if joints:
-                    merged["joints"] = joints
+            apply_changes(state, changed)
             # what physics moved and the step's end does not name is back where the step's end has it
             back = {self.scene.links[b][0].name for b in touched} - set(changed)
             touched = scene.apply(changed) | scene.apply({name: state[name] for name in back if name in state})

@@ -8,7 +8,6 @@ the drawing of scenarios (`Variations.sample`) needs none of it.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -17,8 +16,8 @@ from ..files import probe
 from ..kinds import Robots, param_kind
 from ..plan import Plan, WorldFacts
 from ..plan.params import type_problem
-from ..plan.syntax import Param
-from ..schema import check_keys, describe, expect, is_number, names_only, number_list
+from ..plan.syntax import Param, plain
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, string_entry
 from ..world.model_files import MESH_SUFFIXES, describe_model
 from ..worldfile.loader import load_spec
 from ..worldfile.spec import ObjectSpec, Unreadable, WorldSpec, resolve_file
@@ -259,12 +258,7 @@ def _parse_swaps(value: Any, where: Location, world: WorldSpec, errors: list[Inp
             errors.append(InputError(f"expected 'keep' or a mapping {{type, file}}, got {describe(entry)}", at,
                                      key="swap"))
             continue
-        count = len(errors)
-        check_keys(entry, SWAP_KEYS, SWAP_REQUIRED, "swap", errors)
-        for key in SWAP_REQUIRED:
-            if key in entry:
-                expect(entry[key], str, entry.loc(key, True), key, errors)
-        if len(errors) != count:
+        if not string_entry(entry, SWAP_KEYS, SWAP_REQUIRED, SWAP_REQUIRED, "swap", errors):
             continue
         swap = _parse_swap(entry, base, errors)
         if swap is not None:
@@ -361,8 +355,8 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
             if not spec:
                 errors.append(InputError("expected at least one value to choose from", at, key=str(name)))
                 continue
-            if typed([_plain(v) for v in spec], [spec.loc(i) for i in range(len(spec))]):
-                draws.append(ParamDraw(str(name), choices=[_plain(v) for v in spec]))
+            if typed([plain(v) for v in spec], [spec.loc(i) for i in range(len(spec))]):
+                draws.append(ParamDraw(str(name), choices=[plain(v) for v in spec]))
             continue
         if isinstance(spec, LMap):
             count = len(errors)
@@ -379,8 +373,8 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
                     continue
                 places = [choices.loc(i) if isinstance(choices, LList) else spec.loc("choose", True)
                           for i in range(len(choices))]
-                if typed([_plain(v) for v in choices], places):
-                    draws.append(ParamDraw(str(name), choices=[_plain(v) for v in choices]))
+                if typed([plain(v) for v in choices], places):
+                    draws.append(ParamDraw(str(name), choices=[plain(v) for v in choices]))
                 continue
             bounds = number_list(spec["range"], 2, spec.loc("range", True), "range", errors)
             if bounds is None or len(errors) != count:
@@ -397,11 +391,3 @@ def _parse_params(value: Any, where: Location, plan: Plan | None, robots: Robots
         errors.append(InputError(f"expected [choices] or {{range: [lo, hi]}}, got {describe(spec)}", at, key=str(name),
                                  suggestion=f"a fixed value is a plan parameter: -p {name}=VALUE"))
     return draws
-
-
-def _plain(value: Any) -> Any:
-    if isinstance(value, Mapping):
-        return {k: _plain(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_plain(v) for v in value]
-    return value

@@ -26,6 +26,14 @@ class NoDisplayError(RuntimeError, PycramError):
     """No window can be opened (no X display); the CLI reports it as invalid input (exit 2)."""
 
 
+def _library(name: str, usual: str) -> ctypes.CDLL | None:
+    """The shared library `name` (found by the system's rules, else by its `usual` file name), or None."""
+    try:
+        return ctypes.CDLL(ctypes.util.find_library(name) or usual)
+    except OSError:
+        return None
+
+
 def display_problem() -> str | None:
     """Why a window cannot be opened here, or None when it can (always None outside Linux)."""
     if not sys.platform.startswith("linux"):
@@ -33,10 +41,8 @@ def display_problem() -> str | None:
     name = os.environ.get("DISPLAY", "")
     if not name:
         return "no display (DISPLAY is not set)"
-    library = ctypes.util.find_library("X11") or "libX11.so.6"
-    try:
-        x11 = ctypes.CDLL(library)
-    except OSError:
+    x11 = _library("X11", "libX11.so.6")
+    if x11 is None:
         return f"no X11 library to open display {name!r} with (install libx11)"
     x11.XOpenDisplay.restype = ctypes.c_void_p
     x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
@@ -58,10 +64,8 @@ def display_problem() -> str | None:
 def _opengl_problem(handle: int, name: str) -> str | None:
     """Why PyBullet's window could not draw on the open display `handle`, or None: the window needs libGL and the
     display's GLX extension (asked for its version, as PyBullet's GL loader does before it gives up)."""
-    library = ctypes.util.find_library("GL") or "libGL.so.1"
-    try:
-        gl = ctypes.CDLL(library)
-    except OSError:
+    gl = _library("GL", "libGL.so.1")
+    if gl is None:
         return f"no OpenGL library to draw on display {name!r} with (install libgl1)"
     gl.glXQueryVersion.restype = ctypes.c_int
     gl.glXQueryVersion.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_int), ctypes.POINTER(ctypes.c_int)]

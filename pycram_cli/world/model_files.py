@@ -29,7 +29,7 @@ from ..files import read_bytes, write_atomic
 from ..limits import MAX_MODEL_BYTES
 from ..paths import cache_dir, resources_dir
 from .meshes import PIECES_VERSION, inertial_for, is_binary_stl, obj_objects, read_mesh, write_binary_stl, write_pieces_obj
-from .urdf_check import ModelError, check_structure, suffix_problem
+from .urdf_check import JointRange, ModelError, check_structure, suffix_problem
 
 MESH_SUFFIXES = {".stl", ".obj"}
 #: characters a path may have to be written into a URDF as it is (others go through a link with a safe name)
@@ -266,19 +266,11 @@ def prepare_urdf(urdf: Path) -> PreparedUrdf:
 
 
 @dataclass
-class JointInfo:
+class JointInfo(JointRange):
     name: str
     type: str
     lower: float
     upper: float
-
-    @property
-    def movable(self) -> bool:
-        return self.type in ("revolute", "prismatic", "continuous")
-
-    @property
-    def limited(self) -> bool:
-        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
 
 
 @dataclass

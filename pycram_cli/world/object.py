@@ -272,6 +272,14 @@ class Object:
                                     if p.getCollisionShapeData(self.id, link, physicsClientId=cid))
         return self._solid
 
+    def hangs_below(self, link: int, ancestor: int) -> bool:
+        """Whether link `link` is link `ancestor` or hangs below it (moves with it); -1 is the base."""
+        while link != -1:
+            if link == ancestor:
+                return True
+            link = self.joints[link].parent_index
+        return False
+
     def links_below(self, joints: Iterable[str]) -> frozenset[int]:
         """The links that move when any of these joints moves: each joint's child link and everything below it."""
         indices = {self.get_joint_id(name) for name in joints}

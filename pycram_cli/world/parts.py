@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 import pybullet as p
 
 from .pose import Quat, Vec3
+from .urdf_check import JointRange
 
 if TYPE_CHECKING:
     from .object import Object
@@ -40,7 +41,7 @@ _IDENTITY: tuple[Vec3, Quat] = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
 @dataclass(frozen=True)
-class Joint:
+class Joint(JointRange):
     """A joint as PyBullet indexed it: the joint's index is also its child link's index.
 
     The constants a kinematic chain of this body needs, read once when the model is indexed, in
@@ -60,14 +61,6 @@ class Joint:
     axis: Vec3 = (0.0, 0.0, 0.0)
     parent_frame: tuple[Vec3, Quat] = _IDENTITY
     inertial_frame: tuple[Vec3, Quat] = _IDENTITY
-
-    @property
-    def movable(self) -> bool:
-        return self.type in ("revolute", "prismatic", "continuous")
-
-    @property
-    def limited(self) -> bool:
-        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
 
 
 @dataclass(frozen=True)

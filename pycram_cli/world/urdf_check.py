@@ -11,6 +11,7 @@ import math
 import os
 import stat
 import xml.etree.ElementTree as ET
+from collections.abc import Collection
 from pathlib import Path
 
 #: joint types PyBullet's URDF reader knows
@@ -19,6 +20,23 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 GEOMETRIES = ("box", "cylinder", "sphere", "capsule", "mesh")
 #: mesh file formats PyBullet reads (compared without case)
 MESH_FILE_SUFFIXES = (".obj", ".stl", ".dae")
+
+
+class JointRange:
+    """What a joint's type says of its motion, for the joint records that have `type`, `lower` and `upper`."""
+
+    type: str
+    lower: float
+    upper: float
+
+    @property
+    def movable(self) -> bool:
+        return self.type in ("revolute", "prismatic", "continuous")
+
+    @property
+    def limited(self) -> bool:
+        """Whether it moves between limits (`lower` <= `upper`; PyBullet gives a continuous joint lower > upper)."""
+        return self.type in ("revolute", "prismatic") and self.lower <= self.upper
 
 
 class ModelError(ValueError):
@@ -38,15 +56,20 @@ def check_structure(root: ET.Element) -> None:
         _check_link(link)
 
 
+def _new_name(element: ET.Element, seen: Collection[str]) -> str:
+    """The name of a <link> or <joint>: ModelError when it has none or one already `seen`."""
+    name = element.get("name")
+    if not name:
+        raise ModelError(f"a <{element.tag}> has no name attribute")
+    if name in seen:
+        raise ModelError(f"two {element.tag}s are named '{name}'")
+    return name
+
+
 def _link_names(root: ET.Element) -> list[str]:
     names: list[str] = []
     for link in root.findall("link"):
-        name = link.get("name")
-        if not name:
-            raise ModelError("a <link> has no name attribute")
-        if name in names:
-            raise ModelError(f"two links are named '{name}'")
-        names.append(name)
+        names.append(_new_name(link, names))
     if not names:
         raise ModelError("the model has no <link>: PyBullet needs at least one")
     return names
@@ -58,11 +81,7 @@ def _joint_parents(root: ET.Element, links: list[str]) -> dict[str, tuple[str, s
     seen: set[str] = set()
     parents: dict[str, tuple[str, str]] = {}
     for joint in root.findall("joint"):
-        name = joint.get("name")
-        if not name:
-            raise ModelError("a <joint> has no name attribute")
-        if name in seen:
-            raise ModelError(f"two joints are named '{name}'")
+        name = _new_name(joint, seen)
         seen.add(name)
         kind = joint.get("type")
         if kind not in JOINT_TYPES:

@@ -27,7 +27,7 @@ from ..files import probe
 from ..paths import resources_dir
 from ..robots import RobotDescription, find_description
 from ..robots.description import check_against_model
-from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion
+from ..schema import check_keys, describe, expect, is_number, names_only, number_list, quaternion, string_entry
 from ..world.model_files import MESH_SUFFIXES, ModelInfo, describe_model, simulator_models_dir
 from ..world.pose import UP_TURNS, quat_multiply
 from ..yamlsource import LList, LMap, load_yaml
@@ -311,12 +311,7 @@ def _parse_attach(value: Any, where: Location, errors: list[InputError]) -> list
         if not isinstance(entry, LMap):
             errors.append(InputError("expected an object name or a mapping {to, parent_link, child_link}", at, key="attach"))
             continue
-        count = len(errors)
-        check_keys(entry, ATTACH_KEYS, ATTACH_REQUIRED, "attach", errors)
-        for key in ATTACH_KEYS:
-            if key in entry:
-                expect(entry[key], str, entry.loc(key, True), key, errors)
-        if len(errors) == count:
+        if string_entry(entry, ATTACH_KEYS, ATTACH_REQUIRED, ATTACH_KEYS, "attach", errors):
             spec = AttachSpec(entry["to"], entry.get("parent_link"), entry.get("child_link"))
             spec.where = entry.where  # type: ignore[attr-defined]  # place in the file: no field, kept out of eq/asdict
             result.append(spec)

@@ -5,13 +5,14 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from ...errors import InputError, Location, did_you_mean
+from ...errors import InputError
 from ...failures import Failure, LocationFailure
 from ...kinds import KINDS, Robots, location_goals
 from ...planning.reach import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...robots import Robot
 from ...signature import Problem
 from ...world import Object
+from ..inference import object_in
 from .actor import Actor, Finder, as_failure
 
 #: how many poses (or spots) an action tries before it gives up
@@ -21,14 +22,10 @@ CHOICES = 3
 
 def object_of(actor: Actor, value: Any, slot: str) -> Object:
     """The object a slot names (or holds); an unknown name fails the action, naming it."""
-    if isinstance(value, Object):
-        return value
-    found = actor.world.get_object_by_name(str(value))
-    if found is None:
-        names = [o.name for o in actor.world.objects]
-        raise as_failure(InputError(f"no object '{value}'", Location(f"slot {slot}"), key=slot,
-                                    suggestion=did_you_mean(str(value), names)), slot)
-    return found
+    try:
+        return object_in(actor.world, value, slot)
+    except InputError as exc:
+        raise as_failure(exc, slot) from None
 
 
 def rest_of(robot: Robot, arm: str, holding: bool | None = None) -> str | list[float] | None:

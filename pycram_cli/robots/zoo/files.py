@@ -7,117 +7,49 @@ Why: the files are what pycram reads, as it reads a user's robot; numbers are wr
 from __future__ import annotations
 
 import argparse
-import math
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 import numpy as np
 
 from ...paths import worlds_dir
+from .. import urdf_writer
+from ..urdf_writer import Numbers, Visual, fixed, inertia_about, link_xml, volume
 from .build import generate
-from .model import FRAME_INERTIA, FRAME_MASS, Joint, Link, Shape, ZooRobot, fmt, fmt3
-from .park import rpy_matrix
+from .model import FRAME_INERTIA, FRAME_MASS, Joint, Link, ZooRobot, fmt, fmt3
 
-# -- inertia ------------------------------------------------------------------------------------------------------
-
-
-def _volume(shape: Shape) -> float:
-    if shape.kind == "box":
-        return float(np.prod(shape.dims))
-    if shape.kind == "cylinder":
-        return math.pi * shape.dims[0] ** 2 * shape.dims[1]
-    return 4.0 / 3.0 * math.pi * shape.dims[0] ** 3
-
-
-def _own_inertia(shape: Shape, mass: float) -> np.ndarray:
-    """The inertia tensor of a solid primitive about its centre, in link axes."""
-    if shape.kind == "box":
-        sx, sy, sz = shape.dims
-        local = np.diag([sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2]) * mass / 12.0
-    elif shape.kind == "cylinder":
-        radius, length = shape.dims
-        side = mass * (3 * radius**2 + length**2) / 12.0
-        local = np.diag([side, side, mass * radius**2 / 2.0])
-    else:
-        local = np.eye(3) * 0.4 * mass * shape.dims[0] ** 2
-    rot = rpy_matrix(shape.rpy)
-    return rot @ local @ rot.T
+#: how the zoo spells numbers: 6 digits after the point, 8 for inertias, 3 for colours
+NUMBERS = Numbers(fixed, 6, 6, 8, 3)
 
 
 def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
     """(mass, centre of mass, diagonal inertia) of a link of uniform density; a token one for a frame-only link."""
     if link.density is None or not link.shapes:
         return FRAME_MASS, np.zeros(3), np.full(3, FRAME_INERTIA)
-    volumes = np.array([_volume(s) for s in link.shapes])
-    masses = link.density * volumes
-    centres = np.array([s.xyz for s in link.shapes], dtype=float)
+    masses = link.density * np.array([volume(s) for s in link.shapes])
     mass = float(masses.sum())
-    com = (masses[:, None] * centres).sum(axis=0) / mass
-    tensor = np.zeros((3, 3))
-    for shape, part, centre in zip(link.shapes, masses, centres):
-        d = centre - com
-        tensor += _own_inertia(shape, part) + part * (d @ d * np.eye(3) - np.outer(d, d))
-    return mass, com, np.maximum(np.diag(tensor), FRAME_INERTIA)
-
-
-# -- writing ------------------------------------------------------------------------------------------------------
-
-
-def _geometry(shape: Shape) -> str:
-    if shape.kind == "box":
-        return f'<box size="{fmt3(shape.dims)}"/>'
-    if shape.kind == "cylinder":
-        return f'<cylinder radius="{fmt(shape.dims[0])}" length="{fmt(shape.dims[1])}"/>'
-    return f'<sphere radius="{fmt(shape.dims[0])}"/>'
+    com, diag = inertia_about(link.shapes, masses, mass)
+    return mass, com, np.maximum(diag, FRAME_INERTIA)
 
 
 def _link_xml(link: Link) -> list[str]:
-    mass, com, diag = inertial(link)
-    lines = [f'  <link name="{link.name}">',
-             "    <inertial>",
-             f'      <origin xyz="{fmt3(com)}" rpy="0 0 0"/>',
-             f'      <mass value="{fmt(mass)}"/>',
-             f'      <inertia ixx="{fmt(diag[0], 8)}" ixy="0" ixz="0" iyy="{fmt(diag[1], 8)}" iyz="0" '
-             f'izz="{fmt(diag[2], 8)}"/>',
-             "    </inertial>"]
-    for shape in link.shapes:
-        origin = f'<origin xyz="{fmt3(shape.xyz)}" rpy="{fmt3(shape.rpy)}"/>'
-        lines += ["    <visual>", f"      {origin}", f"      <geometry>{_geometry(shape)}</geometry>",
-                  f'      <material name="c{fmt3(shape.rgba, 2).replace(" ", "_")}"><color rgba="{fmt3(shape.rgba, 3)}"/>'
-                  "</material>",
-                  "    </visual>",
-                  "    <collision>", f"      {origin}", f"      <geometry>{_geometry(shape)}</geometry>", "    </collision>"]
-    lines.append("  </link>")
-    return lines
+    visuals = [Visual(s, f"c{fmt3(s.rgba, 2).replace(' ', '_')}", s.rgba) for s in link.shapes]
+    return link_xml(link.name, inertial(link), visuals, NUMBERS)
 
 
-def _joint_xml(joint: Joint) -> list[str]:
-    lines = [f'  <joint name="{joint.name}" type="{joint.type}">',
-             f'    <parent link="{joint.parent}"/>',
-             f'    <child link="{joint.child}"/>',
-             f'    <origin xyz="{fmt3(joint.xyz)}" rpy="{fmt3(joint.rpy)}"/>']
-    if joint.axis is not None:
-        lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
-    if joint.type != "fixed":
-        bounds = (f'lower="{fmt(joint.lower)}" upper="{fmt(joint.upper)}" '
-                  if joint.lower is not None and joint.upper is not None else "")
-        lines.append(f'    <limit {bounds}effort="{fmt(joint.effort)}" velocity="{fmt(joint.velocity)}"/>')
-    lines.append("  </joint>")
-    return lines
+def _joint(joint: Joint) -> urdf_writer.Joint:
+    """The joint as the writer takes it: every joint but a fixed one has a limit."""
+    limit = (None if joint.type == "fixed" else
+             urdf_writer.Limit(joint.lower, joint.upper, joint.effort, joint.velocity))
+    return urdf_writer.Joint(joint.name, joint.type, joint.parent, joint.child, joint.xyz, joint.rpy, joint.axis, limit)
 
 
 def urdf_text(robot: ZooRobot) -> str:
-    """The robot's URDF (one element a line: PyBullet cannot parse a URDF written on one line)."""
-    lines = ['<?xml version="1.0"?>',
-             f"<!-- GENERATED by pycram_cli/robots/zoo from seed {robot.seed} - a robot of the zoo, not a real one. -->",
-             f'<robot name="{robot.name}">']
+    """The robot's URDF."""
     links = {link.name: link for link in robot.links}
-    lines += _link_xml(links[robot.root_link])
-    for joint in robot.joints:
-        lines += _joint_xml(joint)
-        lines += _link_xml(links[joint.child])
-    lines.append("</robot>")
-    return "\n".join(lines) + "\n"
+    comment = [f"<!-- GENERATED by pycram_cli/robots/zoo from seed {robot.seed} - a robot of the zoo, not a real one. -->"]
+    return urdf_writer.urdf_text(robot.name, comment, robot.root_link, [_joint(j) for j in robot.joints],
+                                 lambda name: _link_xml(links[name]), NUMBERS)
 
 
 def _flow(values: Iterable[float | str]) -> str:

@@ -12,6 +12,8 @@ import random
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
+from ..urdf_writer import fixed
+
 Vec3 = tuple[float, float, float]
 
 ORIGIN: Vec3 = (0.0, 0.0, 0.0)
@@ -144,10 +146,7 @@ class ZooRobot:
 # -- numbers ----------------------------------------------------------------------------------------------------
 
 
-def fmt(value: float, digits: int = 6) -> str:
-    """A stable short number: fixed precision, no '-0'."""
-    text = f"{round(float(value), digits) + 0.0:.{digits}f}".rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
+fmt = fixed  # a stable short number: fixed precision, no '-0'
 
 
 def fmt3(values: Iterable[float], digits: int = 6) -> str:

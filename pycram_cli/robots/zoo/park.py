@@ -14,18 +14,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..urdf_writer import rpy_matrix
 from .model import PARK_HEIGHT, X_AXIS, Z_AXIS, Joint, Link, Shape, Vec3
 
 # -- kinematics and a sphere cover, for the park search --------------------------------------------------------
-
-
-def rpy_matrix(rpy: Sequence[float]) -> np.ndarray:
-    """URDF roll-pitch-yaw: Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
-    ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
-    rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
 
 
 def _axis_rotations(axis: Sequence[float], angles: np.ndarray) -> np.ndarray:

@@ -27,8 +27,8 @@ Why
     * Masses are the real link masses (rounded); inertias are computed from
       the primitives, assuming uniform density.
 
-The script uses the standard library and numpy only and needs nothing from
-the original description to run.  Its output is deterministic, so a test can
+The script uses pycram's URDF writer (pycram_cli/robots/urdf_writer.py)
+only and needs nothing from the original description to run.  Its output is deterministic, so a test can
 check that the shipped ``fetch.urdf`` is up to date.
 
 Usage::
@@ -38,109 +38,53 @@ Usage::
 """
 from __future__ import annotations
 
-import argparse
-import math
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Sequence
 
-import numpy as np
+from pycram_cli.robots.urdf_writer import (
+    HALF_PI,
+    NEG_Z_AXIS,
+    OPTICAL_RPY,
+    X_AXIS,
+    Y_AXIS,
+    Z_AXIS,
+    Joint,
+    Limit,
+    Link,
+    Shape,
+    Vec3,
+    box,
+    cylinder_x,
+    cylinder_z,
+    generator_main,
+    table_urdf,
+)
 
-Vec3 = tuple[float, float, float]
-
-HALF_PI = math.pi / 2
-X_AXIS: Vec3 = (1.0, 0.0, 0.0)
-Y_AXIS: Vec3 = (0.0, 1.0, 0.0)
-Z_AXIS: Vec3 = (0.0, 0.0, 1.0)
 NEG_Y_AXIS: Vec3 = (0.0, -1.0, 0.0)
-NEG_Z_AXIS: Vec3 = (0.0, 0.0, -1.0)
-ORIGIN: Vec3 = (0.0, 0.0, 0.0)
-#: rpy of the optical frames: x-forward camera frame -> z-forward, x-right, y-down.
-OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parent / "fetch.urdf"
-
-#: Mass and inertia of links that are only coordinate frames.
-FRAME_MASS = 0.01
-FRAME_INERTIA = 1e-5
-
-
-# --------------------------------------------------------------------------
-# Data model
-# --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Limit:
-    """A joint's ``<limit>``; continuous joints have no lower/upper."""
-
-    lower: float | None
-    upper: float | None
-    effort: float
-    velocity: float
-
-
-@dataclass(frozen=True)
-class Joint:
-    """One joint exactly as in the real Fetch description."""
-
-    name: str
-    type: str
-    parent: str
-    child: str
-    xyz: Vec3 = ORIGIN
-    rpy: Vec3 = ORIGIN
-    axis: Vec3 | None = None
-    limit: Limit | None = None
-
-
-@dataclass(frozen=True)
-class Shape:
-    """A primitive in link coordinates.
-
-    ``dims`` is (sx, sy, sz) for a box and (radius, length) for a cylinder
-    (whose axis is its local z, turned by ``rpy``).
-    """
-
-    kind: str
-    dims: tuple[float, ...]
-    xyz: Vec3
-    rpy: Vec3
-    material: str
-    collision: bool = True
-
-
-@dataclass(frozen=True)
-class Link:
-    """A link; ``mass=None`` marks a frame-only link without geometry."""
-
-    name: str
-    mass: float | None = None
-    shapes: tuple[Shape, ...] = ()
 
 
 # --------------------------------------------------------------------------
 # Kinematics: facts of the Fetch (fetch_description/robots/fetch.urdf)
 # --------------------------------------------------------------------------
-def _lim(lower: float | None, upper: float | None, effort: float, velocity: float) -> Limit:
-    return Limit(lower, upper, effort, velocity)
-
-
 # Listed depth-first from the root, in the order PyBullet numbers the real
 # model's joints.  The real file gives the wheel, torso and torso_fixed joints
 # a roll of -6.123e-17 rad (a float artefact of 0); it is written as 0 here.
 JOINTS: tuple[Joint, ...] = (
     # ---- drive wheels
     Joint("r_wheel_joint", "continuous", "base_link", "r_wheel_link",
-          xyz=(0.0012914, -0.18738, 0.055325), axis=Y_AXIS, limit=_lim(None, None, 8.85, 17.4)),
+          xyz=(0.0012914, -0.18738, 0.055325), axis=Y_AXIS, limit=Limit(None, None, 8.85, 17.4)),
     Joint("l_wheel_joint", "continuous", "base_link", "l_wheel_link",
-          xyz=(0.0012914, 0.18738, 0.055325), axis=Y_AXIS, limit=_lim(None, None, 8.85, 17.4)),
+          xyz=(0.0012914, 0.18738, 0.055325), axis=Y_AXIS, limit=Limit(None, None, 8.85, 17.4)),
     # ---- torso lift
     Joint("torso_lift_joint", "prismatic", "base_link", "torso_lift_link",
-          xyz=(-0.086875, 0.0, 0.37743), axis=Z_AXIS, limit=_lim(0.0, 0.38615, 450.0, 0.1)),
+          xyz=(-0.086875, 0.0, 0.37743), axis=Z_AXIS, limit=Limit(0.0, 0.38615, 450.0, 0.1)),
     # ---- head and head camera (Primesense Carmine 1.09)
     Joint("head_pan_joint", "revolute", "torso_lift_link", "head_pan_link",
-          xyz=(0.053125, 0.0, 0.603001417713939), axis=Z_AXIS, limit=_lim(-1.57, 1.57, 0.32, 1.57)),
+          xyz=(0.053125, 0.0, 0.603001417713939), axis=Z_AXIS, limit=Limit(-1.57, 1.57, 0.32, 1.57)),
     Joint("head_tilt_joint", "revolute", "head_pan_link", "head_tilt_link",
-          xyz=(0.14253, 0.0, 0.057999), axis=Y_AXIS, limit=_lim(-0.76, 1.45, 0.68, 1.57)),
+          xyz=(0.14253, 0.0, 0.057999), axis=Y_AXIS, limit=Limit(-0.76, 1.45, 0.68, 1.57)),
     Joint("head_camera_joint", "fixed", "head_tilt_link", "head_camera_link", xyz=(0.055, 0.0, 0.0225)),
     Joint("head_camera_rgb_joint", "fixed", "head_camera_link", "head_camera_rgb_frame", xyz=(0.0, 0.02, 0.0)),
     Joint("head_camera_rgb_optical_joint", "fixed", "head_camera_rgb_frame", "head_camera_rgb_optical_frame",
@@ -151,28 +95,28 @@ JOINTS: tuple[Joint, ...] = (
           "head_camera_depth_optical_frame", rpy=OPTICAL_RPY),
     # ---- arm
     Joint("shoulder_pan_joint", "revolute", "torso_lift_link", "shoulder_pan_link",
-          xyz=(0.119525, 0.0, 0.34858), axis=Z_AXIS, limit=_lim(-1.6056, 1.6056, 33.82, 1.256)),
+          xyz=(0.119525, 0.0, 0.34858), axis=Z_AXIS, limit=Limit(-1.6056, 1.6056, 33.82, 1.256)),
     Joint("shoulder_lift_joint", "revolute", "shoulder_pan_link", "shoulder_lift_link",
-          xyz=(0.117, 0.0, 0.06), axis=Y_AXIS, limit=_lim(-1.221, 1.518, 131.76, 1.454)),
+          xyz=(0.117, 0.0, 0.06), axis=Y_AXIS, limit=Limit(-1.221, 1.518, 131.76, 1.454)),
     Joint("upperarm_roll_joint", "continuous", "shoulder_lift_link", "upperarm_roll_link",
-          xyz=(0.219, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 76.94, 1.571)),
+          xyz=(0.219, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 76.94, 1.571)),
     Joint("elbow_flex_joint", "revolute", "upperarm_roll_link", "elbow_flex_link",
-          xyz=(0.133, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.251, 2.251, 66.18, 1.521)),
+          xyz=(0.133, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.251, 2.251, 66.18, 1.521)),
     Joint("forearm_roll_joint", "continuous", "elbow_flex_link", "forearm_roll_link",
-          xyz=(0.197, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 29.35, 1.571)),
+          xyz=(0.197, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 29.35, 1.571)),
     Joint("wrist_flex_joint", "revolute", "forearm_roll_link", "wrist_flex_link",
-          xyz=(0.1245, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.16, 2.16, 25.7, 2.268)),
+          xyz=(0.1245, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.16, 2.16, 25.7, 2.268)),
     Joint("wrist_roll_joint", "continuous", "wrist_flex_link", "wrist_roll_link",
-          xyz=(0.1385, 0.0, 0.0), axis=X_AXIS, limit=_lim(None, None, 7.36, 2.268)),
+          xyz=(0.1385, 0.0, 0.0), axis=X_AXIS, limit=Limit(None, None, 7.36, 2.268)),
     # gripper_link is the point between the finger pads (the real tool frame)
     Joint("gripper_axis", "fixed", "wrist_roll_link", "gripper_link", xyz=(0.16645, 0.0, 0.0)),
     Joint("r_gripper_finger_joint", "prismatic", "gripper_link", "r_gripper_finger_link",
-          xyz=(0.0, 0.015425, 0.0), axis=Y_AXIS, limit=_lim(0.0, 0.05, 60.0, 0.05)),
+          xyz=(0.0, 0.015425, 0.0), axis=Y_AXIS, limit=Limit(0.0, 0.05, 60.0, 0.05)),
     Joint("l_gripper_finger_joint", "prismatic", "gripper_link", "l_gripper_finger_link",
-          xyz=(0.0, -0.015425, 0.0), axis=NEG_Y_AXIS, limit=_lim(0.0, 0.05, 60.0, 0.05)),
+          xyz=(0.0, -0.015425, 0.0), axis=NEG_Y_AXIS, limit=Limit(0.0, 0.05, 60.0, 0.05)),
     # ---- body parts
     Joint("bellows_joint", "prismatic", "torso_lift_link", "bellows_link",
-          axis=NEG_Z_AXIS, limit=_lim(0.0, 0.4, 5.0, 0.1)),
+          axis=NEG_Z_AXIS, limit=Limit(0.0, 0.4, 5.0, 0.1)),
     Joint("bellows_joint2", "fixed", "torso_lift_link", "bellows_link2"),
     Joint("estop_joint", "fixed", "base_link", "estop_link",
           xyz=(-0.12465, 0.23892, 0.31127), rpy=(1.5708, 0.0, 0.0)),
@@ -199,36 +143,16 @@ MATERIALS: dict[str, tuple[float, float, float, float]] = {
     "wheel_black": (0.1, 0.1, 0.1, 1.0),
 }
 
-CYLINDER_ALONG_X: Vec3 = (0.0, HALF_PI, 0.0)
 CYLINDER_ALONG_Y: Vec3 = (HALF_PI, 0.0, 0.0)
 
 #: Radius of the arm's link tubes and joint housings (the real meshes are 0.104 m across).
 ARM_RADIUS = 0.052
 
 
-def box(lo: Vec3, hi: Vec3, material: str) -> Shape:
-    """An axis-aligned box spanning the corners ``lo`` and ``hi``."""
-    size = tuple(h - l for l, h in zip(lo, hi))
-    center = tuple((l + h) / 2 for l, h in zip(lo, hi))
-    return Shape("box", size, center, ORIGIN, material)
-
-
-def cylinder_x(radius: float, x0: float, x1: float, material: str,
-               y: float = 0.0, z: float = 0.0) -> Shape:
-    """A cylinder along the link's x axis from ``x0`` to ``x1``."""
-    return Shape("cylinder", (radius, x1 - x0), ((x0 + x1) / 2, y, z), CYLINDER_ALONG_X, material)
-
-
 def cylinder_y(radius: float, y0: float, y1: float, material: str, x: float = 0.0, z: float = 0.0,
                collision: bool = True) -> Shape:
     """A cylinder along the link's y axis from ``y0`` to ``y1``."""
     return Shape("cylinder", (radius, y1 - y0), (x, (y0 + y1) / 2, z), CYLINDER_ALONG_Y, material, collision)
-
-
-def cylinder_z(radius: float, z0: float, z1: float, material: str,
-               x: float = 0.0, y: float = 0.0) -> Shape:
-    """A cylinder along the link's z axis from ``z0`` to ``z1``."""
-    return Shape("cylinder", (radius, z1 - z0), (x, y, (z0 + z1) / 2), ORIGIN, material)
 
 
 def body_links() -> list[Link]:
@@ -345,161 +269,15 @@ def all_links() -> dict[str, Link]:
     return {link.name: link for link in links}
 
 
-# --------------------------------------------------------------------------
-# Inertia
-# --------------------------------------------------------------------------
-def _rotation(rpy: Vec3) -> np.ndarray:
-    """URDF fixed-axis roll-pitch-yaw: R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
-    ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
-    rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def _volume(shape: Shape) -> float:
-    if shape.kind == "box":
-        return float(np.prod(shape.dims))
-    if shape.kind == "cylinder":
-        radius, length = shape.dims
-        return math.pi * radius**2 * length
-    raise ValueError(f"unknown shape kind {shape.kind!r}")
-
-
-def _own_inertia(shape: Shape, mass: float) -> np.ndarray:
-    """Inertia tensor of a solid primitive about its centre, in link axes."""
-    if shape.kind == "box":
-        sx, sy, sz = shape.dims
-        diag = [sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2]
-        local = np.diag([mass / 12.0 * d for d in diag])
-    else:
-        radius, length = shape.dims
-        side = mass * (3 * radius**2 + length**2) / 12.0
-        local = np.diag([side, side, mass * radius**2 / 2.0])
-    rot = _rotation(shape.rpy)
-    return rot @ local @ rot.T
-
-
-def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
-    """(mass, centre of mass, diagonal inertia) of a link of uniform density.
-
-    The solids are the collision shapes, or the visual ones for a link that has
-    only those (the wheels).  Products of inertia are dropped (PyBullet only
-    uses the diagonal); the diagonal of a valid inertia tensor is positive and
-    obeys the triangle inequality, so the result is still physically plausible.
-    """
-    solids = [s for s in link.shapes if s.collision] or list(link.shapes)
-    if link.mass is None or not solids:
-        return FRAME_MASS if link.mass is None else link.mass, np.zeros(3), np.full(3, FRAME_INERTIA)
-    volumes = np.array([_volume(s) for s in solids])
-    masses = link.mass * volumes / volumes.sum()
-    centers = np.array([s.xyz for s in solids], dtype=float)
-    com = (masses[:, None] * centers).sum(axis=0) / link.mass
-    tensor = np.zeros((3, 3))
-    for shape, mass, center in zip(solids, masses, centers):
-        d = center - com
-        tensor += _own_inertia(shape, mass) + mass * (d @ d * np.eye(3) - np.outer(d, d))
-    return link.mass, com, np.diag(tensor).copy()
-
-
-# --------------------------------------------------------------------------
-# URDF writer
-# --------------------------------------------------------------------------
-def fmt(value: float, digits: int = 12) -> str:
-    """Stable, short number formatting (no '-0', no trailing zeros)."""
-    text = f"{float(value) + 0.0:.{digits}g}"
-    return "0" if text in ("-0", "0") else text
-
-
-def fmt3(values: Iterable[float], digits: int = 12) -> str:
-    return " ".join(fmt(v, digits) for v in values)
-
-
-def _geometry_xml(shape: Shape) -> str:
-    if shape.kind == "box":
-        return f'<box size="{fmt3(shape.dims)}"/>'
-    return f'<cylinder radius="{fmt(shape.dims[0])}" length="{fmt(shape.dims[1])}"/>'
-
-
-def link_xml(link: Link) -> list[str]:
-    mass, com, diag = inertial(link)
-    lines = [f'  <link name="{link.name}">',
-             "    <inertial>",
-             f'      <origin xyz="{fmt3(com, 6)}" rpy="0 0 0"/>',
-             f'      <mass value="{fmt(mass, 6)}"/>',
-             f'      <inertia ixx="{fmt(diag[0], 6)}" ixy="0" ixz="0" '
-             f'iyy="{fmt(diag[1], 6)}" iyz="0" izz="{fmt(diag[2], 6)}"/>',
-             "    </inertial>"]
-    for shape in link.shapes:
-        origin = f'<origin xyz="{fmt3(shape.xyz)}" rpy="{fmt3(shape.rpy)}"/>'
-        rgba = fmt3(MATERIALS[shape.material], 6)
-        lines += ["    <visual>",
-                  f"      {origin}",
-                  f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                  f'      <material name="{shape.material}"><color rgba="{rgba}"/></material>',
-                  "    </visual>"]
-        if shape.collision:
-            lines += ["    <collision>",
-                      f"      {origin}",
-                      f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                      "    </collision>"]
-    lines.append("  </link>")
-    return lines
-
-
-def joint_xml(joint: Joint) -> list[str]:
-    lines = [f'  <joint name="{joint.name}" type="{joint.type}">',
-             f'    <parent link="{joint.parent}"/>',
-             f'    <child link="{joint.child}"/>',
-             f'    <origin xyz="{fmt3(joint.xyz)}" rpy="{fmt3(joint.rpy)}"/>']
-    if joint.axis is not None:
-        lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
-    if joint.limit is not None:
-        lim = joint.limit
-        bounds = ""
-        if lim.lower is not None and lim.upper is not None:
-            bounds = f'lower="{fmt(lim.lower)}" upper="{fmt(lim.upper)}" '
-        lines.append(f'    <limit {bounds}effort="{fmt(lim.effort)}" velocity="{fmt(lim.velocity)}"/>')
-    lines.append("  </joint>")
-    return lines
-
-
-def check_tree(joints: Sequence[Joint], links: dict[str, Link]) -> None:
-    """Fail loudly on a broken table: every link used once, parents defined first."""
-    seen = {ROOT_LINK}
-    for joint in joints:
-        if joint.parent not in seen:
-            raise ValueError(f"{joint.name}: parent {joint.parent} not defined before use")
-        if joint.child in seen:
-            raise ValueError(f"{joint.name}: child {joint.child} already in the tree")
-        seen.add(joint.child)
-    if seen != set(links):
-        raise ValueError(f"links without joints or joints without links: {seen ^ set(links)}")
-
-
 def build_urdf() -> str:
     """The complete URDF text."""
-    links = all_links()
-    check_tree(JOINTS, links)
-    lines = ['<?xml version="1.0"?>',
-             "<!-- GENERATED by resources/robots/fetch/generate.py - do not edit by hand.",
-             "     Kinematics: Fetch (fetch_description 0.8.3); geometry: simplified primitives. -->",
-             '<robot name="fetch">']
-    lines += link_xml(links[ROOT_LINK])
-    for joint in JOINTS:
-        lines += joint_xml(joint)
-        lines += link_xml(links[joint.child])
-    lines.append("</robot>")
-    return "\n".join(lines) + "\n"
+    comment = ["<!-- GENERATED by resources/robots/fetch/generate.py - do not edit by hand.",
+               "     Kinematics: Fetch (fetch_description 0.8.3); geometry: simplified primitives. -->"]
+    return table_urdf("fetch", comment, ROOT_LINK, JOINTS, all_links(), MATERIALS)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT,
-                        help=f"where to write the URDF (default: {DEFAULT_OUTPUT.name} next to this script)")
-    args = parser.parse_args(argv)
-    args.output.write_text(build_urdf(), encoding="utf-8", newline="\n")
-    print(f"wrote {args.output}")
+    generator_main(__doc__, DEFAULT_OUTPUT, build_urdf, argv)
 
 
 if __name__ == "__main__":

@@ -25,8 +25,8 @@ Why
     * Masses are the real link masses (rounded); inertias are computed from
       the primitives, assuming uniform density.
 
-The script uses the standard library and numpy only and needs nothing from
-the original description to run.  Its output is deterministic, so a test can
+The script uses pycram's URDF writer (pycram_cli/robots/urdf_writer.py)
+only and needs nothing from the original description to run.  Its output is deterministic, so a test can
 check that the shipped ``pr2.urdf`` is up to date.
 
 Usage::
@@ -36,104 +36,48 @@ Usage::
 """
 from __future__ import annotations
 
-import argparse
-import math
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Sequence
 
-import numpy as np
+from pycram_cli.robots.urdf_writer import (
+    HALF_PI,
+    NEG_Z_AXIS,
+    OPTICAL_RPY,
+    ORIGIN,
+    X_AXIS,
+    Y_AXIS,
+    Z_AXIS,
+    Joint,
+    Limit,
+    Link,
+    Shape,
+    Vec3,
+    box,
+    cylinder_x,
+    cylinder_z,
+    generator_main,
+    table_urdf,
+)
 
-Vec3 = tuple[float, float, float]
-
-HALF_PI = math.pi / 2
-X_AXIS: Vec3 = (1.0, 0.0, 0.0)
-Y_AXIS: Vec3 = (0.0, 1.0, 0.0)
-Z_AXIS: Vec3 = (0.0, 0.0, 1.0)
-NEG_Z_AXIS: Vec3 = (0.0, 0.0, -1.0)
-ORIGIN: Vec3 = (0.0, 0.0, 0.0)
-#: rpy of the optical frames: x-forward camera link -> z-forward, x-right, y-down.
-OPTICAL_RPY: Vec3 = (-1.57079632679, 0.0, -1.57079632679)
 
 DEFAULT_OUTPUT = Path(__file__).resolve().parent / "pr2.urdf"
-
-#: Mass and inertia of links that are only coordinate frames.
-FRAME_MASS = 0.01
-FRAME_INERTIA = 1e-5
-
-
-# --------------------------------------------------------------------------
-# Data model
-# --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Limit:
-    """A joint's ``<limit>``; continuous joints have no lower/upper."""
-
-    lower: float | None
-    upper: float | None
-    effort: float
-    velocity: float
-
-
-@dataclass(frozen=True)
-class Joint:
-    """One joint exactly as in the real PR2 description."""
-
-    name: str
-    type: str
-    parent: str
-    child: str
-    xyz: Vec3 = ORIGIN
-    rpy: Vec3 = ORIGIN
-    axis: Vec3 | None = None
-    limit: Limit | None = None
-    mimic: str | None = None  # mimicked joint (multiplier 1, offset 0)
-
-
-@dataclass(frozen=True)
-class Shape:
-    """A primitive in link coordinates.
-
-    ``dims`` is (sx, sy, sz) for a box, (radius, length) for a cylinder (whose
-    axis is its local z, turned by ``rpy``) and (radius,) for a sphere.
-    """
-
-    kind: str
-    dims: tuple[float, ...]
-    xyz: Vec3
-    rpy: Vec3
-    material: str
-    collision: bool = True
-
-
-@dataclass(frozen=True)
-class Link:
-    """A link; ``mass=None`` marks a frame-only link without geometry."""
-
-    name: str
-    mass: float | None = None
-    shapes: tuple[Shape, ...] = ()
 
 
 # --------------------------------------------------------------------------
 # Kinematics: facts of the PR2 (from iai_pr2_description's pr2.urdf)
 # --------------------------------------------------------------------------
-def _lim(lower: float | None, upper: float | None, effort: float, velocity: float) -> Limit:
-    return Limit(lower, upper, effort, velocity)
-
-
 # Listed depth-first from the root; the URDF is written in this order, which is
 # also the order of PyBullet's joint indices.
 JOINTS: tuple[Joint, ...] = (
     # ---- base and torso
     Joint("base_footprint_joint", "fixed", "base_footprint", "base_link", xyz=(0.0, 0.0, 0.051)),
     Joint("torso_lift_joint", "prismatic", "base_link", "torso_lift_link",
-          xyz=(-0.05, 0.0, 0.739675), axis=Z_AXIS, limit=_lim(0.0, 0.33, 10000, 0.013)),
+          xyz=(-0.05, 0.0, 0.739675), axis=Z_AXIS, limit=Limit(0.0, 0.33, 10000, 0.013)),
     # ---- head and wide stereo camera
     Joint("head_pan_joint", "revolute", "torso_lift_link", "head_pan_link",
-          xyz=(-0.01707, 0.0, 0.38145), axis=Z_AXIS, limit=_lim(-3.007, 3.007, 2.645, 6)),
+          xyz=(-0.01707, 0.0, 0.38145), axis=Z_AXIS, limit=Limit(-3.007, 3.007, 2.645, 6)),
     Joint("head_tilt_joint", "revolute", "head_pan_link", "head_tilt_link",
-          xyz=(0.068, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.471238, 1.39626, 18, 5)),
+          xyz=(0.068, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.471238, 1.39626, 18, 5)),
     Joint("head_plate_frame_joint", "fixed", "head_tilt_link", "head_plate_frame",
           xyz=(0.0232, 0.0, 0.0645)),
     Joint("sensor_mount_frame_joint", "fixed", "head_plate_frame", "sensor_mount_link"),
@@ -145,65 +89,65 @@ JOINTS: tuple[Joint, ...] = (
     # ---- right arm
     Joint("r_shoulder_pan_joint", "revolute", "torso_lift_link", "r_shoulder_pan_link",
           xyz=(0.0, -0.188, 0.0), axis=Z_AXIS,
-          limit=_lim(-2.2853981634, 0.714601836603, 30, 2.088)),
+          limit=Limit(-2.2853981634, 0.714601836603, 30, 2.088)),
     Joint("r_shoulder_lift_joint", "revolute", "r_shoulder_pan_link", "r_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.5236, 1.3963, 30, 2.082)),
+          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
     Joint("r_upper_arm_roll_joint", "revolute", "r_shoulder_lift_link", "r_upper_arm_roll_link",
-          axis=X_AXIS, limit=_lim(-3.9, 0.8, 30, 3.27)),
+          axis=X_AXIS, limit=Limit(-3.9, 0.8, 30, 3.27)),
     Joint("r_upper_arm_joint", "fixed", "r_upper_arm_roll_link", "r_upper_arm_link"),
     Joint("r_elbow_flex_joint", "revolute", "r_upper_arm_link", "r_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.3213, 0.0, 30, 3.3)),
+          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
     Joint("r_forearm_roll_joint", "continuous", "r_elbow_flex_link", "r_forearm_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 30, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
     Joint("r_forearm_joint", "fixed", "r_forearm_roll_link", "r_forearm_link"),
     Joint("r_wrist_flex_joint", "revolute", "r_forearm_link", "r_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.18, 0.0, 10, 3.078)),
+          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
     Joint("r_wrist_roll_joint", "continuous", "r_wrist_flex_link", "r_wrist_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 10, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
     Joint("r_gripper_palm_joint", "fixed", "r_wrist_roll_link", "r_gripper_palm_link"),
     Joint("r_gripper_l_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5)),
+          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
     Joint("r_gripper_l_finger_tip_joint", "revolute", "r_gripper_l_finger_link",
           "r_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_r_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5),
+          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
           mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_r_finger_tip_joint", "revolute", "r_gripper_r_finger_link",
           "r_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
     Joint("r_gripper_tool_joint", "fixed", "r_gripper_palm_link", "r_gripper_tool_frame",
           xyz=(0.18, 0.0, 0.0)),
     # ---- left arm
     Joint("l_shoulder_pan_joint", "revolute", "torso_lift_link", "l_shoulder_pan_link",
           xyz=(0.0, 0.188, 0.0), axis=Z_AXIS,
-          limit=_lim(-0.714601836603, 2.2853981634, 30, 2.088)),
+          limit=Limit(-0.714601836603, 2.2853981634, 30, 2.088)),
     Joint("l_shoulder_lift_joint", "revolute", "l_shoulder_pan_link", "l_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-0.5236, 1.3963, 30, 2.082)),
+          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
     Joint("l_upper_arm_roll_joint", "revolute", "l_shoulder_lift_link", "l_upper_arm_roll_link",
-          axis=X_AXIS, limit=_lim(-0.8, 3.9, 30, 3.27)),
+          axis=X_AXIS, limit=Limit(-0.8, 3.9, 30, 3.27)),
     Joint("l_upper_arm_joint", "fixed", "l_upper_arm_roll_link", "l_upper_arm_link"),
     Joint("l_elbow_flex_joint", "revolute", "l_upper_arm_link", "l_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.3213, 0.0, 30, 3.3)),
+          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
     Joint("l_forearm_roll_joint", "continuous", "l_elbow_flex_link", "l_forearm_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 30, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
     Joint("l_forearm_joint", "fixed", "l_forearm_roll_link", "l_forearm_link"),
     Joint("l_wrist_flex_joint", "revolute", "l_forearm_link", "l_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=_lim(-2.18, 0.0, 10, 3.078)),
+          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
     Joint("l_wrist_roll_joint", "continuous", "l_wrist_flex_link", "l_wrist_roll_link",
-          axis=X_AXIS, limit=_lim(None, None, 10, 3.6)),
+          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
     Joint("l_gripper_palm_joint", "fixed", "l_wrist_roll_link", "l_gripper_palm_link"),
     Joint("l_gripper_l_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5)),
+          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
     Joint("l_gripper_l_finger_tip_joint", "revolute", "l_gripper_l_finger_link",
           "l_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_r_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=_lim(0.0, 0.548, 1000.0, 0.5),
+          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
           mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_r_finger_tip_joint", "revolute", "l_gripper_r_finger_link",
           "l_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=_lim(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
+          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
     Joint("l_gripper_tool_joint", "fixed", "l_gripper_palm_link", "l_gripper_tool_frame",
           xyz=(0.18, 0.0, 0.0)),
 )
@@ -226,33 +170,13 @@ MATERIALS: dict[str, tuple[float, float, float, float]] = {
     "wheel_black": (0.1, 0.1, 0.1, 1.0),
 }
 
-CYLINDER_ALONG_X: Vec3 = (0.0, HALF_PI, 0.0)
 CYLINDER_ALONG_Y: Vec3 = (HALF_PI, 0.0, 0.0)
-
-
-def box(lo: Vec3, hi: Vec3, material: str) -> Shape:
-    """An axis-aligned box spanning the corners ``lo`` and ``hi``."""
-    size = tuple(h - l for l, h in zip(lo, hi))
-    center = tuple((l + h) / 2 for l, h in zip(lo, hi))
-    return Shape("box", size, center, ORIGIN, material)
-
-
-def cylinder_x(radius: float, x0: float, x1: float, material: str,
-               y: float = 0.0, z: float = 0.0) -> Shape:
-    """A cylinder along the link's x axis from ``x0`` to ``x1``."""
-    return Shape("cylinder", (radius, x1 - x0), ((x0 + x1) / 2, y, z), CYLINDER_ALONG_X, material)
 
 
 def cylinder_y(radius: float, length: float, material: str, at: Vec3 = ORIGIN,
                collision: bool = True) -> Shape:
     """A cylinder along the link's y axis, centred at ``at``."""
     return Shape("cylinder", (radius, length), at, CYLINDER_ALONG_Y, material, collision)
-
-
-def cylinder_z(radius: float, z0: float, z1: float, material: str,
-               x: float = 0.0, y: float = 0.0) -> Shape:
-    """A cylinder along the link's z axis from ``z0`` to ``z1``."""
-    return Shape("cylinder", (radius, z1 - z0), (x, y, (z0 + z1) / 2), ORIGIN, material)
 
 
 def caster_wheels() -> list[Shape]:
@@ -371,168 +295,15 @@ def all_links() -> dict[str, Link]:
     return {link.name: link for link in links}
 
 
-# --------------------------------------------------------------------------
-# Inertia
-# --------------------------------------------------------------------------
-def _rotation(rpy: Vec3) -> np.ndarray:
-    """URDF fixed-axis roll-pitch-yaw: R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
-    ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
-    rz = np.array([[math.cos(y), -math.sin(y), 0], [math.sin(y), math.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def _volume(shape: Shape) -> float:
-    if shape.kind == "box":
-        return float(np.prod(shape.dims))
-    if shape.kind == "cylinder":
-        radius, length = shape.dims
-        return math.pi * radius**2 * length
-    if shape.kind == "sphere":
-        return 4.0 / 3.0 * math.pi * shape.dims[0] ** 3
-    raise ValueError(f"unknown shape kind {shape.kind!r}")
-
-
-def _own_inertia(shape: Shape, mass: float) -> np.ndarray:
-    """Inertia tensor of a solid primitive about its centre, in link axes."""
-    if shape.kind == "box":
-        sx, sy, sz = shape.dims
-        diag = [sy**2 + sz**2, sx**2 + sz**2, sx**2 + sy**2]
-        local = np.diag([mass / 12.0 * d for d in diag])
-    elif shape.kind == "cylinder":
-        radius, length = shape.dims
-        side = mass * (3 * radius**2 + length**2) / 12.0
-        local = np.diag([side, side, mass * radius**2 / 2.0])
-    else:
-        local = np.eye(3) * (0.4 * mass * shape.dims[0] ** 2)
-    rot = _rotation(shape.rpy)
-    return rot @ local @ rot.T
-
-
-def inertial(link: Link) -> tuple[float, np.ndarray, np.ndarray]:
-    """(mass, centre of mass, diagonal inertia) of a link of uniform density.
-
-    Products of inertia are dropped (PyBullet only uses the diagonal); the
-    diagonal of a valid inertia tensor is positive and obeys the triangle
-    inequality, so the result is still physically plausible.
-    """
-    solids = [s for s in link.shapes if s.collision]
-    if link.mass is None or not solids:
-        return FRAME_MASS, np.zeros(3), np.full(3, FRAME_INERTIA)
-    volumes = np.array([_volume(s) for s in solids])
-    masses = link.mass * volumes / volumes.sum()
-    centers = np.array([s.xyz for s in solids], dtype=float)
-    com = (masses[:, None] * centers).sum(axis=0) / link.mass
-    tensor = np.zeros((3, 3))
-    for shape, mass, center in zip(solids, masses, centers):
-        d = center - com
-        tensor += _own_inertia(shape, mass) + mass * (d @ d * np.eye(3) - np.outer(d, d))
-    return link.mass, com, np.diag(tensor).copy()
-
-
-# --------------------------------------------------------------------------
-# URDF writer
-# --------------------------------------------------------------------------
-def fmt(value: float, digits: int = 12) -> str:
-    """Stable, short number formatting (no '-0', no trailing zeros)."""
-    text = f"{float(value) + 0.0:.{digits}g}"
-    return "0" if text in ("-0", "0") else text
-
-
-def fmt3(values: Iterable[float], digits: int = 12) -> str:
-    return " ".join(fmt(v, digits) for v in values)
-
-
-def _geometry_xml(shape: Shape) -> str:
-    if shape.kind == "box":
-        return f'<box size="{fmt3(shape.dims)}"/>'
-    if shape.kind == "cylinder":
-        return f'<cylinder radius="{fmt(shape.dims[0])}" length="{fmt(shape.dims[1])}"/>'
-    return f'<sphere radius="{fmt(shape.dims[0])}"/>'
-
-
-def link_xml(link: Link) -> list[str]:
-    mass, com, diag = inertial(link)
-    lines = [f'  <link name="{link.name}">',
-             "    <inertial>",
-             f'      <origin xyz="{fmt3(com, 6)}" rpy="0 0 0"/>',
-             f'      <mass value="{fmt(mass, 6)}"/>',
-             f'      <inertia ixx="{fmt(diag[0], 6)}" ixy="0" ixz="0" '
-             f'iyy="{fmt(diag[1], 6)}" iyz="0" izz="{fmt(diag[2], 6)}"/>',
-             "    </inertial>"]
-    for shape in link.shapes:
-        origin = f'<origin xyz="{fmt3(shape.xyz)}" rpy="{fmt3(shape.rpy)}"/>'
-        rgba = fmt3(MATERIALS[shape.material], 6)
-        lines += ["    <visual>",
-                  f"      {origin}",
-                  f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                  f'      <material name="{shape.material}"><color rgba="{rgba}"/></material>',
-                  "    </visual>"]
-        if shape.collision:
-            lines += ["    <collision>",
-                      f"      {origin}",
-                      f"      <geometry>{_geometry_xml(shape)}</geometry>",
-                      "    </collision>"]
-    lines.append("  </link>")
-    return lines
-
-
-def joint_xml(joint: Joint) -> list[str]:
-    lines = [f'  <joint name="{joint.name}" type="{joint.type}">',
-             f'    <parent link="{joint.parent}"/>',
-             f'    <child link="{joint.child}"/>',
-             f'    <origin xyz="{fmt3(joint.xyz)}" rpy="{fmt3(joint.rpy)}"/>']
-    if joint.axis is not None:
-        lines.append(f'    <axis xyz="{fmt3(joint.axis)}"/>')
-    if joint.limit is not None:
-        lim = joint.limit
-        bounds = ""
-        if lim.lower is not None and lim.upper is not None:
-            bounds = f'lower="{fmt(lim.lower)}" upper="{fmt(lim.upper)}" '
-        lines.append(f'    <limit {bounds}effort="{fmt(lim.effort)}" velocity="{fmt(lim.velocity)}"/>')
-    if joint.mimic is not None:
-        lines.append(f'    <mimic joint="{joint.mimic}" multiplier="1" offset="0"/>')
-    lines.append("  </joint>")
-    return lines
-
-
-def check_tree(joints: Sequence[Joint], links: dict[str, Link]) -> None:
-    """Fail loudly on a broken table: every link used once, parents defined first."""
-    seen = {ROOT_LINK}
-    for joint in joints:
-        if joint.parent not in seen:
-            raise ValueError(f"{joint.name}: parent {joint.parent} not defined before use")
-        if joint.child in seen:
-            raise ValueError(f"{joint.name}: child {joint.child} already in the tree")
-        seen.add(joint.child)
-    if seen != set(links):
-        raise ValueError(f"links without joints or joints without links: {seen ^ set(links)}")
-
-
 def build_urdf() -> str:
     """The complete URDF text."""
-    links = all_links()
-    check_tree(JOINTS, links)
-    lines = ['<?xml version="1.0"?>',
-             "<!-- GENERATED by resources/robots/pr2/generate.py - do not edit by hand.",
-             "     Kinematics: PR2 (iai_pr2_description); geometry: simplified primitives. -->",
-             '<robot name="pr2">']
-    lines += link_xml(links[ROOT_LINK])
-    for joint in JOINTS:
-        lines += joint_xml(joint)
-        lines += link_xml(links[joint.child])
-    lines.append("</robot>")
-    return "\n".join(lines) + "\n"
+    comment = ["<!-- GENERATED by resources/robots/pr2/generate.py - do not edit by hand.",
+               "     Kinematics: PR2 (iai_pr2_description); geometry: simplified primitives. -->"]
+    return table_urdf("pr2", comment, ROOT_LINK, JOINTS, all_links(), MATERIALS)
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--output", type=Path, default=DEFAULT_OUTPUT,
-                        help=f"where to write the URDF (default: {DEFAULT_OUTPUT.name} next to this script)")
-    args = parser.parse_args(argv)
-    args.output.write_text(build_urdf(), encoding="utf-8", newline="\n")
-    print(f"wrote {args.output}")
+    generator_main(__doc__, DEFAULT_OUTPUT, build_urdf, argv)
 
 
 if __name__ == "__main__":
