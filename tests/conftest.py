@@ -18,6 +18,7 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 os.environ.setdefault("PYCRAM_CACHE_DIR", tempfile.mkdtemp(prefix="pycram-test-cache-"))
 
 import slow_first  # noqa: E402
+from shipped_runs import ShippedRuns  # noqa: E402
 from pycram_cli import BulletWorld  # noqa: E402
 from pycram_cli.paths import default_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
@@ -46,6 +47,14 @@ def kitchen() -> Iterator[BulletWorld]:
     world = load_world()
     yield world
     world.exit()
+
+
+@pytest.fixture(scope="session")
+def shipped_runs() -> Iterator[ShippedRuns]:
+    """Each shipped plan run once per test process, for the tests that only read the run (tests/shipped_runs.py)."""
+    runs = ShippedRuns()
+    yield runs
+    runs.close()
 
 
 @pytest.fixture
