@@ -15,7 +15,12 @@ from pycram_cli.scenario import prepare
 
 PLAN = plans_dir() / "set_table_actions.yaml"
 THINGS = ("bowl", "milk", "cereal", "spoon")
+#: the 20 seeded arrangements the README speaks of; set_table_actions succeeds on all of them (measured on cdcd405)
 SEEDS = range(20)
+#: the arrangements the suite runs set_table_actions on: the five of the 20 whose location searches try the most
+#: candidate poses (the sum of `tried` over the run's 16 locate steps, on cdcd405: seed 19 141, 1 117, 2 110, 8 101,
+#: 9 98; the others 65-92). They are also the longest runs; an easier arrangement exercises nothing these do not
+HARD_SEEDS = (19, 1, 2, 8, 9)
 
 
 def set_on_the_island(world) -> None:
@@ -67,9 +72,9 @@ def run_arranged(scenario, seed: int):
         raise
 
 
-@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("seed", HARD_SEEDS)
 def test_it_sets_the_table_on_random_arrangements_along_the_counter(seed):
-    """On each of 20 seeded arrangements, as the README says ("every time"). One test a seed, so that the
+    """On the hardest five of the README's 20 seeded arrangements ("every time"). One test a seed, so that the
     suite's workers share them out."""
     result, world = run_arranged(prepare(PLAN), seed)
     try:
