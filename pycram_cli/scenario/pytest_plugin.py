@@ -50,10 +50,8 @@ def pycram_golden(request: pytest.FixtureRequest) -> Callable[..., None]:
               name: str | None = None, golden: str | Path | None = None, atol: float = ATOL,
               trace: Mapping[str, Any] | None = None) -> None:
         path = Path(golden) if golden is not None else folder / f"{name or Path(plan).stem}.trace.json"
-        if trace is None:
-            actual = recorded(plan, world, params)
-        else:  # the test ran the plan itself (and checks more of that run): compare its trace, do not run it again
-            actual = traces.normalised(traces.comparable(trace))
+        # a trace given: the test ran the plan itself (and checks more of that run), which is not run again
+        actual = recorded(plan, world, params) if trace is None else traces.normalised(traces.comparable(trace))
         if update or not path.is_file():
             existed = path.is_file()
             path.parent.mkdir(parents=True, exist_ok=True)
