@@ -18,6 +18,7 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 os.environ.setdefault("PYCRAM_CACHE_DIR", tempfile.mkdtemp(prefix="pycram-test-cache-"))
 
 import slow_first  # noqa: E402
+from shipped_runs import ShippedRuns  # noqa: E402
 from pycram_cli import BulletWorld  # noqa: E402
 from pycram_cli.paths import default_world  # noqa: E402
 from pycram_cli.worldfile.loader import load_world  # noqa: E402
@@ -29,8 +30,21 @@ SHARED_MODELS = REPO.parent / "shared" / "models"
 
 @pytest.hookimpl(trylast=True)
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The longest tests first (tests/slow_first.py), after pytest's own ordering by shared fixtures."""
+    """The longest tests first (tests/slow_first.py), after pytest's own ordering by shared fixtures; on a
+    pytest-xdist worker, each `xdist_group` test's id names its group first."""
+    for item in items:
+        _name_the_group(item)
     slow_first.order(items, slow_first.read())
+
+
+def _name_the_group(item: pytest.Item) -> None:
+    """Give the test the id `--dist loadgroup` meant it to have. pytest-xdist 3.8 appends `@group` to a grouped test's
+    id by setting `item._nodeid`, which pytest 9 no longer reads (it keeps the id in `item._id`): the controller
+    then saw no group, and a group's tests (the two window tests, the readers of one shipped run) went to any
+    worker. Where xdist's id and pytest's differ, pytest's is set to xdist's."""
+    grouped = getattr(item, "_nodeid", None)
+    if isinstance(grouped, str) and grouped != item.nodeid and hasattr(item, "_id"):
+        item._id = type(item._id).parse(grouped)
 
 
 @pytest.fixture
@@ -46,6 +60,14 @@ def kitchen() -> Iterator[BulletWorld]:
     world = load_world()
     yield world
     world.exit()
+
+
+@pytest.fixture(scope="session")
+def shipped_runs() -> Iterator[ShippedRuns]:
+    """Each shipped plan run once per test process, for the tests that only read the run (tests/shipped_runs.py)."""
+    runs = ShippedRuns()
+    yield runs
+    runs.close()
 
 
 @pytest.fixture

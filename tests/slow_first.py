@@ -55,7 +55,7 @@ def order(items: list, seconds: dict[str, float]) -> None:
     weight: dict[int, float] = {}  # id(item) -> the seconds of the block it moves with (0: it stays)
     modules: dict[str, float] = {}
     for item in items:
-        took = seconds.get(item.nodeid, 0.0)
+        took = seconds.get(listed_id(item.nodeid), 0.0)
         if took and _shares_a_fixture(item):
             module = item.nodeid.split("::", 1)[0]
             modules[module] = max(modules.get(module, 0.0), took)
@@ -79,6 +79,15 @@ def order(items: list, seconds: dict[str, float]) -> None:
 
 
 _DURATION = re.compile(r"^\s*([0-9.]+)s (setup|call|teardown)\s+(\S.*?)\s*$")
+#: the `@group` a pytest-xdist worker's report appends to a grouped test's id (a test's name and its parameters,
+#: which end in `]`, hold no `@` of their own at the end)
+_GROUP = re.compile(r"@[^\[\]:/]+$")
+
+
+def listed_id(nodeid: str) -> str:
+    """A test's id as the list names it: without the `@group` that `--dist loadgroup` appends to the id of a test
+    marked `xdist_group` (the window tests, the readers of a shipped run), else such a test would never match."""
+    return _GROUP.sub("", nodeid)
 
 
 def totals(lines: Iterable[str]) -> dict[str, float]:
@@ -87,7 +96,8 @@ def totals(lines: Iterable[str]) -> dict[str, float]:
     for line in lines:
         match = _DURATION.match(line)
         if match:
-            found[match.group(3)] = found.get(match.group(3), 0.0) + float(match.group(1))
+            nodeid = listed_id(match.group(3))
+            found[nodeid] = found.get(nodeid, 0.0) + float(match.group(1))
     return found
 
 

@@ -48,14 +48,23 @@ def test_a_listed_test_on_a_module_fixture_moves_its_whole_module_in_its_own_ord
     assert ids(items) == ["b.py::long", "m.py::x", "m.py::y", "m.py::z", "a.py::one"]
 
 
+def test_a_test_in_an_xdist_group_is_found_by_its_id_without_the_group_suffix():
+    """`--dist loadgroup` appends `@group` to a grouped test's id; the list names it as `--durations` does."""
+    items = [Item("a.py::one"), Item("w.py::window@gui"), Item("p.py::golden[x]@shipped-x")]
+    slow_first.order(items, {"w.py::window": 60.0, "p.py::golden[x]": 30.0})
+    assert ids(items) == ["w.py::window@gui", "p.py::golden[x]@shipped-x", "a.py::one"]
+
+
 def test_the_list_is_read_from_a_durations_report(tmp_path: Path):
     report = ["============ slowest durations ============",
               "61.20s call     tests/plan/test_x.py::test_long[3]",
               "1.50s setup    tests/plan/test_x.py::test_long[3]",
               "0.01s teardown tests/plan/test_x.py::test_long[3]",
-              "2.00s call     tests/cli/test_y.py::test_short"]
+              "2.00s call     tests/cli/test_y.py::test_short",
+              "9.00s call     tests/world/test_w.py::test_window@gui"]
     assert slow_first.totals(report) == {"tests/plan/test_x.py::test_long[3]": 62.71,
-                                         "tests/cli/test_y.py::test_short": 2.0}
+                                         "tests/cli/test_y.py::test_short": 2.0,
+                                         "tests/world/test_w.py::test_window": 9.0}
     listed = tmp_path / "durations.txt"
     listed.write_text("# a comment\n   62.71  tests/plan/test_x.py::test_long[3]\n\n")
     assert slow_first.read(listed) == {"tests/plan/test_x.py::test_long[3]": 62.71}

@@ -6,15 +6,21 @@ from __future__ import annotations
 import re
 
 import pytest
-
 from arrangements import arrange, arrangement
+from shipped_runs import group
+
 from pycram_cli.paths import plans_dir
 from pycram_cli.reasoning import stable, supporting
 from pycram_cli.scenario import prepare
 
 PLAN = plans_dir() / "set_table_actions.yaml"
 THINGS = ("bowl", "milk", "cereal", "spoon")
+#: the 20 seeded arrangements the README speaks of; set_table_actions succeeds on all of them (measured on cdcd405)
 SEEDS = range(20)
+#: the arrangements the suite runs set_table_actions on: the five of the 20 whose location searches try the most
+#: candidate poses (the sum of `tried` over the run's 16 locate steps, on cdcd405: seed 19 141, 1 117, 2 110, 8 101,
+#: 9 98; the others 65-92). They are also the longest runs; an easier arrangement exercises nothing these do not
+HARD_SEEDS = (19, 1, 2, 8, 9)
 
 
 def set_on_the_island(world) -> None:
@@ -33,26 +39,26 @@ def test_the_plan_names_no_base_pose_arm_or_look_target():
         assert not re.search(rf"\b{re.escape(word)}", text), word
 
 
-@pytest.mark.parametrize("world_name", ["kitchen", "kitchen_fetch"])
-def test_it_sets_the_table_on_the_pr2_and_on_the_fetch(world_name):
-    scenario = prepare(PLAN, world=world_name)
-    world = scenario.load_world()
-    try:
-        result = scenario.run(world=world)
-        assert result.status == "succeeded", result.failure
-        set_on_the_island(world)
-        # the spoon was in the closed drawer: search opened it, and transport tried to close it again (the PR2
-        # does; the Fetch's arm cannot follow the handle the last centimetres, and leaves it open)
-        text = str(result.trace)
-        assert "action open" in text and "action close" in text
-        if world_name == "kitchen":
-            assert world.get_object_by_name("kitchen").get_joint_position("sink_area_left_upper_drawer_main_joint") < 0.01
-    finally:
-        world.exit()
+@pytest.mark.parametrize("world_name", [pytest.param("kitchen", marks=group("set_table_actions")),
+                                        pytest.param("kitchen_fetch", marks=group("set_table_actions", "kitchen_fetch"))])
+def test_it_sets_the_table_on_the_pr2_and_on_the_fetch(world_name, shipped_runs):
+    """The run the golden tests compare too (tests/shipped_runs.py)."""
+    run = shipped_runs("set_table_actions", None if world_name == "kitchen" else world_name)
+    result, world = run.result, run.world
+    assert result.status == "succeeded", result.failure
+    set_on_the_island(world)
+    # the spoon was in the closed drawer: search opened it, and transport tried to close it again (the PR2
+    # does; the Fetch's arm cannot follow the handle the last centimetres, and leaves it open)
+    text = str(result.trace)
+    assert "action open" in text and "action close" in text
+    if world_name == "kitchen":
+        assert world.get_object_by_name("kitchen").get_joint_position("sink_area_left_upper_drawer_main_joint") < 0.01
 
 
-def test_the_fetch_run_matches_its_golden_trace(pycram_golden):
-    pycram_golden(PLAN, world="kitchen_fetch", name="set_table_actions-fetch")
+@group("set_table_actions", "kitchen_fetch")
+def test_the_fetch_run_matches_its_golden_trace(pycram_golden, shipped_runs):
+    pycram_golden(PLAN, world="kitchen_fetch", name="set_table_actions-fetch",
+                  trace=shipped_runs("set_table_actions", "kitchen_fetch").result.trace)
 
 
 def run_arranged(scenario, seed: int):
@@ -66,9 +72,9 @@ def run_arranged(scenario, seed: int):
         raise
 
 
-@pytest.mark.parametrize("seed", SEEDS)
+@pytest.mark.parametrize("seed", HARD_SEEDS)
 def test_it_sets_the_table_on_random_arrangements_along_the_counter(seed):
-    """On each of 20 seeded arrangements, as the README says ("every time"). One test a seed, so that the
+    """On the hardest five of the README's 20 seeded arrangements ("every time"). One test a seed, so that the
     suite's workers share them out."""
     result, world = run_arranged(prepare(PLAN), seed)
     try:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import pytest
+from shipped_runs import group
 
 from pycram_cli.paths import plans_dir
 from pycram_cli.plan import load_plan, plan_world, run_plan
@@ -22,13 +23,14 @@ def find(node: dict, path_part: str) -> list[dict]:
     return found
 
 
-@pytest.fixture(scope="module")
-def set_table():
-    world, result = run("set_table")
-    yield world, result
-    world.exit()
+@pytest.fixture
+def set_table(shipped_runs):
+    """set_table's run, shared with its golden test (tests/shipped_runs.py): these tests only read it."""
+    run = shipped_runs("set_table")
+    return run.world, run.result
 
 
+@group("set_table")
 def test_set_table_succeeds_with_all_four_objects_stable_at_their_targets(set_table):
     world, result = set_table
     assert result.status == "succeeded", result.failure
@@ -43,12 +45,14 @@ def test_set_table_succeeds_with_all_four_objects_stable_at_their_targets(set_ta
     assert world.robot.attachments == {}
 
 
+@group("set_table")
 def test_set_table_opens_the_drawer_for_the_spoon(set_table):
     world, result = set_table
     assert result.trace["final_state"]["objects"]["kitchen"]["joints"] == {"sink_area_left_upper_drawer_main_joint": 0.3}
     assert [n["status"] for n in find(result.trace["root"], ":accessing")] == ["succeeded"]
 
 
+@group("set_table")
 def test_set_table_moves_the_blocking_cereal_first_by_calling_itself(set_table):
     _, result = set_table
     blocking = find(result.trace["root"], "move_object/4:blocking")
@@ -75,30 +79,28 @@ def test_set_table_fails_with_a_reasoning_failure_when_a_placed_object_is_not_st
         world.exit()
 
 
-def test_fetch_spoon_recovers_from_not_seeing_the_spoon_by_opening_the_drawer():
-    world, result = run("fetch_spoon")
-    try:
-        assert result.status == "succeeded", result.failure
-        attempts = find(result.trace["root"], "body/1:retry/attempt")
-        assert [a["status"] for a in attempts if a["path"].endswith(("attempt 1", "attempt 2"))] == ["failed", "succeeded"]
-        assert attempts[0]["failure"]["type"] == "PerceptionFailure"
-        assert [n["status"] for n in find(result.trace["root"], "recover 1/1:accessing")] == ["succeeded"]
-        assert world.get_object_by_name("spoon").get_position() == pytest.approx((-0.8, 1.4, 0.862), abs=0.002)
-    finally:
-        world.exit()
+@group("fetch_spoon")
+def test_fetch_spoon_recovers_from_not_seeing_the_spoon_by_opening_the_drawer(shipped_runs):
+    run = shipped_runs("fetch_spoon")
+    world, result = run.world, run.result
+    assert result.status == "succeeded", result.failure
+    attempts = find(result.trace["root"], "body/1:retry/attempt")
+    assert [a["status"] for a in attempts if a["path"].endswith(("attempt 1", "attempt 2"))] == ["failed", "succeeded"]
+    assert attempts[0]["failure"]["type"] == "PerceptionFailure"
+    assert [n["status"] for n in find(result.trace["root"], "recover 1/1:accessing")] == ["succeeded"]
+    assert world.get_object_by_name("spoon").get_position() == pytest.approx((-0.8, 1.4, 0.862), abs=0.002)
 
 
-def test_grasp_alternatives_fall_through_and_cancel_the_losers():
-    world, result = run("grasp_alternatives")
-    try:
-        assert result.status == "succeeded", result.failure
-        root = result.trace["root"]
-        order = find(root, "body/2:try_in_order/")
-        assert [(n["status"], n.get("failure", {}).get("type")) for n in order] == [
-            ("failed", "GripperFailure"), ("succeeded", None)]
-        assert [n["status"] for n in find(root, "body/3:try_all/")] == ["succeeded", "cancelled"]
-        assert [n["status"] for n in find(root, "body/1:pursue/")] == ["succeeded", "cancelled"]
-        for name in ("bowl", "milk"):
-            assert stable(world.get_object_by_name(name))
-    finally:
-        world.exit()
+@group("grasp_alternatives")
+def test_grasp_alternatives_fall_through_and_cancel_the_losers(shipped_runs):
+    run = shipped_runs("grasp_alternatives")
+    world, result = run.world, run.result
+    assert result.status == "succeeded", result.failure
+    root = result.trace["root"]
+    order = find(root, "body/2:try_in_order/")
+    assert [(n["status"], n.get("failure", {}).get("type")) for n in order] == [
+        ("failed", "GripperFailure"), ("succeeded", None)]
+    assert [n["status"] for n in find(root, "body/3:try_all/")] == ["succeeded", "cancelled"]
+    assert [n["status"] for n in find(root, "body/1:pursue/")] == ["succeeded", "cancelled"]
+    for name in ("bowl", "milk"):
+        assert stable(world.get_object_by_name(name))

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 
 import pytest
 from click.testing import CliRunner
@@ -10,19 +11,18 @@ from click.testing import CliRunner
 from pycram_cli.cli.main import cli
 from pycram_cli.report.compare import state_notes, step_differences
 
-FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
-
 
 def run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
 
 
 @pytest.fixture(scope="module")
-def runs(tmp_path_factory):
-    """set_table as it is (A) and with the milk's target over the island's edge (B), and their comparison page."""
+def runs(tmp_path_factory, set_table_run, failed_run):
+    """set_table as it is (A) and with the milk's target over the island's edge (B) (their traces made once for the
+    report tests, tests/report/conftest.py), and their comparison page."""
     folder = tmp_path_factory.mktemp("compare")
-    assert run("run", "set_table", "--trace", folder / "a.json").exit_code == 0
-    assert run("run", "set_table", "-p", FAILING, "--trace", folder / "b.json").exit_code == 1
+    shutil.copyfile(set_table_run[1], folder / "a.json")
+    shutil.copyfile(failed_run[1], folder / "b.json")
     result = run("trace", "diff", folder / "a.json", folder / "b.json", "--report", folder / "diff.html")
     assert result.exit_code == 1, result.output  # they differ
     assert f"wrote {folder / 'diff.html'} (comparison report" in result.stderr

@@ -13,18 +13,15 @@ from test_report_browser import CHROMIUM, chromium
 pytestmark = pytest.mark.skipif(
     CHROMIUM is None, reason="no headless browser: Debian's chromium is not installed (.ci/run installs it with apt)")
 
-FAILING = "jobs=[{type: milk, target: [-0.65, 1.0, 0.862], arm: left, look: [1.3, 0.8, 0.95]}]"
 
 
 @pytest.fixture(scope="module")
-def page(tmp_path_factory):
-    """set_table as it is (A, 67 steps) against the milk placed over the island's edge (B, 15 steps)."""
+def page(tmp_path_factory, set_table_run, failed_run):
+    """set_table as it is (A, 67 steps) against the milk placed over the island's edge (B, 15 steps) (their traces
+    made once for the report tests, tests/report/conftest.py)."""
     folder = tmp_path_factory.mktemp("compare-browser")
-    runner = CliRunner()
-    assert runner.invoke(cli, ["run", "set_table", "--trace", str(folder / "a.json")]).exit_code == 0
-    assert runner.invoke(cli, ["run", "set_table", "-p", FAILING, "--trace", str(folder / "b.json")]).exit_code == 1
-    result = runner.invoke(cli, ["trace", "diff", str(folder / "a.json"), str(folder / "b.json"),
-                                 "--report", str(folder / "diff.html")])
+    result = CliRunner().invoke(cli, ["trace", "diff", str(set_table_run[1]), str(failed_run[1]),
+                                      "--report", str(folder / "diff.html")])
     assert result.exit_code == 1, result.output
     return folder / "diff.html"
 

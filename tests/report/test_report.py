@@ -25,13 +25,10 @@ def page_data(path: Path) -> dict:
     return json.loads(match.group(1))
 
 
-@pytest.fixture(scope="module")
-def set_table_report(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("report")
-    result = run("run", "set_table", "--report", folder / "run.html", "--trace", folder / "run.json")
-    assert result.exit_code == 0, result.output
-    assert f"wrote {folder / 'run.html'} (replay report" in result.stderr
-    return folder / "run.html", folder / "run.json"
+@pytest.fixture
+def set_table_report(set_table_run):
+    """set_table's report and trace, made once for the report tests (tests/report/conftest.py)."""
+    return set_table_run
 
 
 def test_the_report_is_one_small_self_contained_file(set_table_report):
@@ -125,12 +122,10 @@ def test_names_and_messages_that_look_like_html_are_embedded_so_the_page_still_s
     assert text.rstrip().endswith("</html>") and text.count("<script") == text.lower().count("</script>")
 
 
-@pytest.fixture(scope="module")
-def actions_trace(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("actions")
-    result = run("run", "set_table_actions", "--report", folder / "run.html", "--trace", folder / "run.json")
-    assert result.exit_code == 0, result.output
-    return folder / "run.html", folder / "run.json"
+@pytest.fixture
+def actions_trace(actions_run):
+    """set_table_actions' report and trace, made once for the report tests (tests/report/conftest.py)."""
+    return actions_run
 
 
 def test_the_report_of_set_table_actions_stays_under_2_mb(actions_trace):

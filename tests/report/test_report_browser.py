@@ -32,12 +32,10 @@ def chromium(profile: Path, *args: str) -> subprocess.CompletedProcess:
     return subprocess.run([CHROMIUM, *flags, *args], capture_output=True, timeout=180)
 
 
-@pytest.fixture(scope="module")
-def report(tmp_path_factory) -> Path:
-    path = tmp_path_factory.mktemp("browser") / "run.html"
-    result = CliRunner().invoke(cli, ["run", "set_table", "--report", str(path)])
-    assert result.exit_code == 0, result.output
-    return path
+@pytest.fixture
+def report(set_table_run: tuple[Path, Path]) -> Path:
+    """set_table's report, made once for the report tests (tests/report/conftest.py)."""
+    return set_table_run[0]
 
 
 def body_of(dom: str) -> dict[str, str]:
@@ -131,18 +129,11 @@ def test_the_layout_holds_at_800_pixels(report, tmp_path):
     assert (np.abs(view - np.array([0xDD, 0xE3, 0xEA])).sum(axis=2) > 30).mean() > 0.3  # the scene is drawn
 
 
-FAILING = {"jobs": [{"type": "milk", "target": [-0.65, 1.0, 0.862], "arm": "left", "look": [1.3, 0.8, 0.95]}]}
-
-
-@pytest.fixture(scope="module")
-def failed_report(tmp_path_factory) -> Path:
-    """The README's failing example: the milk placed over the island's edge falls while place settles it."""
-    import json as _json
-    path = tmp_path_factory.mktemp("failed") / "run.html"
-    result = CliRunner().invoke(cli, ["run", "set_table", "-p", f"jobs={_json.dumps(FAILING['jobs'])}",
-                                      "--report", str(path)])
-    assert result.exit_code == 1, result.output
-    return path
+@pytest.fixture
+def failed_report(failed_run: tuple[Path, Path]) -> Path:
+    """The README's failing example: the milk placed over the island's edge falls while place settles it (the report
+    made once for the report tests, tests/report/conftest.py)."""
+    return failed_run[0]
 
 
 def _page_data(path: Path) -> dict:
@@ -196,14 +187,11 @@ def test_a_frame_in_the_middle_of_place_shows_the_milk_falling(failed_report, tm
     assert 10 < middle[1] < lying[1] - 10 or lying[0] + 0.05 < middle[0] < 0.85, (standing, middle, lying)
 
 
-@pytest.fixture(scope="module")
-def actions_report(tmp_path_factory) -> tuple[Path, Path]:
-    """set_table_actions: locate steps (candidate maps) and looking steps (view cones)."""
-    folder = tmp_path_factory.mktemp("actions")
-    result = CliRunner().invoke(cli, ["run", "set_table_actions", "--report", str(folder / "run.html"),
-                                      "--trace", str(folder / "run.json")])
-    assert result.exit_code == 0, result.output
-    return folder / "run.html", folder / "run.json"
+@pytest.fixture
+def actions_report(actions_run: tuple[Path, Path]) -> tuple[Path, Path]:
+    """set_table_actions: locate steps (candidate maps) and looking steps (view cones), made once for the report
+    tests (tests/report/conftest.py)."""
+    return actions_run
 
 
 def test_the_candidate_map_and_the_view_cone_are_drawn_from_the_trace(actions_report, tmp_path):

@@ -22,6 +22,10 @@ from click.testing import CliRunner
 from pycram_cli.cli.main import cli
 from pycram_cli.robots.zoo import CAMERA_KINDS, ZooRobot, generate, main, world_joints, write, write_world
 
+#: the module's tests on one pytest-xdist worker: the 20 robots (`zoo`, about 20 s) are generated once, not once on
+#: each worker that gets some of the module's tests
+pytestmark = pytest.mark.xdist_group("zoo")
+
 SEEDS = range(20)
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from shipped_runs import each_plan
 
 from pycram_cli.scenario import golden
 
@@ -28,8 +29,9 @@ def test_no_golden_trace_without_its_plan():
     assert not orphans, f"golden traces of plans that no longer exist: {', '.join(orphans)}"
 
 
-@pytest.mark.parametrize("plan", PLANS, ids=[p.stem for p in PLANS])
-def test_plan_matches_its_golden_trace(plan, pycram_golden):
+@pytest.mark.parametrize("plan", each_plan())
+def test_plan_matches_its_golden_trace(plan, pycram_golden, shipped_runs):
+    """The run compared is the one other tests read too (tests/shipped_runs.py): the plan runs once."""
     if not golden.golden_path(plan, GOLDEN).is_file():
         pytest.skip("no golden trace yet (see test_every_plan_has_a_golden_trace)")
-    pycram_golden(plan, golden=golden.golden_path(plan, GOLDEN))
+    pycram_golden(plan, golden=golden.golden_path(plan, GOLDEN), trace=shipped_runs(plan.stem).result.trace)
