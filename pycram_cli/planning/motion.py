@@ -11,22 +11,23 @@ already exist where the motion starts may stay (a hand on a handle, a carton on 
 while it is lifted off), as long as they get no deeper.
 
 How densely the path is checked — conservative advancement, for each moving part, with a floor.
-Along the path, a point of a mover k (a link, or a held object) moves at most Σᵢ rᵢₖ·|Δqᵢ| per
-unit of the path, where rᵢₖ is the farthest corner of k's box from joint i's axis, over the moving
-joints i above k (1 for a prismatic joint); since rᵢₖ changes only as the joints below i move k,
-it is inflated by k's travel since it was measured and re-measured every `LEVER_REFRESH` of
-travel. Each mover's clearance (the gap between its box and every obstacle's box, measured exactly
-where the boxes are near) is how far it may move before the next check, never less than
-`SPACING`, 1 cm; the next check comes when the first mover may have used up its own (a gripper
-far from everything does not slow the check of an upper arm brushing the counter, nor the other
-way round). A collision can then only be missed where a link passes wholly through an obstacle
-within 1 cm of travel, i.e. where link and obstacle together are thinner than 1.1 cm along the
-motion. Nothing the robots and worlds here move or hit is that thin: the PR2's finger links are
-1.5–2 cm across, the bundled kitchen's thinnest boxes (drawer bottom and walls) 1.2 cm, the real
-IAI kitchen's drawer walls 1.8 cm; a link and an obstacle are also never both at their thinnest
-along the direction of travel. In free space the checks are far apart (a park motion takes a
-handful), near the kitchen 1–3 cm of the nearest part's travel apart. Before a walk, obstacles
-farther from the outermost moving joint than the moving part reaches (`_levers`) are set aside.
+Each mover's (a link's, or a held object's) clearance (the gap between its box and every obstacle's
+box, measured exactly where the boxes are near) is how far it may move before the next check, never
+less than `SPACING`, 1 cm; the next check comes when the first mover may have used up its own (a
+gripper far from everything does not slow the check of an upper arm brushing the counter, nor the
+other way round). How far a mover can move over a step is bounded in `pace.py`: by the velocity of
+its box's corners where the step starts (the Jacobian times the joints' change) plus a bound of how
+much that velocity can change over the step, or by its levers (Σᵢ rᵢₖ·|Δqᵢ|, rᵢₖ the farthest corner
+of k's box from joint i's axis), whichever allows the longer step (an approach that stops at contact
+keeps the levers alone, measured afresh every `LEVER_REFRESH` of travel). A collision can then only
+be missed where a link passes wholly through an obstacle within 1 cm of travel, i.e. where link and
+obstacle together are thinner than 1.1 cm along the motion. Nothing the robots and worlds here move
+or hit is that thin: the PR2's finger links are 1.5–2 cm across, the bundled kitchen's thinnest
+boxes (drawer bottom and walls) 1.2 cm, the real IAI kitchen's drawer walls 1.8 cm; a link and an
+obstacle are also never both at their thinnest along the direction of travel. In free space the
+checks are far apart (a park motion takes a handful), near the kitchen 1–3 cm of the nearest part's
+travel apart. Before a walk, obstacles farther from the outermost moving joint than the moving part
+reaches (`_levers`) are set aside.
 
 Robot-specific knowledge (which joints an arm or a gripper has) comes from the description; the
 geometry comes from the world (`closest_points`, boxes); nothing here calls PyBullet.
@@ -44,6 +45,8 @@ from ..failures import ManipulationFailure
 from ..robots import Robot
 from ..world import Object
 from ..world.pose import quat_to_matrix, quats_to_matrices
+from .pace import Pace, Pacer, corners
+from .pace import levers as levers_of
 
 #: deeper than this inside something is a collision (m); resting contact sits at about 1e-5 m
 PENETRATION = 0.001
@@ -52,7 +55,7 @@ SPACING = 0.01
 #: boxes closer than this are measured exactly (closest points), so that a check near big boxes (a counter, a
 #: cabinet) steps as far as the parts' true distance allows, not only as far as their boxes' gap (m)
 NEAR = 0.03
-#: the levers (see `walk`) are measured afresh after this much travel (m)
+#: an approach's levers (see `_follow`) are measured afresh after this much travel (m)
 LEVER_REFRESH = 0.1
 #: approaches stop this close to the first contact (m of travel)
 PRECISION = 0.001
@@ -89,11 +92,6 @@ def followers(body: Object) -> list[Object]:
                 found.append(child)
                 frontier.append(child)
     return found
-
-
-#: the 8 corners of a box from its (lo, hi) pair: which of the two each coordinate comes from
-_CORNER_BITS = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
-_AXES = np.arange(3)[None, :]
 
 
 class Motion:
@@ -207,7 +205,7 @@ class Motion:
         return (float(clear.min()) if len(clear) else math.inf), hits
 
     def clearances(self, boxes: tuple[np.ndarray, np.ndarray] | None = None,
-                   rates: tuple[np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, list[Hit]]:
+                   rates: Pace | None = None) -> tuple[np.ndarray, list[Hit]]:
         """`scan` for each mover (the links, then the held objects): a lower bound of its gap to the obstacles, and
         what the moving part is inside of.
 
@@ -216,8 +214,8 @@ class Motion:
         while it can still matter (the distance between two parts is never below the gap between their boxes, so
         a mover's bound is the smaller of what was measured and its nearest unmeasured pair's box gap):
         - without `rates`, for every mover, nearest boxes first, until its bound is at SPACING or exact;
-        - with `rates` (a path's check: each mover's travel per unit of the path is `base + travel · weight`, see
-          `_follow`), only the mover that limits the next step is measured further, until its bound is at SPACING
+        - with `rates` (a path's check: how far each mover's travel lets the path step, see `_follow` and
+          `pace.py`), only the mover that limits the next step is measured further, until its bound is at SPACING
           or exact: the step the bounds allow is then the one exact clearances would allow, with fewer queries."""
         count = len(self.links) + len(self.held)
         if not count:
@@ -251,7 +249,7 @@ class Motion:
         apart = np.where(near & (gaps > 0.0), gaps, math.inf)  # the near pairs whose boxes are apart
         return self._refined(np.array(lows), apart, rates), found
 
-    def _refined(self, lows: np.ndarray, apart: np.ndarray, rates: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
+    def _refined(self, lows: np.ndarray, apart: np.ndarray, rates: Pace | None) -> np.ndarray:
         """Each mover's bound (see `clearances`): the smaller of what is known of it (`lows`) and its nearest
         unmeasured pair's box gap (`apart`, inf where there is none), pairs measured as far as they matter."""
         nearest = apart.min(axis=1)
@@ -261,19 +259,15 @@ class Motion:
                 while nearest[k] < lows[k] and lows[k] > SPACING:
                     self._measure(k, lows, apart, nearest, bound)
             return bound
-        base, weight = rates
-        moving = (base + weight) > 0.0
+        moving = rates.moving()
         while True:
-            travel = np.maximum(np.minimum(bound, 1.0), SPACING)
-            step = np.where(moving, travel / np.where(moving, base + travel * weight, 1.0), math.inf)
+            step = rates.steps(np.maximum(np.minimum(bound, 1.0), SPACING))
             k = int(np.argmin(step))
             if not moving[k] or nearest[k] >= lows[k] or lows[k] <= SPACING:
                 return bound  # the mover that limits the step is measured as far as it matters
             # the clearance k needs to step as far as the next mover lets the path step: no farther is asked
             following = float(np.partition(step, 1)[1]) if len(step) > 1 else math.inf
-            enough = math.inf
-            if following * weight[k] < 1.0:
-                enough = max(following * base[k] / (1.0 - following * weight[k]), SPACING)
+            enough = max(rates.needed(following, k), SPACING)
             self._measure(k, lows, apart, nearest, bound, enough)
 
     def _measure(self, k: int, lows: np.ndarray, apart: np.ndarray, nearest: np.ndarray, bound: np.ndarray,
@@ -327,23 +321,30 @@ class Motion:
             found.append(tuple(reversed(ancestors)))
         return found
 
-    def _local_levers(self, m_lo: np.ndarray, m_hi: np.ndarray, below: np.ndarray) -> np.ndarray:
-        """rᵢₖ now, (joints, movers): the farthest corner of mover k's box from joint i's axis where k hangs below
-        joint i (`below[i, k]`), else 0; 1 for a prismatic joint above it.
-
-        The farthest point of a box from a line is one of its corners, so this bounds every point of the mover.
-        """
-        corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
+    def _axes(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each moving joint's axis in the world now: a point on it (its link's frame) and its unit direction."""
         poses = self.body.link_poses(self._indices)  # read at once (the same numbers as one by one)
         frames = [poses[index] for index in self._indices]
-        origins = np.array([f[0] for f in frames])
+        origins = np.array([f[0] for f in frames], dtype=float).reshape(-1, 3)
         axes = np.einsum("nij,nj->ni", quats_to_matrices(np.array([f[1] for f in frames], dtype=float).reshape(-1, 4)),
                          self._joint_axes)
-        rel = corners[None, :, :, :] - origins[:, None, None, :]  # (joints, movers, 8, 3)
-        along = np.einsum("nmcd,nd->nmc", rel, axes)
-        perpendicular = np.sqrt(np.maximum(np.einsum("nmcd,nmcd->nmc", rel, rel) - along * along, 0.0)).max(axis=2)
-        levers = np.where(self._prismatic[:, None], 1.0, perpendicular)
-        return np.where(below, levers, 0.0)
+        return origins, axes
+
+    def _local_levers(self, m_lo: np.ndarray, m_hi: np.ndarray, below: np.ndarray) -> np.ndarray:
+        """rᵢₖ now, (joints, movers): the farthest corner of mover k's box from joint i's axis where k hangs below
+        joint i (`below[i, k]`), else 0; 1 for a prismatic joint above it (`pace.levers`)."""
+        return levers_of(corners(m_lo, m_hi), *self._axes(), self._prismatic, below)
+
+    def _nesting(self) -> tuple[np.ndarray, np.ndarray]:
+        """`below[i, k]`: mover k hangs below moving joint i; `inner[i, j]`: moving joint i hangs below joint j."""
+        parts = self._parts()
+        below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
+        pairs = {(i, j) for ancestors in set(parts) for position, i in enumerate(ancestors) for j in ancestors[:position]}
+        inner = np.zeros((len(self.joints), len(self.joints)), dtype=bool)
+        if pairs:
+            rows, columns = zip(*pairs)
+            inner[list(rows), list(columns)] = True
+        return below.reshape(len(self.joints), len(parts)), inner
 
     def _levers(self) -> np.ndarray:
         """rᵢ for each moving joint: how far a point of the moving part can be from joint i (1 for a prismatic joint)."""
@@ -353,10 +354,9 @@ class Motion:
         parts = self._parts()
         if not any(parts):
             return levers
-        m_lo, m_hi = self._mover_boxes()
-        corners = np.stack([m_lo, m_hi])[_CORNER_BITS, :, _AXES].transpose(2, 0, 1)  # (movers, 8, 3)
+        points = corners(*self._mover_boxes())  # (movers, 8, 3)
         # the farthest corner of each mover from each joint's origin, and the joints' origins from each other
-        far = np.sqrt(np.sum((corners[:, None, :, :] - origins[None, :, None, :]) ** 2, axis=3)).max(axis=2).tolist()
+        far = np.sqrt(np.sum((points[:, None, :, :] - origins[None, :, None, :]) ** 2, axis=3)).max(axis=2).tolist()
         apart = np.sqrt(np.sum((origins[:, None, :] - origins[None, :, :]) ** 2, axis=2)).tolist()
         prismatic = self._prismatic.tolist()
         for k, ancestors in enumerate(parts):  # the moving joints above mover k, outermost first
@@ -423,55 +423,60 @@ class Motion:
     def _follow(self, start: np.ndarray, end: np.ndarray, stop_at_contact: bool = False) -> tuple[float, list[Hit]]:
         """The checks of `walk` along the straight path from `start` to `end` (the joints are put back at `start`):
         how far it is free (a fraction) and what ends it."""
-        parts = self._parts()
-        below = np.array([[i in ancestors for ancestors in parts] for i in range(len(self.joints))], dtype=bool)
-        delta = np.abs(end - start)
+        below, inner = self._nesting()
+        delta = end - start
+        size = np.abs(delta)
         # how much of each mover's lever bound each joint's change adds per unit of travel of the mover (see below)
-        weights = (below * delta[:, None]).sum(axis=0)
+        weights = (below * size[:, None]).sum(axis=0)
         t, last_free = 0.0, 0.0
         hits: list[Hit] = []
         total = 0.0
-        levers, since = None, np.zeros(len(parts))
+        levers, since = None, np.zeros(below.shape[1])
+        pacer = Pacer(delta, self._prismatic, below, inner)
         try:
             while True:
-                self._put(start + t * (end - start))
+                self._put(start + t * delta)
                 boxes = self._mover_boxes()
-                # no point of mover k moves farther than `travel[k]` before the next check. Along the path, a point
-                # of k moves at most Σᵢ rᵢₖ·|Δqᵢ| per unit of t; its distance from joint i's axis changes only as
-                # the joints below i move it, so by no more than its travel since the levers were measured
-                # (`since`) plus this step's: they are measured afresh every LEVER_REFRESH of travel
-                if levers is None or since.max() > LEVER_REFRESH:
-                    levers, since = self._local_levers(*boxes, below), np.zeros(len(parts))
-                base = delta @ levers + since * weights
-                clear, hits = self.clearances(boxes, (base, weights))
+                if stop_at_contact:
+                    # an approach keeps the lever bound alone (pace.py): its levers are inflated by each mover's
+                    # travel since they were measured (`since`) and measured afresh every LEVER_REFRESH of travel
+                    if levers is None or since.max() > LEVER_REFRESH:
+                        levers, since = self._local_levers(*boxes, below), np.zeros(below.shape[1])
+                    rates = Pace.of_levers(size @ levers + since * weights, weights)
+                else:  # no part travels farther than the better of the lever and the Jacobian bound (pace.py)
+                    rates = pacer.at(corners(*boxes), *self._axes())
+                clear, hits = self.clearances(boxes, rates)
                 if hits:
                     break
                 last_free = t
                 if t >= 1.0:
                     break
                 travel = np.maximum(np.minimum(clear, 1.0), SPACING)
-                rates = base + travel * weights
-                moving = rates > 0
-                if not moving.any():
+                step = float(rates.steps(travel).min())
+                if not math.isfinite(step):  # nothing moves
                     t = 1.0
                     continue
-                total = max(total, float(rates.max()))
-                step = float(np.min(travel[moving] / rates[moving]))
-                since += rates * min(step, 1.0 - t)
+                speeds = rates.rates(travel)
+                total = max(total, float(speeds.max()))
+                since += speeds * min(step, 1.0 - t)
                 t = min(1.0, t + step)
             if hits and stop_at_contact:
-                low, high = last_free, t
-                while (high - low) * total > PRECISION:
-                    mid = (low + high) / 2.0
-                    self._put(start + mid * (end - start))
-                    if self.scan()[1]:
-                        high = mid
-                    else:
-                        low = mid
-                last_free = low
+                last_free = self._contact(start, delta, last_free, t, total)
         finally:
             self._put(start)
         return last_free, hits
+
+    def _contact(self, start: np.ndarray, delta: np.ndarray, low: float, high: float, rate: float) -> float:
+        """The last free point of the path before its first contact, which lies between `low` (free) and `high`
+        (not), found within PRECISION of travel (no part moves faster than `rate` per unit of the path)."""
+        while (high - low) * rate > PRECISION:
+            mid = (low + high) / 2.0
+            self._put(start + mid * delta)
+            if self.scan()[1]:
+                high = mid
+            else:
+                low = mid
+        return low
 
 
 def short_way(body: Object, names: Sequence[str], start: np.ndarray, end: np.ndarray) -> np.ndarray:

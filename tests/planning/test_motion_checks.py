@@ -6,39 +6,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 
-from pycram_cli import load_world
 from pycram_cli.planning import motion, paths
-from pycram_cli.planning.reach import arm_configuration
-from pycram_cli.robots import Robot
-
-
-@pytest.fixture(scope="module")
-def kitchen():
-    world = load_world()
-    yield world
-    world.exit()
-
-
-@pytest.fixture
-def world(kitchen):
-    with kitchen.snapshot():
-        kitchen.cache.forget(motion.MEMO)
-        yield kitchen
-        kitchen.cache.forget(motion.MEMO)
-
-
-def at_the_counter(world):
-    """The PR2 before the counter (as the demo stands to take the milk), its left arm parked; the arm's joints, and
-    a goal reaching out over the counter."""
-    world.robot.set_position_and_orientation((0.65, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
-    robot = Robot.of(world)
-    park = arm_configuration(robot, "left", "park")
-    world.robot.reset_joints(park)
-    joints = list(park)
-    out = dict(zip(joints, [0.3, -0.2, 0.5, -1.0, 0.0, -0.5, 0.0]))
-    return robot, joints, out
 
 
 def counting(monkeypatch, name):
@@ -56,8 +25,8 @@ def counting(monkeypatch, name):
     return calls
 
 
-def test_a_walk_made_again_in_the_same_situation_is_remembered(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_a_walk_made_again_in_the_same_situation_is_remembered(counter, world, monkeypatch):
+    robot, joints, out = counter
     follows = counting(monkeypatch, "_follow")
     first = motion.Motion(robot, joints).walk(out)
     before = world.robot.get_joint_positions(joints)
@@ -67,8 +36,8 @@ def test_a_walk_made_again_in_the_same_situation_is_remembered(world, monkeypatc
     assert world.robot.get_joint_positions(joints) == before  # left as a walk leaves it: where it started
 
 
-def test_a_remembered_answer_is_a_copy(world):
-    robot, joints, out = at_the_counter(world)
+def test_a_remembered_answer_is_a_copy(counter):
+    robot, joints, out = counter
     first = motion.Motion(robot, joints).walk(out)
     first[1].append("changed by the caller")
     first[2].clear()
@@ -76,8 +45,8 @@ def test_a_remembered_answer_is_a_copy(world):
     assert "changed by the caller" not in again[1] and again[2]
 
 
-def test_an_object_moved_into_the_way_is_seen(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_an_object_moved_into_the_way_is_seen(counter, world, monkeypatch):
+    robot, joints, out = counter
     fraction, hits, _ = motion.Motion(robot, joints).walk(out)
     assert fraction == 1.0 and not hits
     milk = world.get_object_by_name("milk")
@@ -91,8 +60,8 @@ def test_an_object_moved_into_the_way_is_seen(world, monkeypatch):
     assert hits and fraction < 1.0
 
 
-def test_the_robot_elsewhere_or_holding_something_asks_again(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_the_robot_elsewhere_or_holding_something_asks_again(counter, world, monkeypatch):
+    robot, joints, out = counter
     motion.Motion(robot, joints).walk(out)
     follows = counting(monkeypatch, "_follow")
     world.robot.set_position_and_orientation((0.64, 0.7, 0.0), (0.0, 0.0, 0.0, 1.0))
@@ -105,8 +74,8 @@ def test_the_robot_elsewhere_or_holding_something_asks_again(world, monkeypatch)
     assert len(follows) == 2
 
 
-def test_a_state_restored_is_the_situation_it_was(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_a_state_restored_is_the_situation_it_was(counter, world, monkeypatch):
+    robot, joints, out = counter
     with world.snapshot():
         first = motion.Motion(robot, joints).walk(out)
         world.get_object_by_name("milk").set_position((5.0, 5.0, 0.5))
@@ -115,8 +84,8 @@ def test_a_state_restored_is_the_situation_it_was(world, monkeypatch):
     assert not follows
 
 
-def test_a_world_that_does_not_track_its_changes_remembers_nothing(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_a_world_that_does_not_track_its_changes_remembers_nothing(counter, world, monkeypatch):
+    robot, joints, out = counter
     monkeypatch.setattr(type(world), "tracks_changes", property(lambda self: False))
     assert motion.Motion(robot, joints).situation() is None
     follows = counting(monkeypatch, "_follow")
@@ -125,8 +94,8 @@ def test_a_world_that_does_not_track_its_changes_remembers_nothing(world, monkey
     assert len(follows) == 2
 
 
-def test_a_search_made_again_is_remembered_even_when_it_found_nothing(world, monkeypatch):
-    robot, joints, out = at_the_counter(world)
+def test_a_search_made_again_is_remembered_even_when_it_found_nothing(counter, monkeypatch):
+    robot, joints, out = counter
     searches = counting(monkeypatch, "_search")
     first = paths.search_path(robot, out, edges=3)
     again = paths.search_path(robot, out, edges=3)
@@ -151,10 +120,10 @@ def every_pair(m: motion.Motion) -> tuple[float, list[tuple[str, str, float]]]:
     return clearance, sorted(hits, key=lambda h: -h[2])
 
 
-def test_a_check_skips_only_pairs_that_cannot_matter(world):
+def test_a_check_skips_only_pairs_that_cannot_matter(counter):
     """Along the arm's way from park down into the counter: the same hits as measuring every pair, and the same
     clearance wherever it is above SPACING (below it, every check steps SPACING anyway)."""
-    robot, joints, out = at_the_counter(world)
+    robot, joints, out = counter
     down = {**out, joints[1]: 1.2}
     m = motion.Motion(robot, joints)
     start, end = m._endpoints(down)
