@@ -100,6 +100,8 @@ class Pace:
 
     def needed(self, step: float, k: int) -> float:
         """The travel mover k must be allowed for a step of `step` (inf: none is enough): `steps` inverted."""
+        if not math.isfinite(step):  # no other mover limits the path (inf · 0 below would be NaN)
+            return math.inf
         lever = math.inf
         if step * self.weight[k] < 1.0:
             lever = step * float(self.base[k]) / (1.0 - step * float(self.weight[k]))
