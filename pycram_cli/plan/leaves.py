@@ -57,21 +57,29 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
     return parser.names_only(value)
 
 
-# -- motion designators -------------------------------------------------------------------------------
-@node_family("designator", lambda: DESIGNATORS.keys())
-class DesignatorStep(Node):
+class _MappingStep(Node):
+    """A leaf step whose head names what it runs and whose value is a mapping (a designator's slots, a query's
+    arguments): the one way both are parsed; each subclass keeps the mapping under its own attribute name."""
+
     BINDS = True
     LEAF = True
+    WHAT = "mapping"  # what the mapping is, in the error for a value that is not one
+
+    @classmethod
+    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
+        value = _mapping(step[head], step.loc(head, True), head, parser, cls.WHAT)
+        return None if value is None else cls(head, step.loc(head), value)  # type: ignore[call-arg]
+
+
+# -- motion designators -------------------------------------------------------------------------------
+@node_family("designator", lambda: DESIGNATORS.keys())
+class DesignatorStep(_MappingStep):
+    WHAT = "slots"
     DOC = "perform a motion designator through its process module"
 
     def __init__(self, head: str, where: Location, slots: LMap) -> None:
         super().__init__(head, where)
         self.slots = slots
-
-    @classmethod
-    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        slots = _mapping(step[head], step.loc(head, True), head, parser, "slots")
-        return None if slots is None else cls(head, step.loc(head), slots)
 
     def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
         return analysis.designator(self.head, self.slots)
@@ -125,19 +133,13 @@ def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
 
 
 @node_family("query", lambda: QUERIES.keys())
-class QueryStep(Node):
-    BINDS = True
-    LEAF = True
+class QueryStep(_MappingStep):
+    WHAT = "arguments"
     DOC = "ask a reasoning query; records the answer (bind it with `as`)"
 
     def __init__(self, head: str, where: Location, args: LMap) -> None:
         super().__init__(head, where)
         self.args = args
-
-    @classmethod
-    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        args = _mapping(step[head], step.loc(head, True), head, parser, "arguments")
-        return None if args is None else cls(head, step.loc(head), args)
 
     def check(self, v: Validator) -> None:
         check_query(self.head, self.args, v)
