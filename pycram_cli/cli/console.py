@@ -17,7 +17,7 @@ from rich.text import Text
 
 from ..errors import InputError
 from ..jsonable import jsonable
-from ..paths import Found
+from ..paths import Found, available
 
 # Piped output is not cut to 80 columns: tables stay one row per line for grep and friends.
 # No emoji codes: `file:100:3` must not print as `file💯3`.
@@ -66,19 +66,23 @@ def success(message: str) -> None:
         out.print(message, markup=False)
 
 
-def show_found(found: Sequence[Found], entries: Sequence[dict[str, Any]], title: str, columns: Sequence[str],
+def show_found(kind: str, entry: Callable[[Found], dict[str, Any]], as_json: bool, columns: Sequence[str],
                cells: Callable[[dict[str, Any]], Sequence[str]], lines: Callable[[dict[str, Any]], list[str]]) -> None:
-    """A listing of plans or worlds (`paths.Found`, each with its entry) as `pycram plans` and `pycram worlds` show it:
-    a table on a terminal (name, origin, then `cells(entry)`), else a line a name with `lines(entry)` indented below
-    it; with --json the caller emits the entries instead."""
-    if out.is_terminal:
-        table(f"{len(entries)} {title}", ["name", "from", *columns],
+    """List the plans or worlds (`kind`) a name can mean as `pycram plans` and `pycram worlds` do: each `paths.Found`
+    and its `entry`; with --json the entries, else a table on a terminal (name, origin, then `cells(entry)`), else a
+    line a name with `lines(entry)` indented below it."""
+    found = available(kind)
+    entries = [entry(item) for item in found]
+    if as_json:
+        emit_json(entries)
+    elif out.is_terminal:
+        table(f"{len(entries)} {kind}", ["name", "from", *columns],
               [(e["name"], f.origin.replace("  ", "\n", 1), *cells(e)) for f, e in zip(found, entries)])
-        return
-    for f, e in zip(found, entries):
-        plain(f"{e['name']}  {f.origin}")
-        for line in lines(e):
-            plain(f"  {line}")
+    else:
+        for f, e in zip(found, entries):
+            plain(f"{e['name']}  {f.origin}")
+            for line in lines(e):
+                plain(f"  {line}")
 
 
 def input_errors(errors: Sequence[InputError]) -> None:

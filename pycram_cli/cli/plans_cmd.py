@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from ..errors import InputError, PycramError, as_list
-from ..paths import Found, available
+from ..paths import Found
 from ..plan import parse_plan
 from ..plan.params import value_text
 from ..plan.syntax import Param
@@ -57,11 +57,6 @@ def about(entry: dict[str, Any]) -> list[str]:
 @json_option
 def plans(as_json: bool) -> None:
     """List the plans: the working folder's plans/ first, then the bundled ones, with descriptions and parameters."""
-    found = available("plans")
-    entries = [plan_entry(item) for item in found]
-    if as_json:
-        console.emit_json(entries)
-    else:
-        console.show_found(found, entries, "plans", ["description", "parameters"],
-                           lambda e: ("\n".join(about(e)), "\n".join(param_text(p) for p in e["params"]) or "-"),
-                           lambda e: [*about(e), *(param_text(p) for p in e["params"])])
+    console.show_found("plans", plan_entry, as_json, ["description", "parameters"],
+                       lambda e: ("\n".join(about(e)), "\n".join(param_text(p) for p in e["params"]) or "-"),
+                       lambda e: [*about(e), *(param_text(p) for p in e["params"])])

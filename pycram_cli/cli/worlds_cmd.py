@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from ..errors import PycramError, as_list
-from ..paths import Found, available
+from ..paths import Found
 from ..worldfile.spec import parse_world
 from . import console
 from .options import json_option
@@ -48,16 +48,11 @@ def objects_text(entry: dict[str, Any]) -> str:
 @json_option
 def worlds(as_json: bool) -> None:
     """List the worlds: the working folder's worlds/ first, then the bundled ones, with their robot and objects."""
-    found = available("worlds")
-    entries = [world_entry(item) for item in found]
-    if as_json:
-        console.emit_json(entries)
-    else:
-        console.show_found(found, entries, "worlds", ["description", "robot", "objects"],
-                           lambda e: ("\n".join(about(e)), robot_text(e["robot"]) if not e["problems"] else "-",
-                                      objects_text(e)),
-                           lambda e: about(e) + ([f"robot: {robot_text(e['robot'])}", f"objects: {objects_text(e)}"]
-                                                 if not e["problems"] else []))
+    console.show_found("worlds", world_entry, as_json, ["description", "robot", "objects"],
+                       lambda e: ("\n".join(about(e)), robot_text(e["robot"]) if not e["problems"] else "-",
+                                  objects_text(e)),
+                       lambda e: about(e) + ([f"robot: {robot_text(e['robot'])}", f"objects: {objects_text(e)}"]
+                                             if not e["problems"] else []))
 
 
 def about(entry: dict[str, Any]) -> list[str]:

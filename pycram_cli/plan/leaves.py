@@ -22,6 +22,8 @@ mapping (`{blocking: {...}}`: true when it answers true or a non-empty list),
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
 from ..designators import DESIGNATORS, check_designator, perform
@@ -57,21 +59,44 @@ def _mapping(value: Any, where: Location, head: str, parser: Parser, what: str) 
     return parser.names_only(value)
 
 
-# -- motion designators -------------------------------------------------------------------------------
-@node_family("designator", lambda: DESIGNATORS.keys())
-class DesignatorStep(Node):
+class _MappingStep(Node):
+    """A leaf step whose head names what it runs and whose value is a mapping (a designator's slots, a query's
+    arguments): the one way both are parsed and kept; each subclass keeps the mapping under its own attribute name."""
+
     BINDS = True
     LEAF = True
-    DOC = "perform a motion designator through its process module"
+    WHAT = "mapping"  # what the mapping is, in the error for a value that is not one
+    ATTRIBUTE = "mapping"  # the attribute the subclass reads it from (declared there, for the type checker)
 
-    def __init__(self, head: str, where: Location, slots: LMap) -> None:
+    def __init__(self, head: str, where: Location, mapping: LMap) -> None:
         super().__init__(head, where)
-        self.slots = slots
+        setattr(self, self.ATTRIBUTE, mapping)
 
     @classmethod
     def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        slots = _mapping(step[head], step.loc(head, True), head, parser, "slots")
-        return None if slots is None else cls(head, step.loc(head), slots)
+        value = _mapping(step[head], step.loc(head, True), head, parser, cls.WHAT)
+        return None if value is None else cls(head, step.loc(head), value)
+
+
+@contextmanager
+def _world_call(ex: Runtime, name: str) -> Iterator[None]:
+    """Hold the world while a designator or query runs, and turn an error of a value it cannot use into the
+    failure plans handle; a failure passes as it is, anything else is a bug (an internal error)."""
+    with ex.world_action():
+        try:
+            yield
+        except Failure:
+            raise
+        except PycramError as exc:
+            raise as_failure(exc, name) from exc
+
+
+# -- motion designators -------------------------------------------------------------------------------
+@node_family("designator", lambda: DESIGNATORS.keys())
+class DesignatorStep(_MappingStep):
+    WHAT = ATTRIBUTE = "slots"
+    DOC = "perform a motion designator through its process module"
+    slots: LMap
 
     def resources(self, analysis: ResourceAnalysis) -> frozenset[str]:
         return analysis.designator(self.head, self.slots)
@@ -86,14 +111,8 @@ class DesignatorStep(Node):
     def execute(self, ex: Runtime, tn: Record) -> Any:
         values = ex.evaluate(self.slots)
         tn.info["designator"] = {"slots": jsonable(values)}
-        with ex.world_action():  # perform checks the slots' run-time values against the robot
-
-            try:
-                performed = perform(ex.world, self.head, values)
-            except Failure:
-                raise
-            except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
-                raise as_failure(exc, self.head) from exc
+        with _world_call(ex, self.head):  # perform checks the slots' run-time values against the robot
+            performed = perform(ex.world, self.head, values)
             tn.info["designator"] = {**tn.info["designator"], "resolved": jsonable(performed.resolved)}
         return performed.result
 
@@ -112,32 +131,18 @@ def check_query(name: str, args: LMap, v: Validator) -> None:
 def ask(ex: Runtime, name: str, args: Any) -> tuple[Any, dict[str, Any]]:
     """Run a query with evaluated arguments; its value and the record for the trace."""
     values = ex.evaluate(args)
-    with ex.world_action():
-        try:
-            answer = run_query(ex.world, name, values)
-        except Failure:
-            raise
-        except PycramError as exc:  # a value it cannot use; anything else is a bug (an internal error)
-            raise as_failure(exc, name) from exc
+    with _world_call(ex, name):
+        answer = run_query(ex.world, name, values)
     record = {"name": name, "args": jsonable(answer.args), "result": jsonable(answer.result),
               "details": jsonable(answer.details)}
     return answer.value, record
 
 
 @node_family("query", lambda: QUERIES.keys())
-class QueryStep(Node):
-    BINDS = True
-    LEAF = True
+class QueryStep(_MappingStep):
+    WHAT, ATTRIBUTE = "arguments", "args"
     DOC = "ask a reasoning query; records the answer (bind it with `as`)"
-
-    def __init__(self, head: str, where: Location, args: LMap) -> None:
-        super().__init__(head, where)
-        self.args = args
-
-    @classmethod
-    def parse(cls, head: str, step: LMap, parser: Parser) -> Node | None:
-        args = _mapping(step[head], step.loc(head, True), head, parser, "arguments")
-        return None if args is None else cls(head, step.loc(head), args)
+    args: LMap
 
     def check(self, v: Validator) -> None:
         check_query(self.head, self.args, v)

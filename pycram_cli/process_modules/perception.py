@@ -12,18 +12,21 @@ from .base import ProcessModule
 from .registry import process_module
 
 
-def _of_type(robot: Robot, object_type: str) -> list[Object]:
-    return sorted((o for o in robot.world.objects if o.type == object_type), key=lambda o: o.name)
+def _of_type(robot: Robot, slots: Mapping[str, Any], missing: str) -> tuple[str, list[Object]]:
+    """The slots' object type and the world's objects of it, by name: where both detectors start. When there are
+    none, a `PerceptionFailure` whose message is `missing` with the type in its `{}` (each detector words it)."""
+    object_type = slots["object-type"]
+    found = sorted((o for o in robot.world.objects if o.type == object_type), key=lambda o: o.name)
+    if not found:
+        raise PerceptionFailure(missing.format(object_type), object_type=object_type)
+    return object_type, found
 
 
 @process_module("perception")
 class Detecting(ProcessModule):
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
-        object_type = slots["object-type"]
-        candidates = _of_type(robot, object_type)
-        if not candidates:
-            raise PerceptionFailure(f"there is no object of type '{object_type}' to see", object_type=object_type)
+        object_type, candidates = _of_type(robot, slots, "there is no object of type '{}' to see")
         seen: list[tuple[float, str, Object | str]] = []  # (order, name, the object or why it is not seen)
         for obj in candidates:
             answer = visible(obj, world=robot.world)
@@ -45,8 +48,4 @@ class Detecting(ProcessModule):
 class WorldStateDetecting(ProcessModule):
 
     def execute(self, robot: Robot, slots: Mapping[str, Any]) -> Object:
-        object_type = slots["object-type"]
-        candidates = _of_type(robot, object_type)
-        if not candidates:
-            raise PerceptionFailure(f"the world has no object of type '{object_type}'", object_type=object_type)
-        return candidates[0]
+        return _of_type(robot, slots, "the world has no object of type '{}'")[1][0]

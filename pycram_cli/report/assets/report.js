@@ -301,6 +301,15 @@
   });
   const geometries = new Map(), materials = new Map();
   function cached(map, key, make) { if (!map.has(key)) map.set(key, make()); return map.get(key); }
+  function tinted(store, material, colour, intensity, finish = () => {}) {  // a material's glowing copy, made once
+    return cached(store, material.uuid, () => {
+      const copy = material.clone();
+      copy.emissive = new THREE.Color(colour);
+      copy.emissiveIntensity = intensity;
+      finish(copy);
+      return copy;
+    });
+  }
   function geometryOf(shape) {
     switch (shape.kind) {
       case "box": return cached(geometries, `b${shape.size}`, () => new THREE.BoxGeometry(...shape.size));
@@ -516,14 +525,10 @@
   for (const failure of failures) failure.fatal = byPath.get(failure.path).final !== "recovered";
   const glow = new Map();
   function glowing(material) {
-    return cached(glow, material.uuid, () => {
-      const copy = material.clone();
-      copy.emissive = new THREE.Color(0xd6336c);
-      copy.emissiveIntensity = 0.55;
+    return tinted(glow, material, 0xd6336c, 0.55, (copy) => {
       copy.depthTest = false;  // seen through whatever hides it (a drawer, the robot)
       copy.transparent = true;
       copy.opacity = Math.min(copy.opacity, 0.9);
-      return copy;
     });
   }
   const ghostMaterial = new THREE.MeshLambertMaterial({ color: 0x2f9e44, transparent: true, opacity: 0.38, depthWrite: false });
@@ -613,14 +618,7 @@
   }
   let activeFailure = null, painted = [], reasoningBodies = [];
   const selectedMaterial = new Map();
-  function selecting(material) {
-    return cached(selectedMaterial, material.uuid, () => {
-      const copy = material.clone();
-      copy.emissive = new THREE.Color(0xfab005);
-      copy.emissiveIntensity = 0.45;
-      return copy;
-    });
-  }
+  function selecting(material) { return tinted(selectedMaterial, material, 0xfab005, 0.45); }
   function repaint() {  // every highlight from scratch: a failure's, the reasoning's, the selection
     paint(painted, (base) => base);
     painted = [];
@@ -785,14 +783,7 @@
     repaint();
   }
   const orange = new Map();
-  function glowingOrange(material) {
-    return cached(orange, material.uuid, () => {
-      const copy = material.clone();
-      copy.emissive = new THREE.Color(0xf08c00);
-      copy.emissiveIntensity = 0.6;
-      return copy;
-    });
-  }
+  function glowingOrange(material) { return tinted(orange, material, 0xf08c00, 0.6); }
   const tip = $("tooltip");
   view.addEventListener("pointermove", (event) => {  // hover over a candidate: its outcome and why
     const group = drawnReasoning.get(reasoningStep);

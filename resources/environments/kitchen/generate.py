@@ -49,6 +49,8 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
+from pycram_cli.robots.urdf_writer import fixed
+
 HERE = Path(__file__).resolve().parent
 DEFAULT_KITCHEN = HERE / "kitchen.urdf"
 DEFAULT_FLOOR = HERE.parent / "floor" / "floor.urdf"
@@ -509,9 +511,8 @@ def world_poses(joints: Iterable[Joint]) -> dict[str, np.ndarray]:
 
 
 def fmt(value: float) -> str:
-    """Deterministic, compact number formatting."""
-    text = f"{round(float(value), 6):.6f}".rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
+    """Deterministic, compact number formatting: six digits after the point, as the robots' generators spell them."""
+    return fixed(value)
 
 
 def fmt3(values: Iterable[float]) -> str:

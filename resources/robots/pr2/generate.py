@@ -13,7 +13,7 @@ Why
     where does the camera look" exactly like the real robot.  Therefore:
 
     * The kinematics (joint names, types, parent/child links, origins, axes and
-      limits) are facts of the PR2.  They are written down in ``JOINTS``,
+      limits) are facts of the PR2.  They are written down in ``JOINTS`` (the arms in ``arm_joints``),
       copied by hand from the official ``pr2.urdf`` (iai_pr2_description),
       and must never be "tuned".
     * The geometry is ours: boxes and cylinders that follow the volumes of the
@@ -66,6 +66,45 @@ DEFAULT_OUTPUT = Path(__file__).resolve().parent / "pr2.urdf"
 # --------------------------------------------------------------------------
 # Kinematics: facts of the PR2 (from iai_pr2_description's pr2.urdf)
 # --------------------------------------------------------------------------
+def arm_joints(side: str, shoulder_y: float, pan: tuple[float, float],
+               upper_arm_roll: tuple[float, float]) -> tuple[Joint, ...]:
+    """One arm's joints, ``side`` "r" or "l": the two arms differ only in the shoulder's offset and the limits of
+    the shoulder pan and upper arm roll (mirrored), so one table written once keeps the two from drifting apart."""
+    s = side
+    finger = f"{s}_gripper_l_finger_joint"  # the joint the other three finger joints mimic
+    return (
+        Joint(f"{s}_shoulder_pan_joint", "revolute", "torso_lift_link", f"{s}_shoulder_pan_link",
+              xyz=(0.0, shoulder_y, 0.0), axis=Z_AXIS, limit=Limit(*pan, 30, 2.088)),
+        Joint(f"{s}_shoulder_lift_joint", "revolute", f"{s}_shoulder_pan_link", f"{s}_shoulder_lift_link",
+              xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
+        Joint(f"{s}_upper_arm_roll_joint", "revolute", f"{s}_shoulder_lift_link", f"{s}_upper_arm_roll_link",
+              axis=X_AXIS, limit=Limit(*upper_arm_roll, 30, 3.27)),
+        Joint(f"{s}_upper_arm_joint", "fixed", f"{s}_upper_arm_roll_link", f"{s}_upper_arm_link"),
+        Joint(f"{s}_elbow_flex_joint", "revolute", f"{s}_upper_arm_link", f"{s}_elbow_flex_link",
+              xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
+        Joint(f"{s}_forearm_roll_joint", "continuous", f"{s}_elbow_flex_link", f"{s}_forearm_roll_link",
+              axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
+        Joint(f"{s}_forearm_joint", "fixed", f"{s}_forearm_roll_link", f"{s}_forearm_link"),
+        Joint(f"{s}_wrist_flex_joint", "revolute", f"{s}_forearm_link", f"{s}_wrist_flex_link",
+              xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
+        Joint(f"{s}_wrist_roll_joint", "continuous", f"{s}_wrist_flex_link", f"{s}_wrist_roll_link",
+              axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
+        Joint(f"{s}_gripper_palm_joint", "fixed", f"{s}_wrist_roll_link", f"{s}_gripper_palm_link"),
+        Joint(finger, "revolute", f"{s}_gripper_palm_link", f"{s}_gripper_l_finger_link",
+              xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
+        Joint(f"{s}_gripper_l_finger_tip_joint", "revolute", f"{s}_gripper_l_finger_link",
+              f"{s}_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
+              limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic=finger),
+        Joint(f"{s}_gripper_r_finger_joint", "revolute", f"{s}_gripper_palm_link", f"{s}_gripper_r_finger_link",
+              xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic=finger),
+        Joint(f"{s}_gripper_r_finger_tip_joint", "revolute", f"{s}_gripper_r_finger_link",
+              f"{s}_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
+              limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic=finger),
+        Joint(f"{s}_gripper_tool_joint", "fixed", f"{s}_gripper_palm_link", f"{s}_gripper_tool_frame",
+              xyz=(0.18, 0.0, 0.0)),
+    )
+
+
 # Listed depth-first from the root; the URDF is written in this order, which is
 # also the order of PyBullet's joint indices.
 JOINTS: tuple[Joint, ...] = (
@@ -86,70 +125,9 @@ JOINTS: tuple[Joint, ...] = (
           xyz=(0.045, 0.03, 0.0501)),
     Joint("wide_stereo_optical_frame_joint", "fixed", "wide_stereo_link",
           "wide_stereo_optical_frame", rpy=OPTICAL_RPY),
-    # ---- right arm
-    Joint("r_shoulder_pan_joint", "revolute", "torso_lift_link", "r_shoulder_pan_link",
-          xyz=(0.0, -0.188, 0.0), axis=Z_AXIS,
-          limit=Limit(-2.2853981634, 0.714601836603, 30, 2.088)),
-    Joint("r_shoulder_lift_joint", "revolute", "r_shoulder_pan_link", "r_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
-    Joint("r_upper_arm_roll_joint", "revolute", "r_shoulder_lift_link", "r_upper_arm_roll_link",
-          axis=X_AXIS, limit=Limit(-3.9, 0.8, 30, 3.27)),
-    Joint("r_upper_arm_joint", "fixed", "r_upper_arm_roll_link", "r_upper_arm_link"),
-    Joint("r_elbow_flex_joint", "revolute", "r_upper_arm_link", "r_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
-    Joint("r_forearm_roll_joint", "continuous", "r_elbow_flex_link", "r_forearm_roll_link",
-          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
-    Joint("r_forearm_joint", "fixed", "r_forearm_roll_link", "r_forearm_link"),
-    Joint("r_wrist_flex_joint", "revolute", "r_forearm_link", "r_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
-    Joint("r_wrist_roll_joint", "continuous", "r_wrist_flex_link", "r_wrist_roll_link",
-          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
-    Joint("r_gripper_palm_joint", "fixed", "r_wrist_roll_link", "r_gripper_palm_link"),
-    Joint("r_gripper_l_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
-    Joint("r_gripper_l_finger_tip_joint", "revolute", "r_gripper_l_finger_link",
-          "r_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
-    Joint("r_gripper_r_finger_joint", "revolute", "r_gripper_palm_link", "r_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
-          mimic="r_gripper_l_finger_joint"),
-    Joint("r_gripper_r_finger_tip_joint", "revolute", "r_gripper_r_finger_link",
-          "r_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="r_gripper_l_finger_joint"),
-    Joint("r_gripper_tool_joint", "fixed", "r_gripper_palm_link", "r_gripper_tool_frame",
-          xyz=(0.18, 0.0, 0.0)),
-    # ---- left arm
-    Joint("l_shoulder_pan_joint", "revolute", "torso_lift_link", "l_shoulder_pan_link",
-          xyz=(0.0, 0.188, 0.0), axis=Z_AXIS,
-          limit=Limit(-0.714601836603, 2.2853981634, 30, 2.088)),
-    Joint("l_shoulder_lift_joint", "revolute", "l_shoulder_pan_link", "l_shoulder_lift_link",
-          xyz=(0.1, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-0.5236, 1.3963, 30, 2.082)),
-    Joint("l_upper_arm_roll_joint", "revolute", "l_shoulder_lift_link", "l_upper_arm_roll_link",
-          axis=X_AXIS, limit=Limit(-0.8, 3.9, 30, 3.27)),
-    Joint("l_upper_arm_joint", "fixed", "l_upper_arm_roll_link", "l_upper_arm_link"),
-    Joint("l_elbow_flex_joint", "revolute", "l_upper_arm_link", "l_elbow_flex_link",
-          xyz=(0.4, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.3213, 0.0, 30, 3.3)),
-    Joint("l_forearm_roll_joint", "continuous", "l_elbow_flex_link", "l_forearm_roll_link",
-          axis=X_AXIS, limit=Limit(None, None, 30, 3.6)),
-    Joint("l_forearm_joint", "fixed", "l_forearm_roll_link", "l_forearm_link"),
-    Joint("l_wrist_flex_joint", "revolute", "l_forearm_link", "l_wrist_flex_link",
-          xyz=(0.321, 0.0, 0.0), axis=Y_AXIS, limit=Limit(-2.18, 0.0, 10, 3.078)),
-    Joint("l_wrist_roll_joint", "continuous", "l_wrist_flex_link", "l_wrist_roll_link",
-          axis=X_AXIS, limit=Limit(None, None, 10, 3.6)),
-    Joint("l_gripper_palm_joint", "fixed", "l_wrist_roll_link", "l_gripper_palm_link"),
-    Joint("l_gripper_l_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_l_finger_link",
-          xyz=(0.07691, 0.01, 0.0), axis=Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5)),
-    Joint("l_gripper_l_finger_tip_joint", "revolute", "l_gripper_l_finger_link",
-          "l_gripper_l_finger_tip_link", xyz=(0.09137, 0.00495, 0.0), axis=NEG_Z_AXIS,
-          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
-    Joint("l_gripper_r_finger_joint", "revolute", "l_gripper_palm_link", "l_gripper_r_finger_link",
-          xyz=(0.07691, -0.01, 0.0), axis=NEG_Z_AXIS, limit=Limit(0.0, 0.548, 1000.0, 0.5),
-          mimic="l_gripper_l_finger_joint"),
-    Joint("l_gripper_r_finger_tip_joint", "revolute", "l_gripper_r_finger_link",
-          "l_gripper_r_finger_tip_link", xyz=(0.09137, -0.00495, 0.0), axis=Z_AXIS,
-          limit=Limit(0.0, 0.548, 1000.0, 0.5), mimic="l_gripper_l_finger_joint"),
-    Joint("l_gripper_tool_joint", "fixed", "l_gripper_palm_link", "l_gripper_tool_frame",
-          xyz=(0.18, 0.0, 0.0)),
+    # ---- the arms (right first, as in the official file): mirror images but for these facts of each side
+    *arm_joints("r", shoulder_y=-0.188, pan=(-2.2853981634, 0.714601836603), upper_arm_roll=(-3.9, 0.8)),
+    *arm_joints("l", shoulder_y=0.188, pan=(-0.714601836603, 2.2853981634), upper_arm_roll=(-0.8, 3.9)),
 )
 
 ROOT_LINK = "base_footprint"
