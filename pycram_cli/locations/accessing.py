@@ -11,7 +11,7 @@ import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
-from ..planning.drawers import DISTANCE, follows_handle, plan_handle_grasp
+from ..planning.drawers import DISTANCE, follows_handle, handle_grasp, plan_handle_grasp, pull_beyond_reach
 from ..planning.paths import move_over
 from ..robots import Robot
 from ..world import Object
@@ -88,8 +88,11 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True
     with robot.body.joints_kept(names):
         try:
             robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
-            _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
             end = goal(spec, obj.get_joint_position(handle.joint))
+            grasp = handle_grasp(robot, arm, obj, handle.link)
+            if grasp is not None and pull_beyond_reach(robot, arm, obj, handle.link, handle.joint, end, grasp):
+                return False  # as `follows_handle` would find, without solving the grasp first
+            _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
             robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
             if not follows_handle(robot, arm, obj, handle.link, handle.joint, end, at):
                 return False

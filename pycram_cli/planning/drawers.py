@@ -10,19 +10,20 @@ collision-checked (`motion.py`). What rests in the drawer rides along.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure
 from ..kinds import gripper_words
-from ..reasoning.ik import IKSolution
+from ..reasoning.ik import IKSolution, beyond_reach
 from ..robots import Robot
 from ..signature import Param
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
 from . import motion
 from .grasps import Grasp, grasps_of_box, holdable
-from .reach import reach, solve_tool
+from .reach import REACHING_VERDICT, reach, solve_tool
 
 #: how far accessing opens a drawer or door: the `accessing` designator's `distance` slot (the `open` action's, with its
 #: own kind and wording); a location `{accessing: HANDLE}` names no distance and plans for this default
@@ -102,10 +103,11 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
     hand = motion.Motion(robot, robot.description.arm(arm).joints[-1:]).links
     with part.joints_kept([joint]), body.joints_kept(names):
         body.reset_joints(at.joint_positions)
-        held = held_pose(robot, arm, part, handle)
-        for value in pull_values(part.get_joint_position(joint), goal):
+        tools = pull_tools(part, handle, joint, goal, held_pose(robot, arm, part, handle))
+        if beyond_reach(robot, arm, [tool for _, tool in tools], REACHING_VERDICT) is not None:
+            return False  # a step the walk would fail at: the drawer pushed (or pulled) out of the arm's reach
+        for value, tool in tools:
             part.reset_joints({joint: value})
-            tool = compose(part.get_link_position_and_orientation(handle), held)
             solution = reach(robot, arm, tool[0], tool[1], best_effort=False)  # only whether (and the joints then)
             if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
                 return False
@@ -115,6 +117,35 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
             except ManipulationFailure:
                 return False
     return True
+
+
+def pull_tools(part: Object, handle: str, joint: str, goal: float,
+               held: tuple[Vec3, Quat]) -> list[tuple[float, tuple[Vec3, Quat]]]:
+    """Each step's joint value and the tool pose there (the hand keeping `held`, its pose in the handle's frame), as
+    accessing pulls the handle to `goal`; the joint is put back."""
+    tools = []
+    with part.joints_kept([joint]):
+        for value in pull_values(part.get_joint_position(joint), goal):
+            part.reset_joints({joint: value})
+            tools.append((value, compose(part.get_link_position_and_orientation(handle), held)))
+    return tools
+
+
+#: the reach bound of a pull planned from the grasp pose, before the arm is solved for it: the hand holds the handle
+#: within REACH and REACH_ANGLE of that pose, and the hand's pose in the handle's frame moves rigidly with it, so a
+#: step beyond the bound by twice the thresholds is beyond it whatever the hand's solution
+LOOSE_VERDICT = replace(REACHING_VERDICT, threshold=2 * REACHING_VERDICT.threshold,
+                        angle_threshold=2 * REACHING_VERDICT.angle_threshold)
+
+
+def pull_beyond_reach(robot: Robot, arm: str, part: Object, handle: str, joint: str, goal: float,
+                      grasp: Grasp) -> bool:
+    """Whether the pull to `goal`, the hand holding the handle at `grasp`, takes it out of the arm's reach by the
+    distance bound whatever the arm's solution at the grasp (`LOOSE_VERDICT`): `follows_handle` would then fail, and
+    the grasp's inverse kinematics need not be solved to know it."""
+    held = compose(invert(part.get_link_position_and_orientation(handle)), (grasp.position, grasp.orientation))
+    tools = pull_tools(part, handle, joint, goal, held)
+    return beyond_reach(robot, arm, [tool for _, tool in tools], LOOSE_VERDICT) is not None
 
 
 def _offset(position: Sequence[float], direction: np.ndarray, distance: float) -> Vec3:

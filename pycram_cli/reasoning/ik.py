@@ -150,6 +150,21 @@ def solve_link(robot: Object, tool_link: str, position: Sequence[float], orienta
     raise AssertionError("one IK query gives one answer")
 
 
+def beyond_reach(robot: Robot, arm: str, targets: Sequence[tuple[Sequence[float], Sequence[float] | None]],
+                 settings: Settings = DEFAULT) -> int | None:
+    """The index of the first target (position, orientation) that the distance bound puts out of the arm's reach within
+    the settings' thresholds (`Problem.beyond_reach`: no search, a necessary condition only), or None when each may be
+    reachable. A walk of many poses asks this first, so that its last pose out of reach fails it before the walk."""
+    body = robot.body
+    asked = _Asked(body, robot.arm(arm).tool_frame, [(p, o, None) for p, o in targets], list(robot.arm(arm).joints),
+                   settings)
+    problem = Problem(body, chain_for(body, asked.link_index), asked.names)
+    for k, (target, rotation) in enumerate(zip(asked.targets, asked.rotations)):
+        if problem.beyond_reach(target, rotation, settings.threshold, settings.angle_threshold) > 0.0:
+            return k
+    return None
+
+
 def link_solutions(robot: Object, tool_link: str, queries: Sequence[Query], joints: Sequence[str] | None = None,
                    settings: Settings = DEFAULT) -> Iterator[tuple[int, IKSolution]]:
     """`solve_link` for several queries (target position, orientation, start configuration: None for where the joints
