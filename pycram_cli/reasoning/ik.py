@@ -6,10 +6,11 @@ crashes, so the chain from the robot's base to the tool link is read from the ro
 the parent's centre of mass) and solved with a Levenberg–Marquardt loop (ik_search.py) with joint limits enforced
 by clamping and a few deterministic restarts. The kinematics never touch the world; only the final answer is checked
 against PyBullet's own forward kinematics (joints set, link pose read, joints put back with their saved positions and
-velocities), so the errors reported are PyBullet's. An answer is a function of the robot's state (its base's pose,
-the chain's joint values) and the question: it is kept (per robot, the latest `MEMO_SIZE`, in the world's cache table
-`ANSWERS`), and the same question asked in the same state is answered again without a search (forget the table for a
-benchmark of first questions).
+velocities), so the errors reported are PyBullet's. An answer is a function of the chain's joint values and the
+question asked in the chain's own frame (`Problem.in_chain_frame`: wherever the base stands): it is kept (per robot,
+the latest `MEMO_SIZE`, in the world's cache table `ANSWERS`), and the same question asked again is answered without
+a search (forget the table for a benchmark of first questions). A location's candidate poses ask the arm's ways from
+where it is again at each pose: those are answered once.
 
 Only the requested joints move (by default the joints of the arm); the torso, head and base keep
 their current values. `solve(robot, arm, ...)` is the front door: the robot (robots/robot.py) says
@@ -227,8 +228,7 @@ class _Batch:
         self.fixed_seeds: dict[tuple, np.ndarray] = robot.world.cache.table(SEEDS, robot)
         state = (problem.state, asked.link_index, tuple(problem.names), *settings.asked())
         self.starts = [self._start(start) for _, _, start in asked.queries]
-        self.keys = [(state, target.tobytes(), None if rotation is None else rotation.tobytes(),
-                      None if start is None else start.tobytes())
+        self.keys = [(state, *problem.in_chain_frame(target, rotation), None if start is None else start.tobytes())
                      for target, rotation, start in zip(asked.targets, asked.rotations, self.starts)]
 
     def _start(self, start: Mapping[str, float] | None) -> np.ndarray | None:

@@ -45,8 +45,9 @@ class Problem:
         current = robot.get_joint_positions(kin.read) if kin.read else {}
         layout = self.layout = kin.layout(current)
         lead, self._after, self._turned, self._turned2 = layout.lead, layout.after, layout.turned, layout.turned2
-        #: everything of the robot's state the answers depend on: the base's pose and the chain's joint values
-        self.state = (tuple(base_pos), tuple(base_orn), tuple(current[name] for name in kin.read))
+        #: what of the robot's state the answers depend on, besides the base's pose: the chain's joint values (an
+        #: answer is the same for the same question asked in the chain's own frame, `in_chain_frame`)
+        self.state = tuple(current[name] for name in kin.read)
         start = transform(base_pos, base_orn)
         for factor in lead:
             start = start @ factor
@@ -60,6 +61,18 @@ class Problem:
         self._prismatic = kin.prismatic
         self._all_revolute = kin.all_revolute
         self._buffers: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # per number of configurations
+
+    def in_chain_frame(self, target: np.ndarray, rotation: np.ndarray | None) -> tuple[bytes, bytes | None]:
+        """A target (position, rotation matrix) in the first variable joint's frame before its motion, rounded to
+        1e-6 (m, and of the matrix's entries), as bytes: the search and its answer depend on the target only so, so
+        that the same question asked with the base somewhere else (a location's next candidate pose: the arm's ways
+        from where it is) is the same question. The rounding makes one key of the same target reached through two
+        base poses: PyBullet's link poses, from which such targets are computed, agree there to about 1e-7 only."""
+        turn, origin = self.start[:3, :3], self.start[:3, 3]
+        local = np.round(turn.T @ (target - origin), 6) + 0.0  # + 0.0: no -0.0, whose bytes differ
+        if rotation is None:
+            return local.tobytes(), None
+        return local.tobytes(), (np.round(turn.T @ rotation, 6) + 0.0).tobytes()
 
     def beyond_reach(self, target: np.ndarray, rotation: np.ndarray | None, threshold: float,
                      angle_threshold: float) -> float:

@@ -14,7 +14,7 @@ from pycram_cli.reasoning.ik import IKSolution, Settings, forward_pose, link_sol
 from pycram_cli.reasoning.ik_search import Problem
 from pycram_cli.reasoning.kinematics import chain_for
 from pycram_cli.robots import Robot
-from pycram_cli.world.pose import angle_between, quat_multiply
+from pycram_cli.world.pose import angle_between, compose, quat_multiply
 
 LEFT, RIGHT = "l_gripper_tool_frame", "r_gripper_tool_frame"
 LEFT_ARM = ["l_shoulder_pan_joint", "l_shoulder_lift_joint", "l_upper_arm_roll_joint", "l_elbow_flex_joint",
@@ -245,6 +245,27 @@ def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
     moved = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
     assert len(searches) == 3
     assert before.joint_positions != raised.joint_positions and before.joint_positions != moved.joint_positions
+
+
+def test_the_same_question_asked_with_the_base_elsewhere_is_answered_without_searching_again(at_counter, monkeypatch):
+    """A location asks the arm's ways from where it is at each candidate base pose: in the chain's frame, one question."""
+    robot = at_counter.robot
+    searches = []
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
+    forget(robot)
+    base = robot.get_pose()
+    ahead, turned = ((0.5, 0.0, 0.0), FRONT), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.3826834, 0.9238795))  # 45° about z
+    target = compose(compose(base, ahead), ((0.0, 0.0, 0.0), TOP))  # the tool 0.5 m ahead of the base, pointing down
+    first = solve_link(robot, LEFT, *target)
+    robot.set_position_and_orientation(*compose(base, compose(((0.3, -0.2, 0.0), FRONT), turned)))
+    moved = compose(robot.get_pose(), compose(ahead, ((0.0, 0.0, 0.0), TOP)))
+    again = solve_link(robot, LEFT, *moved)
+    assert len(searches) == 1 and again.joint_positions == first.joint_positions and again.success == first.success
+    forget(robot)
+    fresh = solve_link(robot, LEFT, *moved)  # searched there: the same answer, to rounding
+    assert len(searches) == 2 and fresh.success == first.success
+    assert max(abs(fresh.joint_positions[n] - first.joint_positions[n]) for n in LEFT_ARM) < 1e-6
 
 
 # -- only whether: the reach bound ------------------------------------------------------------------------------------
