@@ -45,7 +45,7 @@ from .geometry import ArmGeometry, arm_geometry, camera_offset, centre, yaw_of
 from .lattice import DEFERRED, FIRST, candidate_poses
 from .ranked import Resolution
 from .reaching import ArmTests, Miss
-from .scoring import add_reach, add_view, here_arm_order, travel_scores
+from .scoring import add_pull_heading, add_reach, add_view, here_arm_order, travel_scores
 from .spec import LocationSpec
 from .touching import allowed_contacts
 
@@ -159,7 +159,11 @@ class BasePoseResolution(Resolution):
         outcome = np.zeros(len(xs), dtype=np.int8)
         self.arm_order = np.zeros((len(xs), len(arms)), dtype=np.int8)
         if reach_target is not None:
-            scores, self.arm_order = add_reach(scores, outcome, xs, ys, yaws, arms, reach_target, self.floor_z)
+            pulled_to = self._handle_path[-1] if spec.accessing is not None and self._handle_path else None
+            scores, self.arm_order = add_reach(scores, outcome, xs, ys, yaws, arms, reach_target, self.floor_z,
+                                               pulled_to)
+            if handle_ends is not None:
+                scores = add_pull_heading(scores, yaws, *handle_ends)
         if view_target is not None:
             scores = add_view(robot, scores, outcome, xs, ys, yaws, camera, view_target, self.floor_z, fixed_camera)
         todo = outcome == 0

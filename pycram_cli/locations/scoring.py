@@ -2,7 +2,10 @@
 
 Every candidate gets a score from how far its arm's shoulder is from the target compared with a comfortable reach,
 how far its camera is from what it should see, how much it turns away and how far the robot would drive; a shoulder
-farther than the arm's length rules it `out of reach`, a camera too near or too far `out of view`. All of it is
+farther than the arm's length rules it `out of reach`, a camera too near or too far `out of view`. A pull (accessing
+a drawer or door) is scored from the middle of the handle's path, both ends within reach, and by how far the robot
+turns from facing along it: the hand takes the handle facing into the drawer, and an arm comfortable at one end of a
+long pull is stretched or cramped at the other. All of it is
 numpy over every candidate at once (thousands), so the expensive tests see only the best few. The additions keep
 one order: scores are compared to the last bit, and the same world must give the same ranking.
 """
@@ -35,24 +38,43 @@ def travel_scores(xs: np.ndarray, ys: np.ndarray, turns: np.ndarray, here: np.nd
 
 
 def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray,
-              arms: dict[str, ArmGeometry], target: np.ndarray, floor_z: float) -> tuple[np.ndarray, np.ndarray]:
+              arms: dict[str, ArmGeometry], target: np.ndarray, floor_z: float,
+              also: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The scores with the best arm's reach cost added, and each candidate's arms nearest first (indices into
-    `arms`, -1 for an arm that cannot reach); candidates no arm reaches are marked `out of reach` in `outcome`."""
+    `arms`, -1 for an arm that cannot reach); candidates no arm reaches are marked `out of reach` in `outcome`.
+    `also`: a second point the arm must reach from the same pose (where a pull takes a handle): the cost is the middle
+    point's, and an arm must reach both."""
     c, s = np.cos(yaws), np.sin(yaws)
     costs = []
     for geo in arms.values():
         sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
         sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
         sz = floor_z + geo.shoulder[2]
-        distance = np.sqrt((target[0] - sx) ** 2 + (target[1] - sy) ** 2 + (target[2] - sz) ** 2)
+        middle = target if also is None else (np.asarray(target) + np.asarray(also)) / 2.0
+        distance = np.sqrt((middle[0] - sx) ** 2 + (middle[1] - sy) ** 2 + (middle[2] - sz) ** 2)
         cost = np.abs(distance - REACH_FRACTION * geo.length)
-        costs.append(np.where(distance > geo.length + 0.02, np.inf, cost))
+        for point in (target,) if also is None else (target, also):
+            distance = np.sqrt((point[0] - sx) ** 2 + (point[1] - sy) ** 2 + (point[2] - sz) ** 2)
+            cost = np.where(distance > geo.length + 0.02, np.inf, cost)
+        costs.append(cost)
     stacked = np.stack(costs, axis=1)  # candidates x arms
     best = stacked.min(axis=1)
     order = np.argsort(stacked, axis=1, kind="stable")
     arm_order = np.where(np.isfinite(np.take_along_axis(stacked, order, axis=1)), order, -1).astype(np.int8)
     outcome[~np.isfinite(best)] = CODE["out of reach"]
     return scores + np.where(np.isfinite(best), best, 0.0), arm_order
+
+
+def add_pull_heading(scores: np.ndarray, yaws: np.ndarray, closed: np.ndarray, opened: np.ndarray) -> np.ndarray:
+    """The scores with the cost of facing away from the drawer or door a handle pulls (from its `opened` end towards
+    its `closed` one): the hand takes the handle facing into it, which an arm does best with the robot facing so too
+    (TURN_WEIGHT per radian off it). Poses facing the handle from its side reach it, but seldom turn the hand into
+    the pull."""
+    into = np.asarray(closed[:2], dtype=float) - np.asarray(opened[:2], dtype=float)
+    if float(np.hypot(*into)) < 1e-6:
+        return scores
+    heading = math.atan2(float(into[1]), float(into[0]))
+    return scores + TURN_WEIGHT * np.abs(np.angle(np.exp(1j * (yaws - heading))))
 
 
 def add_view(robot: Robot, scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray,

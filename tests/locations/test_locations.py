@@ -168,6 +168,31 @@ def test_accessing_gives_a_pose_from_which_the_drawer_opens(world):
         pytest.approx(0.3)
 
 
+@pytest.mark.parametrize("robot", ["pr2", "fetch"])
+@pytest.mark.parametrize("opened", [0.0, 0.48], ids=["to open", "to close"])
+def test_a_drawer_is_pulled_from_in_front_of_it_facing_into_it_found_at_once(world, fetch_kitchen, robot, opened):
+    """Opening or closing a drawer, the robot stands in front of it facing into it (the hand takes the handle facing
+    so), within reach of the handle all along the pull; such a pose is ranked first, so the location finds it after a
+    few tests, not after a hundred poses from which the arm cannot turn its hand into the pull."""
+    world = world if robot == "pr2" else fetch_kitchen
+    joint = "sink_area_left_upper_drawer_main_joint"
+    kitchen = world.get_object_by_name("kitchen")
+    with world.snapshot():
+        kitchen.set_joint_position(joint, opened)
+        handle = np.asarray(kitchen.get_link_position(HANDLE))
+        spec = parse_location(world, {"accessing": HANDLE})
+        resolution = locate(world, spec if opened == 0.0 else type(spec)(**{**spec.__dict__, "distance": 0.0}))
+        pose = resolution.next()
+        into = 0.0  # this drawer opens towards -x: facing +x is facing into it
+        assert abs(math.remainder(pose.yaw - into, 2 * math.pi)) < 0.1
+        assert abs(pose.position[1] - handle[1]) < 0.15 and pose.position[0] < handle[0]
+        assert resolution.expensive <= 3
+        stand(world, pose)
+        perform(world, "accessing", {"drawer-handle": HANDLE, "drawer-joint": joint, "part-of": "kitchen",
+                                     "arm": pose.arm, "distance": 0.3 if opened == 0.0 else 0.0})
+        assert kitchen.get_joint_position(joint) == pytest.approx(0.3 if opened == 0.0 else 0.0, abs=1e-3)
+
+
 def test_on_gives_a_free_spot_where_the_object_stands(world):
     spots = locate(world, {"on": "kitchen_island_surface", "for": "milk", "near": [-1.0, 2.0, 0.9]})
     spot = spots.next()
