@@ -35,6 +35,15 @@ def forget(robot):
 
 
 @pytest.fixture
+def searches(monkeypatch):
+    """One entry per IK search made (`ik.search_groups` called) while the test runs."""
+    made: list[int] = []
+    search = ik.search_groups
+    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: made.append(1) or search(*a, **k))
+    return made
+
+
+@pytest.fixture
 def at_counter(scene):
     scene.robot.set_position_and_orientation(*COUNTER_POSE)
     return scene
@@ -216,11 +225,8 @@ def test_targets_with_and_without_an_orientation_or_starts_naming_other_joints_a
 # -- the same question again -----------------------------------------------------------------------------------------
 
 
-def test_the_same_question_in_the_same_state_is_answered_without_searching_again(at_counter, monkeypatch):
+def test_the_same_question_in_the_same_state_is_answered_without_searching_again(at_counter, searches):
     robot = at_counter.robot
-    searches = []
-    search = ik.search_groups
-    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
     forget(robot)
     first = solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT)
     first.joint_positions.clear()  # what a caller does with its answer does not change the one kept
@@ -230,11 +236,8 @@ def test_the_same_question_in_the_same_state_is_answered_without_searching_again
     assert again == solve_link(robot, LEFT, (1.2, 0.9, 1.0), FRONT) and len(searches) == 2  # bitwise the same
 
 
-def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
+def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, searches):
     robot = at_counter.robot
-    searches = []
-    search = ik.search_groups
-    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
     forget(robot)
     before = solve_link(robot, LEFT, (1.2, 0.9, 1.0))
     with robot.joints_kept(["torso_lift_joint"]):
@@ -247,12 +250,9 @@ def test_an_answer_is_not_reused_once_the_robot_moved(at_counter, monkeypatch):
     assert before.joint_positions != raised.joint_positions and before.joint_positions != moved.joint_positions
 
 
-def test_the_same_question_asked_with_the_base_elsewhere_is_answered_without_searching_again(at_counter, monkeypatch):
+def test_the_same_question_asked_with_the_base_elsewhere_is_answered_without_searching_again(at_counter, searches):
     """A location asks the arm's ways from where it is at each candidate base pose: in the chain's frame, one question."""
     robot = at_counter.robot
-    searches = []
-    search = ik.search_groups
-    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
     forget(robot)
     base = robot.get_pose()
     ahead, turned = ((0.5, 0.0, 0.0), FRONT), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.3826834, 0.9238795))  # 45° about z
@@ -271,11 +271,8 @@ def test_the_same_question_asked_with_the_base_elsewhere_is_answered_without_sea
 # -- only whether: the reach bound ------------------------------------------------------------------------------------
 
 
-def test_a_target_beyond_the_arms_reach_fails_at_once_when_only_the_verdict_is_asked(at_counter, monkeypatch):
+def test_a_target_beyond_the_arms_reach_fails_at_once_when_only_the_verdict_is_asked(at_counter, searches):
     robot = at_counter.robot
-    searches = []
-    search = ik.search_groups
-    monkeypatch.setattr(ik, "search_groups", lambda *a, **k: searches.append(1) or search(*a, **k))
     forget(robot)
     far = solve_link(robot, LEFT, (3.0, 0.7, 1.0), settings=Settings(best_effort=False))
     assert not far and far.joint_positions == {} and far.position_error > 1.0 and searches == []
