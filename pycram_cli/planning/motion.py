@@ -129,11 +129,12 @@ class Motion:
                                      / (np.linalg.norm(j.axis) or 1.0) for j in self.joints]).reshape(-1, 3)
         self._prismatic = np.array([j.type == "prismatic" for j in self.joints], dtype=bool)
         self._parts_found: list[tuple[int, ...]] | None = None
+        self._chain: list[int] | None = None  # the joints `_configuration` reads
 
     def situation(self) -> tuple | None:
-        """Everything a walk or search of this motion depends on, exactly: the robot's configuration (where each of
-        its links is), what follows it (re-placed by its links at every step of a path: by configuration and how it
-        is held), every other object's version (an unchanged version is an unchanged object, see
+        """Everything a walk or search of this motion depends on, exactly: where the moving part is (the robot's base
+        and the joints it hangs below, `_configuration`), what follows it (re-placed by its links at every step of a
+        path: by configuration and how it is held), every other object's version (an unchanged version is an unchanged object, see
         `BulletWorld.version`), the moving joints and what may be touched. Equal situations give equal walks and
         searches, bitwise, so each is made once (`remembered`): a way tried again — a departure re-tried for each
         arrival in `paths.move_over`, the way a location test found, then moved along — costs a look-up. None where
@@ -144,12 +145,28 @@ class Motion:
         body = self.body
         attached = followers(body)
         placed = set(attached)
-        return (body.id, body.configuration(), tuple(j.index for j in self.joints),
+        return (body.id, self._configuration(), tuple(j.index for j in self.joints),
                 tuple((obj.id, obj.configuration(), tuple((other.id, att.parent_link, att.child_link, att.transform)
                                                           for other, att in obj.attachments.items()))
                       for obj in attached),
                 tuple((obj.id, world.version_of(obj)) for obj in self.obstacles if obj not in placed),
                 self._skip_links)
+
+    def _configuration(self) -> tuple:
+        """What of the robot's configuration places the moving part, exactly: its base's pose and the joints the
+        moving links hang below (their own, and those above them up to the base). The robot's other links are no
+        obstacle (a motion checks against the world), so the head turned or the other arm moved since leaves a walk
+        what it was: the pick-up's own test finds what the location test found at that pose before the look."""
+        body = self.body
+        if self._chain is None:
+            chain: set[int] = set(self.links)
+            for link in self.links:
+                index = body.joints[link].parent_index
+                while index != -1 and index not in chain:
+                    chain.add(index)
+                    index = body.joints[index].parent_index
+            self._chain = sorted(chain)
+        return tuple(self._chain), body.configuration(self._chain)
 
     def remembered(self, key: tuple | None) -> Any:
         """What was found for `key` (a situation and the question asked in it) in this world, or None."""

@@ -357,15 +357,17 @@ class Object:
         states = p.getJointStates(self.id, [j.index for j in joints], physicsClientId=self.world.client_id)
         return {j.name: float(s[0]) for j, s in zip(joints, states)}
 
-    def configuration(self) -> tuple[Any, ...]:
-        """Where PyBullet holds the object's links now, exactly: its base's pose and every joint's position, as
-        PyBullet reports them. Equal configurations place every link alike, bitwise: a key for results computed
-        from where the object is (what `version` cannot be for an object re-placed to the same spot)."""
+    def configuration(self, joints: Sequence[int] | None = None) -> tuple[Any, ...]:
+        """Where PyBullet holds the object's links now, exactly: its base's pose and every joint's position (or those
+        of `joints`, indices), as PyBullet reports them. Equal configurations place every link alike (those
+        below `joints` when given), bitwise: a key for results computed from where the object is (what `version`
+        cannot be for an object re-placed to the same spot)."""
         cid = self.world.client_id
         pose = p.getBasePositionAndOrientation(self.id, physicsClientId=cid)
-        if not self.joints:
+        indices = range(len(self.joints)) if joints is None else joints
+        if not len(indices):
             return (pose,)
-        states = p.getJointStates(self.id, range(len(self.joints)), physicsClientId=cid)
+        states = p.getJointStates(self.id, indices, physicsClientId=cid)
         return pose, tuple(s[0] for s in states)
 
     def set_joint_position(self, name: str, value: float) -> None:

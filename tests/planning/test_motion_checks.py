@@ -1,6 +1,6 @@
 """Collision-checked paths cost what they must and answer as before: a walk or search made again in the same
-situation is answered from memory (and from nowhere else: any change of the robot, of what it holds or of another
-object asks again), and a check measures only the pairs of parts whose distance can matter."""
+situation is answered from memory (and from nowhere else: any change of the robot's base or of the joints the moving
+part hangs below, of what it holds or of another object asks again; the head turned or the other arm moved does not), and a check measures only the pairs of parts whose distance can matter."""
 from __future__ import annotations
 
 import math
@@ -72,6 +72,19 @@ def test_the_robot_elsewhere_or_holding_something_asks_again(counter, world, mon
     world.robot.attach(spoon, tool)
     motion.Motion(robot, joints).walk(out)
     assert len(follows) == 2
+
+
+def test_the_head_turned_or_the_other_arm_moved_leaves_a_walk_what_it_was(counter, world, monkeypatch):
+    """The robot's own links are no obstacle: only the joints the moving arm hangs below (the torso) place it. The
+    location test walks an arm's ways before the robot looks at the object; the pick-up walks them after."""
+    robot, joints, out = counter
+    first = motion.Motion(robot, joints).walk(out)
+    follows = counting(monkeypatch, "_follow")
+    world.robot.reset_joints({"head_pan_joint": 0.4, "head_tilt_joint": 0.3, "r_shoulder_pan_joint": -0.5})
+    assert motion.Motion(robot, joints).walk(out) == first and not follows
+    world.robot.reset_joints({"torso_lift_joint": 0.1})  # above the arm: it places the arm elsewhere
+    motion.Motion(robot, joints).walk(out)
+    assert len(follows) == 1  # walked anew
 
 
 def test_a_state_restored_is_the_situation_it_was(counter, world, monkeypatch):
