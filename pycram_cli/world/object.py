@@ -425,17 +425,31 @@ class Object:
         """`with obj.joints_kept(names):` — these joints' positions and velocities are put back bitwise on leaving.
 
         Cheaper than a world snapshot when a query only tries joint values; attached objects are
-        not moved (use `world.snapshot()` when they follow).
+        not moved (use `world.snapshot()` when they follow). An object the block leaves exactly as it found it
+        (pose, joints, velocities, attachments) keeps its version: what was kept for it stays valid (a location
+        trying the drawer opened leaves the walks made before it to be found again).
         """
         ids = [self.get_joint_id(name) for name in names]
         cid = self.world.client_id
         saved = [(s[0], s[1]) for s in p.getJointStates(self.id, ids, physicsClientId=cid)] if ids else []
+        version, before = self._version, self._exact_state()
         try:
             yield
         finally:
             for jid, (position, velocity) in zip(ids, saved):
                 p.resetJointState(self.id, jid, position, velocity, physicsClientId=cid)
             self.world.mark_changed(self)
+            if self._exact_state() == before:  # all put back, bitwise: the object is as it was at its version
+                self._version = version
+
+    def _exact_state(self) -> tuple[Any, ...]:
+        """The object's pose, joint positions and velocities, base velocity and attachments, exactly as held now."""
+        cid = self.world.client_id
+        states = p.getJointStates(self.id, range(len(self.joints)), physicsClientId=cid) if self.joints else ()
+        return (p.getBasePositionAndOrientation(self.id, physicsClientId=cid),
+                p.getBaseVelocity(self.id, physicsClientId=cid), tuple((s[0], s[1]) for s in states),
+                tuple((id(other), att.parent_link, att.child_link, tuple(att.transform))
+                      for other, att in self.attachments.items()))
 
     # -- attachments -----------------------------------------------------------
     def attach(self, other: Object, parent_link: str | None = None, child_link: str | None = None) -> None:

@@ -36,6 +36,20 @@ def test_joints_kept_puts_positions_and_velocities_back_bitwise(arm):
     assert raw_states(arm) == before
 
 
+def test_joints_tried_and_put_back_leave_the_object_at_its_version(world, arm):
+    """What is kept by an object's version (a collision check, a floor map, the prospection copy) stays valid after a
+    query that only tried joint values; a change the block leaves behind gives the object a new version."""
+    set_moving(arm)
+    version = world.version_of(arm)
+    with arm.joints_kept(JOINTS):
+        arm.reset_joints({"shoulder": 1.0, "slide": 0.1})
+        assert world.version_of(arm) != version
+    assert world.version_of(arm) == version
+    with arm.joints_kept(["shoulder"]):
+        arm.reset_joints({"shoulder": 1.0, "slide": 0.1})  # slide is not put back
+    assert world.version_of(arm) != version and arm.get_joint_position("slide") == 0.1
+
+
 def test_joints_kept_puts_them_back_when_the_block_fails(arm):
     set_moving(arm)
     before = raw_states(arm)
