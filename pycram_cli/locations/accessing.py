@@ -92,7 +92,7 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True
             grasp = handle_grasp(robot, arm, obj, handle.link)
             if grasp is not None and pull_beyond_reach(robot, arm, obj, handle.link, handle.joint, end, grasp):
                 return False  # as `follows_handle` would find, without solving the grasp first
-            _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link)
+            _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link, grasp)
             robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
             if not follows_handle(robot, arm, obj, handle.link, handle.joint, end, at):
                 return False

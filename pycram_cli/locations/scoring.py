@@ -37,6 +37,12 @@ def travel_scores(xs: np.ndarray, ys: np.ndarray, turns: np.ndarray, here: np.nd
     return TURN_WEIGHT * np.abs(turns) + TRAVEL_WEIGHT * np.hypot(xs - here[0], ys - here[1])
 
 
+def _distance(point: np.ndarray, shoulder: tuple[np.ndarray, np.ndarray, float]) -> np.ndarray:
+    """Each candidate's distance from its shoulder (x, y arrays and the height) to a point."""
+    sx, sy, sz = shoulder
+    return np.sqrt((point[0] - sx) ** 2 + (point[1] - sy) ** 2 + (point[2] - sz) ** 2)
+
+
 def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray,
               arms: dict[str, ArmGeometry], target: np.ndarray, floor_z: float,
               also: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -45,18 +51,15 @@ def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.nd
     `also`: a second point the arm must reach from the same pose (where a pull takes a handle): the cost is the middle
     point's, and an arm must reach both."""
     c, s = np.cos(yaws), np.sin(yaws)
+    ends = [target] if also is None else [target, also]
+    scored = target if also is None else (np.asarray(target) + np.asarray(also)) / 2.0
     costs = []
     for geo in arms.values():
         sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
         sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
-        sz = floor_z + geo.shoulder[2]
-        middle = target if also is None else (np.asarray(target) + np.asarray(also)) / 2.0
-        distance = np.sqrt((middle[0] - sx) ** 2 + (middle[1] - sy) ** 2 + (middle[2] - sz) ** 2)
-        cost = np.abs(distance - REACH_FRACTION * geo.length)
-        for point in (target,) if also is None else (target, also):
-            distance = np.sqrt((point[0] - sx) ** 2 + (point[1] - sy) ** 2 + (point[2] - sz) ** 2)
-            cost = np.where(distance > geo.length + 0.02, np.inf, cost)
-        costs.append(cost)
+        shoulder = (sx, sy, floor_z + geo.shoulder[2])
+        beyond = np.any([_distance(end, shoulder) > geo.length + 0.02 for end in ends], axis=0)
+        costs.append(np.where(beyond, np.inf, np.abs(_distance(scored, shoulder) - REACH_FRACTION * geo.length)))
     stacked = np.stack(costs, axis=1)  # candidates x arms
     best = stacked.min(axis=1)
     order = np.argsort(stacked, axis=1, kind="stable")

@@ -63,11 +63,13 @@ def handle_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3
     return None if grasp is None else (grasp.position, grasp.orientation)
 
 
-def plan_handle_grasp(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Grasp, IKSolution, IKSolution]:
-    """How accessing takes the handle from where the robot stands: the grasp, and the arm's configurations at the
-    pre-grasp pose (APPROACH back, near the arm's configuration) and at the handle. GripperFailure when the gripper
-    cannot hold it, ReachabilityFailure when the arm reaches either pose not (the location test asks this too)."""
-    grasp = handle_grasp(robot, arm, part, handle)
+def plan_handle_grasp(robot: Robot, arm: str, part: Object, handle: str,
+                      grasp: Grasp | None = None) -> tuple[Grasp, IKSolution, IKSolution]:
+    """How accessing takes the handle from where the robot stands: the grasp (`handle_grasp`'s, unless the caller
+    has it already), and the arm's configurations at the pre-grasp pose (APPROACH back, near the arm's
+    configuration) and at the handle. GripperFailure when the gripper cannot hold it, ReachabilityFailure when the
+    arm reaches either pose not (the location test asks this too)."""
+    grasp = grasp or handle_grasp(robot, arm, part, handle)
     if grasp is None:
         raise GripperFailure(f"the {gripper_words(arm)} cannot hold the handle {handle}", arm=arm)
     what = f"the handle {handle}"
