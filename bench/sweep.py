@@ -14,7 +14,9 @@ Prints, for the same scenarios (seed 0):
   after another (the straightforward way), and its ratio to the sweep;
 - with Ray installed: the Ray backend on a local Ray instance, its throughput, and whether its
   results are those of the local backend (same seeds, same outcomes, same trace digests);
-- a worker's memory (RSS) every 100 scenarios over --memory scenarios run in one process (target: flat).
+- a worker's memory (RSS) every 100 scenarios over --memory scenarios run in one process (target: flat);
+- the action demo (plans/set_table_actions.yaml, the same variations) swept with 2 workers, --actions scenarios:
+  issue 28's target is >= 2 scenarios/s.
 """
 from __future__ import annotations
 
@@ -36,13 +38,16 @@ from pycram_cli.sweep import SweepSettings, prepare_sweep, run_sweep  # noqa: E4
 from pycram_cli.sweep.worker import SweepJob, Task, Worker  # noqa: E402
 
 PLAN = REPO / "plans" / "set_table.yaml"
+ACTIONS = REPO / "plans" / "set_table_actions.yaml"
 VARY = REPO / "plans" / "set_table.vary.yaml"
+#: issue 28: the action demo swept at this many scenarios per second or more with 2 workers
+ACTIONS_TARGET = 2.0
 
 
-def sweep(n: int, workers: int, backend: str = "local") -> tuple[float, list[float], list[dict]]:
+def sweep(n: int, workers: int, backend: str = "local", plan: Path = PLAN) -> tuple[float, list[float], list[dict]]:
     """Wall time, arrival times of the outcomes, and the outcomes (in scenario order)."""
     with tempfile.TemporaryDirectory() as folder:
-        prepared = prepare_sweep(SweepSettings(str(PLAN), str(VARY), n=n, workers=workers, backend=backend,
+        prepared = prepare_sweep(SweepSettings(str(plan), str(VARY), n=n, workers=workers, backend=backend,
                                                out=Path(folder)))
         arrivals: list[float] = []
         started = time.perf_counter()
@@ -90,6 +95,7 @@ def main() -> None:
     parser.add_argument("-n", type=int, default=40, help="scenarios per sweep")
     parser.add_argument("--baseline", type=int, default=6, help="scenarios run as fresh processes")
     parser.add_argument("--memory", type=int, default=200, help="scenarios for the memory check (0: skip)")
+    parser.add_argument("--actions", type=int, default=20, help="scenarios of the action demo's sweep (0: skip)")
     parser.add_argument("--no-ray", action="store_true")
     args = parser.parse_args()
     n = args.n
@@ -132,6 +138,15 @@ def main() -> None:
             wall_ray, _, on_ray = sweep(n, 2, "ray")
             print(f"  ray, 2 actors on a local Ray: {n / wall_ray:5.2f} scenarios/s ({wall_ray:.1f} s, Ray's start "
                   f"included); same results as the local backend: {untimed(on_ray) == untimed(two)}")
+
+    if args.actions:
+        wall, _, done = sweep(args.actions, 2, plan=ACTIONS)
+        rate = args.actions / wall
+        plans = statistics.median(r["timing"]["duration"] for r in done)
+        ok = sum(r["status"] == "succeeded" for r in done)
+        print(f"  {ACTIONS.name}, 2 workers: {rate:5.2f} scenarios/s ({wall:.1f} s for {args.actions}, succeeded "
+              f"{ok}; plan time median {plans:.2f} s) target >= {ACTIONS_TARGET:g}/s: "
+              f"{'met' if rate >= ACTIONS_TARGET else 'MISSED'}")
 
     if args.memory:
         samples = memory(args.memory)

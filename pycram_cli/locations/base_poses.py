@@ -41,7 +41,7 @@ from ..world import Object
 from ..world.pose import yaw_quaternion
 from . import accessing, floor
 from .candidates import CODE, OUTCOMES, BasePose, Candidates
-from .geometry import ArmGeometry, arm_geometry, camera_offset, centre, yaw_of
+from .geometry import ArmGeometry, arm_geometry, camera_offset, centre, hand_length, yaw_of
 from .lattice import DEFERRED, FIRST, candidate_poses
 from .ranked import Resolution
 from .reaching import ArmTests, Miss
@@ -160,8 +160,13 @@ class BasePoseResolution(Resolution):
         self.arm_order = np.zeros((len(xs), len(arms)), dtype=np.int8)
         if reach_target is not None:
             pulled_to = self._handle_path[-1] if spec.accessing is not None and self._handle_path else None
+            level = None
+            if poses.arm is not None and poses.wrist is not None and (poses.arm >= 0).any():
+                hands = np.array([hand_length(robot, name) if (poses.arm == k).any() else 0.0
+                                  for k, name in enumerate(arms)])
+                level = (poses.arm, poses.wrist, hands)
             scores, self.arm_order = add_reach(scores, outcome, xs, ys, yaws, arms, reach_target, self.floor_z,
-                                               pulled_to)
+                                               pulled_to, level)
             if handle_ends is not None:
                 scores = add_pull_heading(scores, yaws, *handle_ends)
         if view_target is not None:

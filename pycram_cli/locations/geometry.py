@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..planning.grasps import grasps, holdable, tool_axes
 from ..planning.pick_place import PLACE_TURNS, level
 from ..robots import Robot
 from ..world import Object
@@ -71,18 +72,29 @@ def aligned_reach_line(robot: Robot, arm: str) -> float | None:
     return straight_reach_line(robot, arm) if rotating < FREE_ORIENTATION_JOINTS else None
 
 
-def line_poses(point: Point, heading: float, arm: ArmGeometry,
-               line: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Base poses (xs, ys, yaws) turned to `heading` (rad) with the arm's reach line (`straight_reach_line`) through
-    `point`, the shoulder STEP, 2 STEP, ... up to the arm's length short of it: from these an arm that keeps its
-    tool in its pan's plane reaches `point` with its tool pointing along `heading`. The lattice's candidates face
-    the target from the base's centre and miss that line by the arm's mount offset."""
+def line_poses(point: Point, heading: float, arm: ArmGeometry, line: float,
+               pan: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Base poses (xs, ys, yaws) from which the arm's reach line (`straight_reach_line`), turned by `pan` about the
+    shoulder, runs through `point` along `heading` (rad), the shoulder STEP, 2 STEP, ... up to the arm's length short
+    of it: from these an arm that keeps its tool in its pan's plane reaches `point` with its tool pointing along
+    `heading` (the base turned to `heading - pan`). The lattice's candidates face the target from the base's centre
+    and miss that line by the arm's mount offset."""
     into = np.array([math.cos(heading), math.sin(heading)])
     left = np.array([-into[1], into[0]])
-    ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the point's x in the base frame
-    xs = point[0] - ahead * into[0] - line * left[0]
-    ys = point[1] - ahead * into[1] - line * left[1]
-    return xs, ys, np.full(len(xs), heading)
+    if pan == 0.0:
+        ahead = arm.shoulder[0] + np.arange(1, int(arm.length / STEP) + 1) * STEP  # the point's x in the base frame
+        xs = point[0] - ahead * into[0] - line * left[0]
+        ys = point[1] - ahead * into[1] - line * left[1]
+        return xs, ys, np.full(len(xs), heading)
+    # the base at B, turned to h = heading - pan: B + R(h)·shoulder + R(heading)·(u, line - shoulder y) = point
+    yaw = heading - pan
+    c, s = math.cos(yaw), math.sin(yaw)
+    sx, sy = float(arm.shoulder[0]), float(arm.shoulder[1])
+    along = np.arange(1, int(arm.length / STEP) + 1) * STEP
+    lateral = line - sy
+    xs = point[0] - (c * sx - s * sy) - along * into[0] - lateral * left[0]
+    ys = point[1] - (s * sx + c * sy) - along * into[1] - lateral * left[1]
+    return xs, ys, np.full(len(xs), yaw)
 
 
 def pull_aligned_poses(closed: Point, opened: Point, arm: ArmGeometry,
@@ -107,6 +119,72 @@ def place_headings(robot: Robot, obj: Object, target: Point) -> list[tuple[np.nd
         if abs(float(x[2])) < 0.7:
             found.append((np.asarray(position, dtype=float), math.atan2(float(x[1]), float(x[0]))))
     return found
+
+
+#: base headings (rad) at which `pick_lines` asks which sideways grasps an object offers
+PICK_HEADINGS = tuple(math.radians(d) for d in range(-180, 180, 30))
+
+
+def _axis(robot: Robot, name: str) -> np.ndarray:
+    """A joint's unit axis in the world as the body stands (PyBullet gives it in the child's centre-of-mass frame)."""
+    body = robot.body
+    joint = body.joint(name)
+    local = quat_to_matrix(joint.inertial_frame[1]) @ np.asarray(joint.axis, dtype=float)
+    return quat_to_matrix(body.get_link_orientation(joint.child_link)) @ (local / (np.linalg.norm(local) or 1.0))
+
+
+def pan_range(robot: Robot, arm: str) -> tuple[float, float] | None:
+    """The turn of the arm's first joint when it pans about the vertical (its limits; a full turn either way when it
+    has none), else None: an arm whose first joint does not pan reaches sideways only straight ahead."""
+    body = robot.body
+    joint = body.joint(robot.description.arm(arm).joints[0])
+    if joint.type not in ("revolute", "continuous"):
+        return None
+    if abs(float((quat_to_matrix(body.get_orientation()).T @ _axis(robot, joint.name))[2])) < 0.99:
+        return None
+    if joint.type == "continuous" or not joint.limited:
+        return -math.pi, math.pi
+    return float(joint.lower), float(joint.upper)
+
+
+def hand_length(robot: Robot, arm: str) -> float:
+    """How far the tool frame is from the arm's last joint that moves it off its approach axis (the wrist's pitch: the
+    joints after it only roll the tool). A tool held level sticks out that far from the wrist, whatever the arm's
+    bend: the rest of the arm reaches the wrist (`pick_lines`' poses are scored so)."""
+    body = robot.body
+    desc = robot.description.arm(arm)
+    position, orientation = body.get_link_position_and_orientation(desc.tool_frame)
+    approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
+    for name in reversed(desc.joints):
+        joint = body.joint(name)
+        if joint.type in ("revolute", "continuous") and abs(float(_axis(robot, name) @ approach)) < 0.99:
+            return math.dist(position, body.get_link_position(joint.child_link))
+    return 0.0
+
+
+def pick_lines(robot: Robot, arm: str, obj: Object, grasp_names: Sequence[str]) -> list[tuple[np.ndarray, float, float]]:
+    """(tool position, tool heading, pan) for each way the arm's gripper may take `obj` from the side (one of
+    `grasp_names`, as the grasp would be asked with the base at each of PICK_HEADINGS): an arm that keeps its tool in
+    its pan's plane takes it so only with its reach line, turned by the pan, through the tool position (`line_poses`).
+    Pans beyond the first joint's range are left out."""
+    turns = pan_range(robot, arm)
+    approach = tool_axes(robot, arm)[:, 0]
+    level = [n for n in grasp_names if abs(float((quat_to_matrix(robot.description.grasps[n]) @ approach)[2])) <= 0.7]
+    found: dict[tuple[float, ...], tuple[np.ndarray, float, float]] = {}
+    for base_yaw in PICK_HEADINGS:
+        for name in level:  # a grasp pointing down turns about the vertical with the wrist: reached off the line too
+            for grasp in grasps(robot, arm, obj, name, yaw_quaternion(base_yaw)):
+                way = np.asarray(grasp.approach, dtype=float)
+                if abs(float(way[2])) > 0.7 or holdable(robot, arm, grasp) is not None:
+                    continue
+                heading = math.atan2(float(way[1]), float(way[0]))
+                pan = math.remainder(heading - base_yaw, 2 * math.pi)
+                if turns is None and abs(pan) > 1e-6 or turns is not None and not turns[0] <= pan <= turns[1]:
+                    continue
+                position = np.asarray(grasp.position, dtype=float)
+                key = (*np.round(position, 6), round(heading, 6), round(pan, 6))
+                found.setdefault(key, (position, heading, pan))
+    return list(found.values())
 
 
 def camera_offset(robot: Robot) -> np.ndarray | None:

@@ -3,9 +3,9 @@
 The lattice (every STEP metres within the arms' or the camera's range of the target) faces each position to the
 target and turns it a little either way. An arm with fewer than six rotating joints keeps its tool in the plane
 its pan turns, so it reaches with the tool pointing sideways only on its own reach line, which the lattice misses
-by the arm's mount offset: for it, opening a drawer and placing a thing held from the side also get the poses that
-put that line through the handle or the place (tried first); any other arm gets the drawer's in-line poses only
-once the lattice has failed (deferred).
+by the arm's mount offset: for it, opening a drawer, placing a thing held from the side and taking one from the side
+also get the poses that put that line (turned by the pan, for taking) through the handle, the place or the grasp
+(tried first); any other arm gets the drawer's in-line poses only once the lattice has failed (deferred).
 """
 from __future__ import annotations
 
@@ -17,7 +17,18 @@ import numpy as np
 
 from ..planning.head import camera_yaw
 from ..robots import Robot
-from .geometry import STEP, ArmGeometry, aligned_reach_line, line_poses, place_headings, pull_aligned_poses, straight_reach_line
+from ..world import Object
+from .geometry import (
+    STEP,
+    ArmGeometry,
+    aligned_reach_line,
+    hand_length,
+    line_poses,
+    pick_lines,
+    place_headings,
+    pull_aligned_poses,
+    straight_reach_line,
+)
 from .scoring import VIEW_DISTANCE
 from .spec import LocationSpec
 
@@ -25,19 +36,34 @@ from .spec import LocationSpec
 TURNS = (0.0, math.radians(20), -math.radians(20))
 #: `Poses.kind`: a lattice pose, an in-line pose tried first, an in-line pose deferred until the others failed
 LATTICE, FIRST, DEFERRED = 0, 1, 2
-#: one arm's in-line poses: xs, ys, yaws and kinds
-InLine = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+
+
+@dataclass(frozen=True)
+class InLine:
+    """The poses along one arm's reach line (`line_poses`), and for a line a thing is taken along from the side, the
+    arm (its index in the location's arms) and where its wrist is at the grasp: the same from every pose on the line,
+    which the reach score measures instead of the tool (`scoring.add_reach`)."""
+
+    xs: np.ndarray
+    ys: np.ndarray
+    yaws: np.ndarray
+    kind: int  # FIRST or DEFERRED
+    arm: int = -1
+    wrist: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
 class Poses:
-    """Candidate base poses as arrays: position, heading, how far each is turned from facing the target, and kind."""
+    """Candidate base poses as arrays: position, heading, how far each is turned from facing the target, and kind;
+    `arm` and `wrist` as `InLine` gives them (-1 and NaN for the others)."""
 
     xs: np.ndarray
     ys: np.ndarray
     yaws: np.ndarray
     turns: np.ndarray
     kind: np.ndarray  # LATTICE, FIRST or DEFERRED (int8)
+    arm: np.ndarray | None = None  # int8
+    wrist: np.ndarray | None = None  # (poses, 3)
 
 
 def search_radius(arms: dict[str, ArmGeometry], reaching: bool, camera: np.ndarray | None) -> float:
@@ -68,8 +94,9 @@ def floor_lattice(target: np.ndarray, radius: float, turned: float, tried: Seque
 
 def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry], reach_target: np.ndarray | None,
                   handle_ends: tuple[np.ndarray, np.ndarray] | None) -> list[InLine]:
-    """(xs, ys, yaws, kinds) of the poses in line with each arm's reach line: facing along a handle's pull
-    (`handle_ends`: closed, opened), or for each way a held thing may be placed at `reach_target`."""
+    """The poses in line with each arm's reach line: facing along a handle's pull (`handle_ends`: closed, opened), for
+    each way a held thing may be placed at `reach_target`, or for each way the thing to take may be taken from the
+    side (arms that keep their tool in their pan's plane only)."""
     parts: list[InLine] = []
     if handle_ends is not None:
         closed, opened = handle_ends
@@ -77,7 +104,19 @@ def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry]
             line = aligned_reach_line(robot, name)
             ax, ay, ayaw = pull_aligned_poses(closed, opened,
                                               geo, line if line is not None else straight_reach_line(robot, name))
-            parts.append((ax, ay, ayaw, np.full(len(ax), FIRST if line is not None else DEFERRED, dtype=np.int8)))
+            parts.append(InLine(ax, ay, ayaw, FIRST if line is not None else DEFERRED))
+    elif spec.placing is None and isinstance(spec.reachable_for, Object):
+        # an arm that cannot turn its tool freely takes a thing from the side only with its reach line through it
+        names = [spec.grasp] if isinstance(spec.grasp, str) else list(robot.description.grasps) if spec.grasp is None else []
+        for k, (name, geo) in enumerate(arms.items()):
+            line = aligned_reach_line(robot, name)
+            if line is None:
+                continue
+            hand = hand_length(robot, name)
+            for point, heading, pan in pick_lines(robot, name, spec.reachable_for, names):
+                ax, ay, ayaw = line_poses(point, heading, geo, line, pan)
+                wrist = point - hand * np.array([math.cos(heading), math.sin(heading), 0.0])
+                parts.append(InLine(ax, ay, ayaw, FIRST, k, wrist))
     elif spec.placing is not None and reach_target is not None:
         # an arm that cannot turn its tool freely puts a thing held from the side down only on its reach line
         for name, geo in arms.items():
@@ -85,8 +124,7 @@ def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry]
             if line is None:
                 continue
             for point, heading in place_headings(robot, spec.placing, reach_target):
-                ax, ay, ayaw = line_poses(point, heading, geo, line)
-                parts.append((ax, ay, ayaw, np.full(len(ax), FIRST, dtype=np.int8)))
+                parts.append(InLine(*line_poses(point, heading, geo, line), FIRST))
     return parts
 
 
@@ -103,9 +141,16 @@ def candidate_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometr
     parts = in_line_poses(robot, spec, arms, reach_target, handle_ends) if robot.description.mobile else []
     if not parts:
         return poses
-    ax, ay, ayaw, kind = (np.concatenate([part[k] for part in parts]) for k in range(4))
+    ax, ay, ayaw = (np.concatenate([getattr(part, k) for part in parts]) for k in ("xs", "ys", "yaws"))
+    kind = np.concatenate([np.full(len(part.xs), part.kind, dtype=np.int8) for part in parts])
+    arm = np.concatenate([np.full(len(poses.xs), -1, dtype=np.int8)]
+                         + [np.full(len(part.xs), part.arm, dtype=np.int8) for part in parts])
+    wrist = np.concatenate([np.full((len(poses.xs), 3), np.nan)] + [np.tile(part.wrist if part.wrist is not None
+                                                                            else np.full(3, np.nan), (len(part.xs), 1))
+                                                                    for part in parts])
     near = np.hypot(ax - target[0], ay - target[1]) <= radius
     ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
+    kept = np.concatenate([np.ones(len(poses.xs), dtype=bool), near])
     aturn = np.angle(np.exp(1j * (ayaw - np.arctan2(target[1] - ay, target[0] - ax))))
     return Poses(np.concatenate([poses.xs, ax]), np.concatenate([poses.ys, ay]), np.concatenate([poses.yaws, ayaw]),
-                 np.concatenate([poses.turns, aturn]), np.concatenate([poses.kind, kind]))
+                 np.concatenate([poses.turns, aturn]), np.concatenate([poses.kind, kind]), arm[kept], wrist[kept])

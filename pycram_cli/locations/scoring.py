@@ -22,6 +22,10 @@ from .geometry import ArmGeometry
 
 #: the comfortable distance from the shoulder to the target, as a fraction of the arm's length
 REACH_FRACTION = 0.6
+#: a tool held level (taken along a reach line, `lattice.InLine`): the comfortable distance from the shoulder to the
+#: wrist, as a fraction of the arm's length less the hand's; a level hand folds the arm less far than a free one, and
+#: 0.75 lies inside the range IK reaches for every 5-joint arm of the robot zoo (0.46-0.63 to 0.89-1.0)
+LEVEL_REACH_FRACTION = 0.75
 #: visible-for: horizontal distances from the camera to the object (m): comfortable, least, most
 VIEW_DISTANCE = (1.0, 0.45, 2.5)
 #: a camera fixed on the body: how much of half its vertical view the target may be off its axis
@@ -45,21 +49,29 @@ def _distance(point: np.ndarray, shoulder: tuple[np.ndarray, np.ndarray, float])
 
 def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.ndarray, yaws: np.ndarray,
               arms: dict[str, ArmGeometry], target: np.ndarray, floor_z: float,
-              also: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+              also: np.ndarray | None = None,
+              level: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The scores with the best arm's reach cost added, and each candidate's arms nearest first (indices into
     `arms`, -1 for an arm that cannot reach); candidates no arm reaches are marked `out of reach` in `outcome`.
     `also`: a second point the arm must reach from the same pose (where a pull takes a handle): the cost is the middle
-    point's, and an arm must reach both."""
+    point's, and an arm must reach both. `level`: (arm index, wrist position, hand length of each arm) of candidates
+    on a reach line that takes the target with the tool held level (`lattice.InLine`; -1 for the others): for that
+    arm, the cost is the wrist's distance off LEVEL_REACH_FRACTION of the arm less the hand."""
     c, s = np.cos(yaws), np.sin(yaws)
     ends = [target] if also is None else [target, also]
     scored = target if also is None else (np.asarray(target) + np.asarray(also)) / 2.0
     costs = []
-    for geo in arms.values():
+    for k, geo in enumerate(arms.values()):
         sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
         sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
         shoulder = (sx, sy, floor_z + geo.shoulder[2])
         beyond = np.any([_distance(end, shoulder) > geo.length + 0.02 for end in ends], axis=0)
-        costs.append(np.where(beyond, np.inf, np.abs(_distance(scored, shoulder) - REACH_FRACTION * geo.length)))
+        cost = np.abs(_distance(scored, shoulder) - REACH_FRACTION * geo.length)
+        if level is not None and (level[0] == k).any():
+            on, wrist, hand = level[0] == k, level[1], float(level[2][k])
+            wrist_distance = np.sqrt((wrist[:, 0] - sx) ** 2 + (wrist[:, 1] - sy) ** 2 + (wrist[:, 2] - shoulder[2]) ** 2)
+            cost = np.where(on, np.abs(wrist_distance - LEVEL_REACH_FRACTION * (geo.length - hand)), cost)
+        costs.append(np.where(beyond, np.inf, cost))
     stacked = np.stack(costs, axis=1)  # candidates x arms
     best = stacked.min(axis=1)
     order = np.argsort(stacked, axis=1, kind="stable")

@@ -83,9 +83,10 @@ def grasp_offset(robot: Robot, arm: str) -> np.ndarray:
     return np.asarray(hand(robot.body, desc).grasp_offset, dtype=float)
 
 
-def wanted_orientation(robot: Robot, grasp: str | Sequence[float]) -> Quat:
-    """The tool orientation a grasp asks for: a robot grasp turned with the base, or a world quaternion."""
-    return robot.description.grasp_orientation(grasp, robot.body.get_orientation())
+def wanted_orientation(robot: Robot, grasp: str | Sequence[float], base: Quat | None = None) -> Quat:
+    """The tool orientation a grasp asks for: a robot grasp turned with the base (as it stands, or turned to `base`),
+    or a world quaternion."""
+    return robot.description.grasp_orientation(grasp, robot.body.get_orientation() if base is None else base)
 
 
 def _frame(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -157,23 +158,24 @@ def palm_clearance(robot: Robot, arm: str) -> float:
     return max(0.0, -front)
 
 
-def grasps(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float]) -> list[Grasp]:
+def grasps(robot: Robot, arm: str, obj: Object, grasp: str | Sequence[float], base: Quat | None = None) -> list[Grasp]:
     """Every way to hold `obj` with `grasp`, the one that best matches the grasp first (special grasp points: the
-    nearest the robot first); not yet checked against the gripper (see `holdable`)."""
+    nearest the robot first); not yet checked against the gripper (see `holdable`). `base`: the grasp as the robot
+    would ask it with its base turned so (a location weighing headings), not as it stands."""
     pose = obj.get_pose()
     lo, hi = (np.asarray(v, dtype=float) for v in obj.get_local_aabb())
-    return grasps_of_box(robot, arm, pose, lo, hi, grasp, obj.type)
+    return grasps_of_box(robot, arm, pose, lo, hi, grasp, obj.type, base)
 
 
 def grasps_of_box(robot: Robot, arm: str, pose: tuple[Sequence[float], Sequence[float]], lo: np.ndarray, hi: np.ndarray,
-                  grasp: str | Sequence[float], object_type: str = "") -> list[Grasp]:
+                  grasp: str | Sequence[float], object_type: str = "", base: Quat | None = None) -> list[Grasp]:
     """`grasps` for a box `lo`..`hi` in the frame `pose` (an object's, or a link's such as a drawer handle)."""
     knowledge = object_knowledge(object_type)
     rotation = quat_to_matrix(pose[1])
     origin = np.asarray(pose[0], dtype=float)
     centre, half = (lo + hi) / 2.0, (hi - lo) / 2.0
     axes = tool_axes(robot, arm)  # the tool's (approach, closing, third) axes in its own frame
-    wanted = quat_to_matrix(wanted_orientation(robot, grasp)) @ axes  # as world directions
+    wanted = quat_to_matrix(wanted_orientation(robot, grasp, base)) @ axes  # as world directions
     round_ = knowledge.symmetry == "revolution"
     if not isinstance(grasp, str):  # a world quaternion is taken as given
         frames = [wanted]
@@ -219,8 +221,8 @@ def grasps_of_box(robot: Robot, arm: str, pose: tuple[Sequence[float], Sequence[
         found.append(Grasp(_vec(_tool_at(position, tool, axes, offset)), orientation, width, height, grasp, approach,
                            depth))
     if points:
-        base = np.asarray(robot.body.get_position())
-        found.sort(key=lambda g: float(np.hypot(g.position[0] - base[0], g.position[1] - base[1])))
+        here = np.asarray(robot.body.get_position())
+        found.sort(key=lambda g: float(np.hypot(g.position[0] - here[0], g.position[1] - here[1])))
     return found
 
 
