@@ -13,6 +13,7 @@ from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
 from ..planning.drawers import DISTANCE, follows_handle, handle_grasp, plan_handle_grasp, pull_beyond_reach
 from ..planning.paths import move_over
+from ..planning.reach import back_off, rest_configuration
 from ..robots import Robot
 from ..world import Object
 from . import floor
@@ -78,9 +79,12 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True
     """Accessing's own planning takes the handle from here and pulls it to the goal: its grasp (aligned with the handle's
     box, not turned with the base as the reach test's first IK) and its pre-grasp pose are reached, the arm holding
     the handle so follows it all the way, step by step (`follows_handle`: the drawer then inside no part of
-    the robot but the hand, as a robot standing too close would open it into its own arm), and the arm, its
-    gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`; with
-    `search` off, without its joint-space search: None when only that way is blocked, a search might find one)."""
+    the robot but the hand, as a robot standing too close would open it into its own arm), the arm, its
+    gripper open as accessing opens it, has a free way from where it is to the pre-grasp pose (`move_over`), and
+    from the end of the pull, backed off the handle as accessing backs off, a free way to the pose it rests in (the
+    open and close actions take it there next: an arm that pulled the drawer into its own way back would stay stuck
+    at the handle). With `search` off, the way to the pre-grasp pose without `move_over`'s joint-space search: None
+    when only that way is blocked, a search might find one."""
     handle = _handle(spec)
     obj = handle.obj
     gripper = robot.description.arm(arm).gripper
@@ -94,7 +98,8 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True
                 return False  # as `follows_handle` would find, without solving the grasp first
             _, pre, at = plan_handle_grasp(robot, arm, obj, handle.link, grasp)
             robot.body.reset_joints({joint: gripper.closed for joint in gripper.joints})  # holding the handle
-            if not follows_handle(robot, arm, obj, handle.link, handle.joint, end, at):
+            pulled = follows_handle(robot, arm, obj, handle.link, handle.joint, end, at)
+            if pulled is None:
                 return False
             robot.body.reset_joints({joint: gripper.open for joint in gripper.joints})
         except (GripperFailure, ReachabilityFailure, ManipulationFailure):
@@ -103,4 +108,26 @@ def takes_handle(robot: Robot, spec: LocationSpec, arm: str, search: bool = True
             move_over(robot, arm, pre.joint_positions, f"the {arm_words(arm)}'s motion to the handle", search=search)
         except ManipulationFailure:
             return None if not search else False
+        try:
+            _way_back(robot, spec, arm, end, pulled)
+        except ManipulationFailure:
+            return False
     return True
+
+
+def _way_back(robot: Robot, spec: LocationSpec, arm: str, end: float, pulled: dict[str, float]) -> None:
+    """The arm's way, as the open and close actions make it, from the end of the pull (`pulled`: its joint values
+    there, the drawer at `end`, the gripper open) to the pose it rests in: backed off the handle (`back_off`), then
+    `move_over`, its joint-space search included (an arm that has pulled the drawer has no other way than the one
+    from where it holds the handle: a pose whose way back only a search finds is no worse than another);
+    ManipulationFailure when it is blocked. The arm and the drawer are put back."""
+    handle = _handle(spec)
+    rest = rest_configuration(robot, arm, holding=False)
+    if rest is None:
+        return
+    body = robot.body
+    with handle.obj.joints_kept([handle.joint]), body.joints_kept(list(pulled)):
+        handle.obj.reset_joints({handle.joint: end})
+        body.reset_joints(pulled)
+        back_off(robot, arm, f"the handle {handle.link}")
+        move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the handle", down_onto_goal=False)

@@ -92,12 +92,13 @@ def held_pose(robot: Robot, arm: str, part: Object, handle: str) -> tuple[Vec3, 
 
 
 def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str, goal: float,
-                   at: IKSolution) -> bool:
+                   at: IKSolution) -> dict[str, float] | None:
     """Whether the arm, holding the handle at `at` (from `plan_handle_grasp`), follows it to `goal` as accessing pulls
     it: every step's tool pose (the hand keeping its hold, `held_pose`) reached from the step before, the arm's way
     there free (the drawer's moving links not counted, as the pull counts them not), and the drawer then inside no
     part of the robot but the hand. Accessing's own plan of the pull, tried without moving: the
-    location test asks this, so that a pose it finds is one the pull succeeds from. Joints are put back."""
+    location test asks this, so that a pose it finds is one the pull succeeds from. Joints are put back; the arm's
+    joint values at the end of the pull, or None when it does not follow."""
     body = robot.body
     names = list(robot.description.arm(arm).joints)
     index = part.joint(joint).index
@@ -107,18 +108,18 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
         body.reset_joints(at.joint_positions)
         tools = pull_tools(part, handle, joint, goal, held_pose(robot, arm, part, handle))
         if beyond_reach(robot, arm, [tool for _, tool in tools], REACHING_VERDICT) is not None:
-            return False  # a step the walk would fail at: the drawer pushed (or pulled) out of the arm's reach
+            return None  # a step the walk would fail at: the drawer pushed (or pulled) out of the arm's reach
         for value, tool in tools:
             part.reset_joints({joint: value})
             solution = reach(robot, arm, tool[0], tool[1], best_effort=False)  # only whether (and the joints then)
             if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
-                return False
+                return None
             body.reset_joints(solution.joint_positions)
             try:
                 drawer_pushes_into(robot, part, moving, hand)
             except ManipulationFailure:
-                return False
-    return True
+                return None
+        return body.get_joint_positions(names)
 
 
 def pull_tools(part: Object, handle: str, joint: str, goal: float,

@@ -7,7 +7,7 @@ a plan failure (exit 1), never an internal error. Seed 12 has a 5-joint arm (a p
 wrist roll) mounted off the base's centre line: its tool stays in the plane the pan turns, so it puts
 the milk down only from poses whose reach line runs through the place (locations/geometry.py
 `line_poses`); the test runs only the milk's part of the demo. Seed 3's arm closes the drawer it
-opened all the way in two strokes.
+opened all the way in two strokes, and gets its arm back from the drawer it opened.
 """
 from __future__ import annotations
 
@@ -45,6 +45,16 @@ def test_a_five_joint_arm_puts_the_milk_on_the_island(tmp_path: Path) -> None:
     result = run_demo(12, tmp_path, "objects=[milk]")
     assert result.exit_code == 0, result.output
     assert "placed milk" in result.output
+
+
+def test_an_arm_opens_the_drawer_only_from_where_it_also_gets_back_to_park(tmp_path: Path) -> None:
+    """The pose for opening a drawer is tested for the whole of opening: the pull, and from its end the hand backed
+    off the handle and the arm's way to park (the open action's last motion). Before, seed 3 opened the spoon's drawer
+    from a pose where its hand, once the drawer was out, could not get past the drawer's front: the park failed,
+    the drawer stood open and no pose was left to try again from."""
+    result = run_demo(3, tmp_path, "objects=[spoon]")
+    assert result.exit_code == 0, result.output
+    assert "placed spoon" in result.output
 
 
 def test_an_arm_that_cannot_fold_closes_a_wide_open_drawer_in_strokes(tmp_path: Path) -> None:
