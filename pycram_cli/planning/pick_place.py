@@ -31,7 +31,7 @@ from ..world import Object
 from ..world.pose import Quat, Vec3, angle_between, compose, invert, quat_inverse, quat_multiply, quat_to_matrix, yaw_quaternion
 from . import motion
 from .grasps import Grasp, gripper_values, holdable_grasps, wanted_orientation
-from .reach import close_on, near_solutions, reach, reach_from, reach_near, set_gripper
+from .reach import close_on, near_solutions, reach_from, reach_near, set_gripper
 
 #: the pre-grasp pose is this far back along the approach from where the tool enters the object's box (m)
 APPROACH = 0.10
@@ -179,7 +179,10 @@ def retreat(robot: Robot, arm: str, obj: Object) -> None:
 
     def leg(direction: np.ndarray, distance: float) -> bool:
         tool = robot.body.get_link_position_and_orientation(tool_frame)
-        solution = reach(robot, arm, offset_along(tool[0], direction, distance), tool[1])
+        # a short straight move: solved on the arm's branch, so that the joint-space path keeps the object near the
+        # line (a solution on another branch turns the arm through the counter the object stands on)
+        here = robot.body.get_joint_positions(list(robot.description.arm(arm).joints))
+        solution = reach_from(robot, arm, here, offset_along(tool[0], direction, distance), tool[1])
         if not solution.success:
             raise ReachabilityFailure(f"{arm_words(arm)} cannot lift {obj.name}: the tool frame stays "
                                       f"{solution.position_error * 100:.1f} cm away", arm=arm, object=obj.name)

@@ -180,6 +180,12 @@ def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Se
         else:
             if strays(robot, arm, joints, current, start, position, orientation) == 0.0:
                 return stepped
+        # the search's seeds race, and the first to arrive wins: on a short move it may come from another branch
+        # although the arm's own configuration leads there too, a little slower; that one alone, searched again
+        body.reset_joints(joints)
+        own = solve(robot, arm, position, orientation, settings=replace(REACHING, seeds=1))
+        if own.success and strays(robot, arm, joints, own.joint_positions, start, position, orientation) == 0.0:
+            return own
     return IKSolution(False, solution.joint_positions, off, solution.orientation_error)
 
 
