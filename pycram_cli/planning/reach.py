@@ -299,10 +299,23 @@ def rest_configuration(robot: Robot, arm: str, holding: bool | None = None) -> d
         parked = body.get_link_position(tool)
     orientation = quat_multiply(body.get_orientation(), turned)
     for raise_ in CARRY_RAISE:
-        solution = reach(robot, arm, (parked[0], parked[1], parked[2] + raise_), orientation, best_effort=False)
+        target = (parked[0], parked[1], parked[2] + raise_)
+        solution = reach(robot, arm, target, orientation, best_effort=False)
+        if solution.success and _far_from(solution.joint_positions, config):
+            # the racing seeds' winner came from another branch (an arm turned over, its elbow down through what
+            # stands in front of the robot): the one park's own configuration leads to, when there is one
+            with body.joints_kept(list(config)):
+                body.reset_joints(config)
+                own = solve(robot, arm, target, orientation, settings=replace(REACHING_VERDICT, seeds=1))
+            solution = own if own.success and not _far_from(own.joint_positions, config) else solution
         if solution.success:
             return {name: solution.joint_positions[name] for name in config}
     return config
+
+
+def _far_from(joints: Mapping[str, float], config: Mapping[str, float]) -> bool:
+    """Whether some joint of `joints` is more than FAR (rad, or m) from its value in `config`."""
+    return any(abs(joints[name] - value) > FAR for name, value in config.items() if name in joints)
 
 
 def set_gripper(robot: Robot, arm: str, opening: str) -> None:
