@@ -95,6 +95,25 @@ def test_an_arm_holding_a_thing_rests_near_its_park_pose(tmp_path: Path) -> None
         world.exit()
 
 
+def test_an_arm_that_keeps_its_hand_level_opens_a_long_pull_in_strokes(tmp_path: Path) -> None:
+    """Seed 35's 5-joint arm keeps its hand level: from any one pose it follows the drawer's handle only part of the
+    pull (IK stays 5 mm and 2.4 degrees short past 0.18 m). `open` pulls it open in two strokes, each from a pose of its
+    own (before, no pose was found and search could not open the drawer the spoon lies in)."""
+    world = load_world(write_world(generate(35), tmp_path))
+    try:
+        kitchen = world.get_object_by_name("kitchen")
+        joint = kitchen.joint("sink_area_left_upper_drawer_main_joint")
+        distance = 0.75 * (joint.upper - joint.lower)  # as far as search opens it at least
+        record: dict = {}
+        perform_action(world, "open", {"handle": "sink_area_left_upper_drawer_handle", "distance": distance}, record)
+        assert kitchen.get_joint_position(joint.name) == pytest.approx(joint.lower + distance, abs=1e-6)
+        pulls = [step["designator"]["slots"]["distance"] for attempt in record["children"][0]["children"]
+                 if attempt["type"] == "attempt" for step in attempt["children"] if step["type"] == "accessing"]
+        assert pulls == [pytest.approx(distance / 2), pytest.approx(distance)]
+    finally:
+        world.exit()
+
+
 def test_an_arm_that_cannot_fold_closes_a_wide_open_drawer_in_strokes(tmp_path: Path) -> None:
     """Seed 3's 5-joint arm opens the drawer all the way, but from nowhere takes the handle of the open drawer (its
     pre-grasp pose, nearer the robot, is too close for the arm to fold to) and reaches it shut: `close` pushes it

@@ -158,26 +158,33 @@ def _access(actor: Actor, slots: Mapping[str, Any], distance: float, verb: str) 
 
 
 def _open(actor: Actor, slots: Mapping[str, Any]) -> None:
-    _access(actor, slots, slots["distance"], "open")  # bound: the declared default when not given
+    _in_strokes(actor, slots, slots["distance"], "open")  # bound: the declared default when not given
 
 
-#: a drawer or door no pose pushes shut in one stroke is pushed shut in up to this many equal strokes, each from a
-#: pose of its own: an arm that cannot fold close enough to take the handle of the open drawer from where it also
-#: reaches it shut (the pre-grasp pose is nearer the robot than the handle) stands back for the first stroke
-CLOSE_STROKES = 3
+#: a drawer or door no pose pulls open or pushes shut in one stroke is moved in up to this many equal strokes, each
+#: from a pose of its own: an arm whose hand must stay level (a 5-joint arm) follows a long pull only part of the way,
+#: and an arm that cannot fold close enough to take the handle of the open drawer from where it also reaches it shut
+#: (the pre-grasp pose is nearer the robot than the handle) stands back for the first stroke
+STROKES = 3
 
 
 def _close(actor: Actor, slots: Mapping[str, Any]) -> None:
+    _in_strokes(actor, slots, 0.0, "close")
+
+
+def _in_strokes(actor: Actor, slots: Mapping[str, Any], distance: float, verb: str) -> None:
+    """Open (or close) the handle's joint to `distance` above its lower limit: in one stroke when a pose reaches it so,
+    else in 2, then 3 equal strokes from where it is (a joint without limits: in one)."""
     handle = handle_from(actor, slots)
     info = handle.obj.joint(handle.joint)
-    for strokes in range(1, CLOSE_STROKES + 1 if info.limited else 2):
+    for strokes in range(1, STROKES + 1 if info.limited else 2):
         start = handle.obj.get_joint_position(handle.joint) - info.lower
         try:
             for k in range(1, strokes + 1):
-                _access(actor, slots, start * (1.0 - k / strokes), "close")
+                _access(actor, slots, start + (distance - start) * k / strokes, verb)
             return
         except LocationFailure:  # no pose for this stroke: shorter strokes, while there are
-            if strokes == CLOSE_STROKES or not info.limited:
+            if strokes == STROKES or not info.limited:
                 raise
 
 
@@ -191,7 +198,8 @@ _ARM = Param("arm", "arm", False, "the arm that pulls",
 
 declare_action(Action(
     "open", "Open a drawer or door by its handle (or joint): stand where a free arm reaches the handle all the way "
-            "open, pull it open, park the arm.",
+            "open, pull it open, park the arm; when no pose reaches it so, pull it open in up to three strokes, each "
+            "from a pose of its own.",
     Signature((
         *_HANDLE,
         replace(DISTANCE, kind="distance", default_doc="0.3, or the joint's range if smaller"),
