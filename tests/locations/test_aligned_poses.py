@@ -93,9 +93,10 @@ def test_a_five_joint_arm_finds_where_to_open_the_drawer_in_line_with_its_pull(z
     assert pull.type == "prismatic"
 
 
-# seeds 7 and 8 are short arms that take the milk with a front grasp; before their lines, about 60 poses of the lattice
-# (each a failed IK search of every grasp) came first: the lattice faces the milk from the base's centre, off the line
-@pytest.mark.parametrize("zoo_kitchen", [7, 8, 1], indirect=True, ids=["seed7", "seed8", "seed1"])
+# seed 7 is a short arm that takes the milk with a front grasp; before its lines, about 60 poses of the lattice (each
+# a failed IK search of every grasp) came first: the lattice faces the milk from the base's centre, off the line.
+# Seed 1's first line pose is blocked by the counter's handles, its second takes the milk
+@pytest.mark.parametrize("zoo_kitchen", [7, 1], indirect=True, ids=["seed7", "seed1"])
 def test_a_five_joint_arm_takes_a_thing_from_the_side_from_its_line_found_at_once(zoo_kitchen):
     """An arm that keeps its tool in its pan's plane takes a thing from the side only with its reach line through the
     grasp: the location puts it there, the wrist where the arm bends comfortably, and the pick-up succeeds from the

@@ -5,6 +5,7 @@ Why: one function reads as the robot's recipe; the parts keep their own sizes an
 """
 from __future__ import annotations
 
+import functools
 import math
 import random
 from collections.abc import Sequence
@@ -181,8 +182,10 @@ def _wrist_camera(rng: random.Random, tree: Tree, names: Names, plan: ArmPlan, p
     return frame, [housing, names.frame("camera_link"), frame]
 
 
+@functools.lru_cache(maxsize=64)
 def generate(seed: int) -> ZooRobot:
-    """The zoo robot of a seed (deterministic: the same seed gives the same robot)."""
+    """The zoo robot of a seed (deterministic: the same seed gives the same robot; generated once per process, as
+    finding its park pose takes a few tenths of a second, and a `ZooRobot` is frozen)."""
     rng = random.Random(seed)
     names = seeded_names(rng, seed)
     colours = tuple(rng.sample(COLOURS, 3))
