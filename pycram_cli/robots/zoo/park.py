@@ -133,7 +133,8 @@ def _link_spheres(problem: ParkProblem, values: np.ndarray) -> dict[str, tuple[n
             pieces = [_spheres(shape) for shape in link.shapes]
             centres = np.concatenate([c for c, _ in pieces])
             radii = np.concatenate([r for _, r in pieces])
-            world = np.einsum("nij,kj->nki", frames[joint.child][:, :3, :3], centres) + frames[joint.child][:, None, :3, 3]
+            # R·c for every row and centre, as one matrix product (einsum's loop is several times slower here)
+            world = np.matmul(frames[joint.child][:, :3, :3], centres.T).transpose(0, 2, 1) + frames[joint.child][:, None, :3, 3]
             out[joint.child] = (world, radii)
     return out
 
