@@ -114,6 +114,31 @@ def test_an_arm_that_keeps_its_hand_level_opens_a_long_pull_in_strokes(tmp_path:
         world.exit()
 
 
+def test_a_pose_found_with_the_torso_moved_is_reached_even_where_the_torso_as_it_is_would_hit(tmp_path: Path) -> None:
+    """A base pose found with the torso at another height was found free at that height. Seed 42 stands beside the
+    wide-open drawer to take the spoon with its torso raised; with the torso still low its arm would be against the
+    handle, so driving there first failed, at every pose found (the pick-up gave up). The torso now moves first
+    when the base cannot arrive with it where it is."""
+    from pycram_cli.designators.actions.actor import DirectActor
+    from pycram_cli.designators.actions.common import go
+    from pycram_cli.locations.candidates import BasePose
+
+    world = load_world(write_world(generate(42), tmp_path))
+    try:
+        kitchen = world.get_object_by_name("kitchen")
+        joint = kitchen.joint("sink_area_left_upper_drawer_main_joint")
+        kitchen.set_joint_position(joint.name, joint.upper)
+        robot = world.robot
+        assert robot is not None
+        position, orientation = (0.6, 0.95, 0.0), (0.0, 0.0, -0.066962, 0.997756)
+        pose = BasePose(position, orientation, -0.134, 0.0, "main", "top", None, 0, 0.351)
+        go(DirectActor(world), pose)
+        assert robot.get_position()[:2] == pytest.approx(position[:2])
+        assert robot.get_joint_position("zr42_torso_joint") == pytest.approx(0.351)
+    finally:
+        world.exit()
+
+
 def test_an_arm_that_cannot_fold_closes_a_wide_open_drawer_in_strokes(tmp_path: Path) -> None:
     """Seed 3's 5-joint arm opens the drawer all the way, but from nowhere takes the handle of the open drawer (its
     pre-grasp pose, nearer the robot, is too close for the arm to fold to) and reaches it shut: `close` pushes it

@@ -6,7 +6,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from ...errors import InputError
-from ...failures import Failure, LocationFailure
+from ...failures import Failure, LocationFailure, NavigationFailure
 from ...kinds import KINDS, Robots, location_goals
 from ...planning.reach import CARRY, PARK, rest_configuration, rest_pose  # noqa: F401 (re-exported to the actions)
 from ...robots import Robot
@@ -74,12 +74,23 @@ def _yaw(q: Any) -> float:
 
 def go(actor: Actor, pose: Any) -> None:
     """Drive to a base pose (`moving`), unless the robot stands there already; then raise or lower the torso to the
-    height the pose was found with, when it says one (an arm that reaches the object only with the torso moved)."""
-    if not stands_at(actor.robot, pose):
-        actor.motion("moving", {"target": list(pose.position), "orientation": list(pose.orientation)})
+    height the pose was found with, when it says one (an arm that reaches the object only with the torso moved). The
+    pose was found free with the torso at that height: when the robot cannot stand there with its torso where it is
+    (its arm, lower or higher, against an open drawer's handle), the torso moves first, then the base."""
     torso, joint = getattr(pose, "torso", None), actor.robot.description.torso_joint
-    if torso is not None and joint is not None and \
-            abs(actor.robot.body.get_joint_positions([joint])[joint] - torso) > 1e-6:
+    to_move = torso is not None and joint is not None and \
+        abs(actor.robot.body.get_joint_positions([joint])[joint] - torso) > 1e-6
+    if not stands_at(actor.robot, pose):
+        target = {"target": list(pose.position), "orientation": list(pose.orientation)}
+        try:
+            actor.motion("moving", target)
+        except NavigationFailure:
+            if not to_move:
+                raise
+            actor.motion("moving-torso", {"position": torso})
+            actor.motion("moving", target)
+            return
+    if to_move:
         actor.motion("moving-torso", {"position": torso})
 
 
