@@ -292,6 +292,8 @@ def move_over(robot: Robot, arm: str, goal: Mapping[str, float], what: str, down
             if not around:
                 raise
             first = exc
+    if motion.hits_at_goal(robot, goal, ignore):
+        raise first  # the goal itself is inside something: every way ends there (the search's too), none is free
     body = robot.body
     start = body.get_joint_positions(list(goal))
     # the poses the ways go through are solved only when a way needs them (a way that works early saves the rest),
