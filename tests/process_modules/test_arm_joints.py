@@ -105,3 +105,26 @@ def test_when_no_way_is_found_the_failure_names_what_blocks_and_nothing_moves(wo
         perform(world, "move-arm-joints", {"right-arm": [-1.0, 0.0, -1.463, -2.12, 1.766, -0.07, 0.0], "left-arm": "park"})
     assert world.robot.get_joint_positions() == before  # the right arm, free to move, did not move alone either
     assert calls == ["right", "left"]  # the right arm had moved when the left one found no way: it was put back
+
+
+def test_a_goal_inside_something_is_refused_before_any_way_around_is_tried(world, monkeypatch):
+    """`move_over` (a location's arm test, pick-up's way to the pre-grasp pose) asks first whether the goal itself is
+    inside something: every way around ends there, and so would the search. A blocked candidate pose no longer walks
+    its seventy ways before it fails."""
+    perform(world, "moving", {"target": [0.75, 1.9, 0], "orientation": [0, 0, 0, 1]})
+    robot = Robot.of(world)
+    inside_the_oven = dict(zip(robot.description.arm("left").joints, [0.0, 0.0, 0.0, -0.15, 0.0, -0.1, 0.0]))
+    walked: list[dict[str, float]] = []
+    real_move = motion.move
+
+    def recorded(robot_, goal, *args, **kwargs):
+        walked.append(dict(goal))
+        return real_move(robot_, goal, *args, **kwargs)
+
+    monkeypatch.setattr(motion, "move", recorded)
+    monkeypatch.setattr(paths, "search_path", lambda *args, **kwargs: pytest.fail("searched for a way to a blocked goal"))
+    before = world.robot.get_joint_positions()
+    with pytest.raises(ManipulationFailure, match=r"inside kitchen \(oven_area_[a-z_]+\)"):
+        paths.move_over(robot, "left", inside_the_oven, "the left arm's motion into the oven")
+    assert walked == [inside_the_oven]  # the straight path only
+    assert world.robot.get_joint_positions() == before
