@@ -41,8 +41,8 @@ from ..world import Object
 from ..world.pose import yaw_quaternion
 from . import accessing, floor
 from .candidates import CODE, OUTCOMES, BasePose, Candidates
-from .geometry import ArmGeometry, arm_geometry, camera_offset, centre, hand_length, yaw_of
-from .lattice import DEFERRED, FIRST, Poses, candidate_poses
+from .geometry import ArmGeometry, arm_geometry, camera_offset, centre, yaw_of
+from .lattice import DEFERRED, FIRST, candidate_poses
 from .ranked import Resolution
 from .reaching import ArmTests, Miss
 from .scoring import add_pull_heading, add_reach, add_view, here_arm_order, travel_scores
@@ -161,7 +161,7 @@ class BasePoseResolution(Resolution):
         if reach_target is not None:
             pulled_to = self._handle_path[-1] if spec.accessing is not None and self._handle_path else None
             scores, self.arm_order = add_reach(scores, outcome, xs, ys, yaws, arms, reach_target, self.floor_z,
-                                               pulled_to, _level(robot, poses, arms))
+                                               pulled_to, poses.level())
             if handle_ends is not None:
                 scores = add_pull_heading(scores, yaws, *handle_ends)
         if view_target is not None:
@@ -455,15 +455,6 @@ class BasePoseResolution(Resolution):
 
     def failure_message(self) -> str:
         return f"no pose for {self.spec.describe()}: " + "; ".join([*self._passes, self._pass_text()])
-
-
-def _level(robot: Robot, poses: Poses, arms: dict[str, ArmGeometry]) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-    """What `add_reach` scores the poses on a reach line that takes a thing with the tool level by (`lattice.InLine`):
-    each pose's arm and wrist, and each arm's hand length; None when there are none."""
-    if poses.arm is None or poses.wrist is None or not (poses.arm >= 0).any():
-        return None
-    hands = np.array([hand_length(robot, name) if (poses.arm == k).any() else 0.0 for k, name in enumerate(arms)])
-    return poses.arm, poses.wrist, hands
 
 
 def take_from_here(body: Object, obj: Object, arm: str | None = None, grasp: Any = None) -> TakeAnswer:

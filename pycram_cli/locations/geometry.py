@@ -125,14 +125,6 @@ def place_headings(robot: Robot, obj: Object, target: Point) -> list[tuple[np.nd
 PICK_HEADINGS = tuple(math.radians(d) for d in range(-180, 180, 30))
 
 
-def _axis(robot: Robot, name: str) -> np.ndarray:
-    """A joint's unit axis in the world as the body stands (PyBullet gives it in the child's centre-of-mass frame)."""
-    body = robot.body
-    joint = body.joint(name)
-    local = quat_to_matrix(joint.inertial_frame[1]) @ np.asarray(joint.axis, dtype=float)
-    return quat_to_matrix(body.get_link_orientation(joint.child_link)) @ (local / (np.linalg.norm(local) or 1.0))
-
-
 def pan_range(robot: Robot, arm: str) -> tuple[float, float] | None:
     """The turn of the arm's first joint when it pans about the vertical (its limits; a full turn either way when it
     has none), else None: an arm whose first joint does not pan reaches sideways only straight ahead."""
@@ -140,7 +132,7 @@ def pan_range(robot: Robot, arm: str) -> tuple[float, float] | None:
     joint = body.joint(robot.description.arm(arm).joints[0])
     if joint.type not in ("revolute", "continuous"):
         return None
-    if abs(float((quat_to_matrix(body.get_orientation()).T @ _axis(robot, joint.name))[2])) < 0.99:
+    if abs(float((quat_to_matrix(body.get_orientation()).T @ body.joint_axis(joint.name))[2])) < 0.99:
         return None
     if joint.type == "continuous" or not joint.limited:
         return -math.pi, math.pi
@@ -157,7 +149,7 @@ def hand_length(robot: Robot, arm: str) -> float:
     approach = quat_to_matrix(orientation) @ tool_axes(robot, arm)[:, 0]
     for name in reversed(desc.joints):
         joint = body.joint(name)
-        if joint.type in ("revolute", "continuous") and abs(float(_axis(robot, name) @ approach)) < 0.99:
+        if joint.type in ("revolute", "continuous") and abs(float(body.joint_axis(name) @ approach)) < 0.99:
             return math.dist(position, body.get_link_position(joint.child_link))
     return 0.0
 

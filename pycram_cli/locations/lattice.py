@@ -41,21 +41,22 @@ LATTICE, FIRST, DEFERRED = 0, 1, 2
 @dataclass(frozen=True)
 class InLine:
     """The poses along one arm's reach line (`line_poses`), and for a line a thing is taken along from the side, the
-    arm (its index in the location's arms) and where its wrist is at the grasp: the same from every pose on the line,
-    which the reach score measures instead of the tool (`scoring.add_reach`)."""
+    arm (its index in the location's arms), where its wrist is at the grasp (the same from every pose on the line:
+    the reach score measures it instead of the tool, `scoring.add_reach`) and how far the hand sticks out of it."""
 
     xs: np.ndarray
     ys: np.ndarray
     yaws: np.ndarray
     kind: int  # FIRST or DEFERRED
     arm: int = -1
-    wrist: np.ndarray | None = None
+    wrist: tuple[float, float, float] = (math.nan, math.nan, math.nan)
+    hand: float = math.nan
 
 
 @dataclass(frozen=True)
 class Poses:
     """Candidate base poses as arrays: position, heading, how far each is turned from facing the target, and kind;
-    `arm` and `wrist` as `InLine` gives them (-1 and NaN for the others)."""
+    `arm`, `wrist` and `hand` as `InLine` gives them (-1 and NaN for the others)."""
 
     xs: np.ndarray
     ys: np.ndarray
@@ -64,6 +65,13 @@ class Poses:
     kind: np.ndarray  # LATTICE, FIRST or DEFERRED (int8)
     arm: np.ndarray | None = None  # int8
     wrist: np.ndarray | None = None  # (poses, 3)
+    hand: np.ndarray | None = None
+
+    def level(self) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """`scoring.add_reach`'s `level`: each pose's arm, wrist and hand, or None when no pose takes a thing level."""
+        if self.arm is None or self.wrist is None or self.hand is None or not (self.arm >= 0).any():
+            return None
+        return self.arm, self.wrist, self.hand
 
 
 def search_radius(arms: dict[str, ArmGeometry], reaching: bool, camera: np.ndarray | None) -> float:
@@ -114,9 +122,9 @@ def in_line_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometry]
                 continue
             hand = hand_length(robot, name)
             for point, heading, pan in pick_lines(robot, name, spec.reachable_for, names):
-                ax, ay, ayaw = line_poses(point, heading, geo, line, pan)
                 wrist = point - hand * np.array([math.cos(heading), math.sin(heading), 0.0])
-                parts.append(InLine(ax, ay, ayaw, FIRST, k, wrist))
+                parts.append(InLine(*line_poses(point, heading, geo, line, pan), FIRST, k,
+                                    (float(wrist[0]), float(wrist[1]), float(wrist[2])), hand))
     elif spec.placing is not None and reach_target is not None:
         # an arm that cannot turn its tool freely puts a thing held from the side down only on its reach line
         for name, geo in arms.items():
@@ -142,15 +150,16 @@ def candidate_poses(robot: Robot, spec: LocationSpec, arms: dict[str, ArmGeometr
     if not parts:
         return poses
     ax, ay, ayaw = (np.concatenate([getattr(part, k) for part in parts]) for k in ("xs", "ys", "yaws"))
-    kind = np.concatenate([np.full(len(part.xs), part.kind, dtype=np.int8) for part in parts])
-    arm = np.concatenate([np.full(len(poses.xs), -1, dtype=np.int8)]
-                         + [np.full(len(part.xs), part.arm, dtype=np.int8) for part in parts])
-    wrist = np.concatenate([np.full((len(poses.xs), 3), np.nan)] + [np.tile(part.wrist if part.wrist is not None
-                                                                            else np.full(3, np.nan), (len(part.xs), 1))
-                                                                    for part in parts])
+    counts = [len(part.xs) for part in parts]  # each line's values, one per pose on it
+    kind = np.repeat([part.kind for part in parts], counts).astype(np.int8)
+    arm = np.repeat([part.arm for part in parts], counts).astype(np.int8)
+    wrist = np.repeat(np.array([part.wrist for part in parts], dtype=float).reshape(-1, 3), counts, axis=0)
+    hand = np.repeat(np.array([part.hand for part in parts], dtype=float), counts)
     near = np.hypot(ax - target[0], ay - target[1]) <= radius
-    ax, ay, ayaw, kind = ax[near], ay[near], ayaw[near], kind[near]
-    kept = np.concatenate([np.ones(len(poses.xs), dtype=bool), near])
+    ax, ay, ayaw, kind, arm, wrist, hand = (a[near] for a in (ax, ay, ayaw, kind, arm, wrist, hand))
     aturn = np.angle(np.exp(1j * (ayaw - np.arctan2(target[1] - ay, target[0] - ax))))
+    lattice = len(poses.xs)
     return Poses(np.concatenate([poses.xs, ax]), np.concatenate([poses.ys, ay]), np.concatenate([poses.yaws, ayaw]),
-                 np.concatenate([poses.turns, aturn]), np.concatenate([poses.kind, kind]), arm[kept], wrist[kept])
+                 np.concatenate([poses.turns, aturn]), np.concatenate([poses.kind, kind]),
+                 np.concatenate([np.full(lattice, -1, dtype=np.int8), arm]),
+                 np.concatenate([np.full((lattice, 3), np.nan), wrist]), np.concatenate([np.full(lattice, np.nan), hand]))

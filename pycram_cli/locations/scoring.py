@@ -54,9 +54,9 @@ def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.nd
     """The scores with the best arm's reach cost added, and each candidate's arms nearest first (indices into
     `arms`, -1 for an arm that cannot reach); candidates no arm reaches are marked `out of reach` in `outcome`.
     `also`: a second point the arm must reach from the same pose (where a pull takes a handle): the cost is the middle
-    point's, and an arm must reach both. `level`: (arm index, wrist position, hand length of each arm) of candidates
-    on a reach line that takes the target with the tool held level (`lattice.InLine`; -1 for the others): for that
-    arm, the cost is the wrist's distance off LEVEL_REACH_FRACTION of the arm less the hand."""
+    point's, and an arm must reach both. `level`: each candidate's arm index, wrist position and hand length where it
+    stands on a reach line that takes the target with the tool held level (`lattice.Poses.level`; -1 elsewhere): for
+    that arm, the cost is the wrist's distance off LEVEL_REACH_FRACTION of the arm less the hand."""
     c, s = np.cos(yaws), np.sin(yaws)
     ends = [target] if also is None else [target, also]
     scored = target if also is None else (np.asarray(target) + np.asarray(also)) / 2.0
@@ -68,7 +68,7 @@ def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.nd
         beyond = np.any([_distance(end, shoulder) > geo.length + 0.02 for end in ends], axis=0)
         cost = np.abs(_distance(scored, shoulder) - REACH_FRACTION * geo.length)
         if level is not None and (level[0] == k).any():
-            on, wrist, hand = level[0] == k, level[1], float(level[2][k])
+            on, wrist, hand = level[0] == k, level[1], level[2]
             wrist_distance = np.sqrt((wrist[:, 0] - sx) ** 2 + (wrist[:, 1] - sy) ** 2 + (wrist[:, 2] - shoulder[2]) ** 2)
             cost = np.where(on, np.abs(wrist_distance - LEVEL_REACH_FRACTION * (geo.length - hand)), cost)
         costs.append(np.where(beyond, np.inf, cost))

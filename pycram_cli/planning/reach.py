@@ -180,10 +180,7 @@ def reach_from(robot: Robot, arm: str, joints: Mapping[str, float], position: Se
         else:
             if strays(robot, arm, joints, current, start, position, orientation) == 0.0:
                 return stepped
-        # the search's seeds race, and the first to arrive wins: on a short move it may come from another branch
-        # although the arm's own configuration leads there too, a little slower; that one alone, searched again
-        body.reset_joints(joints)
-        own = solve(robot, arm, position, orientation, settings=replace(REACHING, seeds=1))
+        own = _on_branch(robot, arm, joints, position, orientation, REACHING)  # every answer strayed: the arm's own
         if own.success and strays(robot, arm, joints, own.joint_positions, start, position, orientation) == 0.0:
             return own
     return IKSolution(False, solution.joint_positions, off, solution.orientation_error)
@@ -302,15 +299,23 @@ def rest_configuration(robot: Robot, arm: str, holding: bool | None = None) -> d
         target = (parked[0], parked[1], parked[2] + raise_)
         solution = reach(robot, arm, target, orientation, best_effort=False)
         if solution.success and _far_from(solution.joint_positions, config):
-            # the racing seeds' winner came from another branch (an arm turned over, its elbow down through what
-            # stands in front of the robot): the one park's own configuration leads to, when there is one
-            with body.joints_kept(list(config)):
-                body.reset_joints(config)
-                own = solve(robot, arm, target, orientation, settings=replace(REACHING_VERDICT, seeds=1))
+            # the winner lies on another branch (an arm turned over, its elbow through what stands in front): park's own
+            own = _on_branch(robot, arm, config, target, orientation, REACHING_VERDICT)
             solution = own if own.success and not _far_from(own.joint_positions, config) else solution
         if solution.success:
             return {name: solution.joint_positions[name] for name in config}
     return config
+
+
+def _on_branch(robot: Robot, arm: str, joints: Mapping[str, float], position: Sequence[float],
+               orientation: Sequence[float] | None, settings: Settings) -> IKSolution:
+    """The solution searched from the configuration `joints` alone (the joints put back). IK's seeds race and the
+    first to converge wins, which may come from another branch although `joints` leads there too, a little slower:
+    for a short move from `joints`, or a pose near it, this is the one on its branch."""
+    body = robot.body
+    with body.joints_kept(list(joints)):
+        body.reset_joints(joints)
+        return solve(robot, arm, position, orientation, settings=replace(settings, seeds=1))
 
 
 def _far_from(joints: Mapping[str, float], config: Mapping[str, float]) -> bool:

@@ -47,8 +47,8 @@ def _wrist_axes(body: Object, arm: ArmDescription) -> tuple[np.ndarray, np.ndarr
     _, tool_orientation = body.get_link_position_and_orientation(arm.tool_frame)
     to_tool = quat_to_matrix(tool_orientation).T
     last = body.joint(arm.joints[-1])
-    joint_position, joint_orientation = body.get_link_position_and_orientation(last.index)
-    axis = quat_to_matrix(joint_orientation) @ quat_to_matrix(last.inertial_frame[1]) @ np.asarray(last.axis, dtype=float)
+    joint_position = body.get_link_position(last.index)
+    axis = body.joint_axis(last.name)
     below = sorted(body.links_below([last.name]))
     boxes = [body.get_aabb(index) for index in below] or [body.get_aabb(arm.tool_frame)]
     centre = (np.min([b[0] for b in boxes], axis=0) + np.max([b[1] for b in boxes], axis=0)) / 2.0

@@ -17,7 +17,7 @@ from .bullet_world import BulletWorld, WorldError
 from .meshes import read_mesh
 from .model_files import MESH_SUFFIXES, JointInfo, describe_urdf, find_model_file, mesh_urdf, prepare_urdf
 from .parts import JOINT_TYPES, SHAPE_KINDS, Attachment, Joint, JointLimitError, MissingMeshWarning, VisualShape
-from .pose import UP_TURNS, Quat, Vec3, check_position, check_quaternion, compose, invert, up_axis
+from .pose import UP_TURNS, Quat, Vec3, check_position, check_quaternion, compose, invert, quat_to_matrix, up_axis
 
 KINEMATIC_TYPES = ("robot", "environment")
 HOLD_FORCE = 1e5  # N or N·m: what holds a fixed object's joints (see parking.py)
@@ -149,6 +149,13 @@ class Object:
 
     def joint(self, name: str) -> Joint:
         return self.joints[self.get_joint_id(name)]
+
+    def joint_axis(self, name: str) -> np.ndarray:
+        """A joint's unit axis in the world as the object stands (PyBullet gives it in the child's centre-of-mass
+        frame, turned like the child link's frame)."""
+        joint = self.joint(name)
+        local = quat_to_matrix(joint.inertial_frame[1]) @ np.asarray(joint.axis, dtype=float)
+        return quat_to_matrix(self.get_link_orientation(joint.index)) @ (local / (np.linalg.norm(local) or 1.0))
 
     # -- pose -------------------------------------------------------------------
     def get_position(self) -> Vec3:
