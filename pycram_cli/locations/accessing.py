@@ -11,11 +11,12 @@ import numpy as np
 
 from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_words
-from ..planning.drawers import DISTANCE, follows_handle, handle_grasp, plan_handle_grasp, pull_beyond_reach
+from ..planning.drawers import DISTANCE, contents_of, follows_handle, handle_grasp, plan_handle_grasp, pull_beyond_reach
 from ..planning.paths import move_over
 from ..planning.reach import back_off, rest_configuration
 from ..robots import Robot
 from ..world import Object
+from ..world.riders import carrying
 from . import floor
 from .spec import Handle, LocationSpec
 
@@ -125,9 +126,12 @@ def _way_back(robot: Robot, spec: LocationSpec, arm: str, end: float, pulled: di
     rest = rest_configuration(robot, arm, holding=False)
     if rest is None:
         return
-    body = robot.body
-    with handle.obj.joints_kept([handle.joint]), body.joints_kept(list(pulled)):
-        handle.obj.reset_joints({handle.joint: end})
+    body, part = robot.body, handle.obj
+    index = part.joint(handle.joint).index
+    with (part.joints_kept([handle.joint]), body.joints_kept(list(pulled)),
+          carrying(part, index, contents_of(part, index)) as follow):  # what the drawer holds, where it rides to
+        part.reset_joints({handle.joint: end})
+        follow()
         body.reset_joints(pulled)
         back_off(robot, arm, f"the handle {handle.link}")
         move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the handle", down_onto_goal=False)

@@ -9,7 +9,7 @@ collision-checked (`motion.py`). What rests in the drawer rides along.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -21,6 +21,7 @@ from ..robots import Robot
 from ..signature import Param
 from ..world import Object
 from ..world.pose import Quat, Vec3, compose, invert
+from ..world.riders import carrying
 from . import motion
 from .grasps import Grasp, grasps_of_box, holdable
 from .reach import REACHING_VERDICT, reach, solve_tool
@@ -109,17 +110,27 @@ def follows_handle(robot: Robot, arm: str, part: Object, handle: str, joint: str
         tools = pull_tools(part, handle, joint, goal, held_pose(robot, arm, part, handle))
         if beyond_reach(robot, arm, [tool for _, tool in tools], REACHING_VERDICT) is not None:
             return None  # a step the walk would fail at: the drawer pushed (or pulled) out of the arm's reach
-        for value, tool in tools:
-            part.reset_joints({joint: value})
-            solution = reach(robot, arm, tool[0], tool[1], best_effort=False)  # only whether (and the joints then)
-            if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
-                return None
-            body.reset_joints(solution.joint_positions)
-            try:
-                drawer_pushes_into(robot, part, moving, hand)
-            except ManipulationFailure:
-                return None
-        return body.get_joint_positions(names)
+        with carrying(part, index, contents_of(part, index)) as follow:  # what the drawer holds rides along
+            return _follows(robot, arm, part, joint, tools, moving, hand, follow)
+
+
+def _follows(robot: Robot, arm: str, part: Object, joint: str, tools: list[tuple[float, tuple[Vec3, Quat]]],
+             moving: list[tuple[Object, int]], hand: list[int], follow: Callable[[], None]) -> dict[str, float] | None:
+    """`follows_handle`'s walk along the pull's steps (`tools`), what the drawer holds following it (`follow`)."""
+    body = robot.body
+    names = list(robot.description.arm(arm).joints)
+    for value, tool in tools:
+        part.reset_joints({joint: value})
+        follow()
+        solution = reach(robot, arm, tool[0], tool[1], best_effort=False)  # only whether (and the joints then)
+        if not solution.success or motion.hits_on_way(robot, solution.joint_positions, ignore_links=moving):
+            return None
+        body.reset_joints(solution.joint_positions)
+        try:
+            drawer_pushes_into(robot, part, moving, hand)
+        except ManipulationFailure:
+            return None
+    return body.get_joint_positions(names)
 
 
 def pull_tools(part: Object, handle: str, joint: str, goal: float,

@@ -94,6 +94,13 @@ def followers(body: Object) -> list[Object]:
     return found
 
 
+def _rounded(value: Any, digits: int | None) -> Any:
+    """Every float in nested tuples rounded to `digits` decimals, -0.0 as 0.0 (None: as it is)."""
+    if digits is None or not isinstance(value, (float, tuple)):
+        return value
+    return round(value, digits) + 0.0 if isinstance(value, float) else tuple(_rounded(v, digits) for v in value)
+
+
 class Motion:
     """The moving part of a robot for some joints (their links and what those hold) and the obstacles around it."""
 
@@ -131,25 +138,28 @@ class Motion:
         self._parts_found: list[tuple[int, ...]] | None = None
         self._chain: list[int] | None = None  # the joints `_configuration` reads
 
-    def situation(self) -> tuple | None:
+    def situation(self, digits: int | None = None) -> tuple | None:
         """Everything a walk or search of this motion depends on, exactly: where the moving part is (the robot's base
         and the joints it hangs below, `_configuration`), what follows it (re-placed by its links at every step of a
-        path: by configuration and how it is held), every other object's version (an unchanged version is an unchanged object, see
-        `BulletWorld.version`), the moving joints and what may be touched. Equal situations give equal walks and
+        path: by configuration and how it is held), where every other object is (`Object.placement`: the same place
+        however it got there), the moving joints and what may be touched. Equal situations give equal walks and
         searches, bitwise, so each is made once (`remembered`): a way tried again — a departure re-tried for each
-        arrival in `paths.move_over`, the way a location test found, then moved along — costs a look-up. None where
-        versions do not see every change (a GUI, real time) or in a private copy: nothing is remembered there."""
+        arrival in `paths.move_over`, the way a location test found, then moved along — costs a look-up. With
+        `digits`, where the robot and what it holds are is rounded to that many decimals (a search's way, which the
+        mover walks checked, serves a start a rounding error away). None where versions do not see every change (a
+        GUI, real time) or in a private copy: nothing is remembered there."""
         world = self.world
         if not world.tracks_changes or world.is_copy:
             return None
         body = self.body
         attached = followers(body)
         placed = set(attached)
-        return (body.id, self._configuration(), tuple(j.index for j in self.joints),
-                tuple((obj.id, obj.configuration(), tuple((other.id, att.parent_link, att.child_link, att.transform)
-                                                          for other, att in obj.attachments.items()))
+        return (body.id, _rounded(self._configuration(), digits), tuple(j.index for j in self.joints),
+                tuple((obj.id, _rounded(obj.configuration(), digits),
+                       tuple((other.id, att.parent_link, att.child_link, att.transform)
+                             for other, att in obj.attachments.items()))
                       for obj in attached),
-                tuple((obj.id, world.version_of(obj)) for obj in self.obstacles if obj not in placed),
+                tuple((obj.id, obj.placement()) for obj in self.obstacles if obj not in placed),
                 self._skip_links)
 
     def _configuration(self) -> tuple:

@@ -24,6 +24,9 @@ from .reach import arm_configuration, middle_of_ranges, reach_from_middle, reach
 SEARCH_STEP = 0.4
 SEARCH_EDGES = 300
 SEARCH_SEED = 20191028
+#: a search is remembered for where the arm starts and ends to this many decimals (rad, m): IK's answers to one
+#: question from configurations a rounding error apart differ in the 15th, as a location test's pull and the action's
+KEY_DIGITS = 9
 
 
 def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object] = (),
@@ -47,15 +50,30 @@ def search_path(robot: Robot, goal: Mapping[str, float], ignore: Iterable[Object
     order = [j.name for j in motion.joints]
     if not order:
         return []
-    situation = motion.situation()
-    key = None if situation is None else (situation, "search", start_values.tobytes(), end_values.tobytes(), edges)
+    situation = motion.situation(KEY_DIGITS)
+    key = None if situation is None else (situation, "search", (np.round(start_values, KEY_DIGITS) + 0.0).tobytes(),
+                                          (np.round(end_values, KEY_DIGITS) + 0.0).tobytes())
     known = motion.remembered(key)
-    if known is not None:
+    if known is not None and _answers(known, edges):
         motion._put(start_values)  # as a search leaves it
         return None if known[0] is None else [dict(values) for values in known[0]]
-    way = _Search(motion, start_values, edges).run(end_values)
-    motion.remember(key, (None if way is None else [{n: float(v) for n, v in zip(order, values)} for values in way],))
-    return None if way is None else [{n: float(v) for n, v in zip(order, values)} for values in way]
+    search = _Search(motion, start_values, edges)
+    way = search.run(end_values)
+    found = None if way is None else [{n: float(v) for n, v in zip(order, values)} for values in way]
+    motion.remember(key, (found, edges, search.starved))
+    return None if found is None else [dict(values) for values in found]
+
+
+def _answers(known: tuple[list[dict[str, float]] | None, int, bool], edges: int) -> bool:
+    """Whether a search remembered (its way or None, its budget, whether a check was refused for want of budget)
+    answers the same question with a budget of `edges`. The budget only stops a search: one that found a way
+    without running short goes the same way with any larger budget, and one that found none within its budget finds
+    none within a smaller one (the park after opening a drawer asks, with its larger budget, what the location's test
+    of the way back found)."""
+    way, budget, starved = known
+    if edges == budget:
+        return True
+    return edges > budget and not starved if way is not None else edges < budget
 
 
 #: what a configuration checked where it is costs of the search's budget, in legs (a check at one configuration is a
@@ -77,10 +95,12 @@ class _Search:
         self.names = [joint.name for joint in motion.joints]
         self.budget = float(edges)
         self.legs: dict[tuple[bytes, bytes], bool] = {}  # legs checked: whether free
+        self.starved = False  # whether a check was refused for want of budget
 
     def point_free(self, values: np.ndarray) -> bool:
         """Whether the moving part is inside nothing at `values` (one check; the joints stay there)."""
         if self.budget <= 0:
+            self.starved = True
             return False
         self.budget -= POINT_COST
         self.motion._put(values)
@@ -92,6 +112,7 @@ class _Search:
         key = (a.tobytes(), b.tobytes())
         if key not in self.legs:
             if self.budget <= 0:
+                self.starved = True
                 return False
             self.budget -= 1
             fraction, hits = self.motion._follow(a, motion.short_way(self.motion.body, self.names, a, b))

@@ -48,6 +48,7 @@ class Object:
         self.name = name
         self.type = type
         self.world = world
+        self._placement: tuple[int, tuple[Any, ...]] | None = None
         self._version = 0  # the world's version at this object's last change (see BulletWorld.version)
         self._drawn: list[tuple[int, bool]] | None = None  # see drawn_links
         self._solid: frozenset[int] | None = None  # see solid_links
@@ -376,6 +377,18 @@ class Object:
             return (pose,)
         states = p.getJointStates(self.id, indices, physicsClientId=cid)
         return pose, tuple(s[0] for s in states)
+
+    def placement(self) -> tuple[Any, ...]:
+        """`configuration()`, read once per version: a key for results computed from where the object is that two
+        ways to the same place share (a location test that tried the drawer opened, then the action that opened
+        it), where `version` tells them apart."""
+        version = self.world.version_of(self)
+        kept = self._placement
+        if kept is not None and kept[0] == version:
+            return kept[1]
+        found = self.configuration()
+        self._placement = (version, found)
+        return found
 
     def set_joint_position(self, name: str, value: float) -> None:
         self.set_joint_positions({name: value})

@@ -10,6 +10,7 @@ from pycram_cli.errors import InputError, InputErrors
 from pycram_cli.failures import Failure, LocationFailure, NavigationFailure
 from pycram_cli.kinds import Robots
 from pycram_cli.paths import worlds_dir
+from pycram_cli.planning import motion, paths
 from pycram_cli.process_modules.navigation import Navigation
 from pycram_cli.reasoning import stable, supporting
 from pycram_cli.robots import Robot, bundled_descriptions
@@ -137,6 +138,18 @@ def test_open_and_close_a_drawer_by_its_handle_or_its_joint(world):
     assert kitchen.get_joint_position(JOINT) == pytest.approx(0.3)
     perform_action(world, "close", {"joint": JOINT})
     assert kitchen.get_joint_position(JOINT) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_the_arm_rests_after_opening_a_drawer_along_the_way_its_location_test_found(world, monkeypatch):
+    """The location test tries the pull with what the drawer holds riding along, as the action pulls it: the arm's
+    way back from the handle (a joint-space search here) is then the action's to take, not to search again."""
+    world.cache.forget(motion.MEMO)
+    searches = []
+    search = paths._Search.run
+    monkeypatch.setattr(paths._Search, "run", lambda self, end: searches.append(1) or search(self, end))
+    perform_action(world, "open", {"handle": HANDLE, "distance": 0.48})
+    assert world.get_object_by_name("kitchen").get_joint_position(JOINT) == pytest.approx(0.48)
+    assert len(searches) == 1
 
 
 def test_search_opens_the_drawer_the_spoon_is_in(world):

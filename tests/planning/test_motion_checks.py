@@ -117,6 +117,25 @@ def test_a_search_made_again_is_remembered_even_when_it_found_nothing(counter, m
     assert len(searches) == 2
 
 
+def test_a_way_found_within_a_budget_is_the_answer_for_a_larger_one(counter, monkeypatch):
+    robot, joints, out = counter
+    searches = counting(monkeypatch, "_search")
+    first = paths.search_path(robot, out, edges=300)  # as a location test asks (the way back from a handle)
+    assert first is not None
+    assert paths.search_path(robot, out, edges=2500) == first  # as the action's park then asks
+    assert len(searches) == 1
+
+
+def test_no_way_within_a_budget_is_the_answer_for_a_smaller_one_and_not_a_larger(counter, monkeypatch):
+    robot, joints, out = counter
+    searches = counting(monkeypatch, "_search")
+    assert paths.search_path(robot, out, edges=1) is None
+    assert paths.search_path(robot, out, edges=0) is None
+    assert len(searches) == 1
+    assert paths.search_path(robot, out, edges=300) is not None
+    assert len(searches) == 2
+
+
 def every_pair(m: motion.Motion) -> tuple[float, list[tuple[str, str, float]]]:
     """The check as it was before pairs were skipped: every pair of boxes nearer than NEAR measured."""
     m_lo, m_hi = m._mover_boxes()

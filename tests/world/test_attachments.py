@@ -75,3 +75,13 @@ def test_detaching_something_not_attached_is_an_error(scene):
     _, arm, cube = scene
     with pytest.raises(ValueError, match="not attached"):
         arm.detach(cube)
+
+
+
+def test_placement_tells_two_ways_to_the_same_place_alike(scene):
+    _, _, cube = scene
+    before = cube.placement()
+    cube.set_position([0.7, 0, 0.5])
+    assert cube.placement() != before
+    cube.set_position([0.5, 0, 0.5])
+    assert cube.placement() == before
