@@ -41,6 +41,10 @@ if TYPE_CHECKING:
 
 MAX_ITERATIONS = 60
 RESTARTS = 6
+#: the seeds of an oriented target for a chain with no more joints than a pose has numbers (six or fewer): its
+#: solutions are a few isolated configurations, whose basins six seeds miss (a pan, pitches, a telescope and a roll
+#: holding a handle level found it only with the arm nearly stretched, where twenty seeds find it wherever it is)
+FEW_JOINT_SEEDS = 20
 #: how many answers each robot keeps (the latest used), and the world's cache table that keeps them (world/cache.py)
 MEMO_SIZE = 512
 ANSWERS = "ik answers"
@@ -65,18 +69,25 @@ class IKSolution:
 @dataclass(frozen=True)
 class Settings:
     """How an IK query is answered: success within `threshold` m and `angle_threshold` rad of the target, searched
-    from `seeds` starting points for at most `max_iterations` steps. `best_effort=False`, for a caller that needs only
+    from `seeds` starting points (None: RESTARTS, or FEW_JOINT_SEEDS for an oriented target of a chain of six or
+    fewer joints) for at most `max_iterations` steps. `best_effort=False`, for a caller that needs only
     the verdict: a target that a distance bound puts out of reach (`Problem.beyond_reach`) fails at once, without the
     search for the configuration nearest it (its `joint_positions` empty, its `position_error` how far beyond the
     bound it lies, no `orientation_error`)."""
 
     threshold: float = 0.01
     angle_threshold: float = 0.1
-    seeds: int = RESTARTS
+    seeds: int | None = None
     max_iterations: int = MAX_ITERATIONS
     best_effort: bool = True
 
-    def asked(self) -> tuple[float, float, int, int]:
+    def seed_count(self, joints: int, oriented: bool) -> int:
+        """How many starting points a search of a chain of `joints` joints makes."""
+        if self.seeds is not None:
+            return max(1, self.seeds)
+        return FEW_JOINT_SEEDS if oriented and joints <= 6 else RESTARTS
+
+    def asked(self) -> tuple[float, float, int | None, int]:
         """What of the settings an answer depends on (a verdict-only answer is never kept)."""
         return self.threshold, self.angle_threshold, self.seeds, self.max_iterations
 
@@ -264,7 +275,8 @@ class _Batch:
             rotation = asked.rotations[k]
             aim = (asked.targets[k].tobytes(), None if rotation is None else rotation.tobytes())
             group = []
-            for seed in initial_seeds(self.problem, max(1, settings.seeds), self.starts[k], self.fixed_seeds):
+            count = settings.seed_count(len(self.problem.names), rotation is not None)
+            for seed in initial_seeds(self.problem, count, self.starts[k], self.fixed_seeds):
                 key = (seed.tobytes(), aim)
                 if key not in rows:
                     rows[key] = len(union)

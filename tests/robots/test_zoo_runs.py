@@ -19,6 +19,7 @@ from click.testing import CliRunner
 from pycram_cli.cli.main import cli
 from pycram_cli.designators import perform
 from pycram_cli.designators.actions import perform_action
+from pycram_cli.locations import locate
 from pycram_cli.robots.zoo import generate, write_world
 from pycram_cli.worldfile.loader import load_world
 
@@ -157,3 +158,12 @@ def test_an_arm_that_cannot_fold_closes_a_wide_open_drawer_in_strokes(tmp_path: 
         assert pushes == [pytest.approx((joint.upper - joint.lower) / 2), 0.0]  # half way, then shut
     finally:
         world.exit()
+
+
+def test_a_six_joint_arm_that_holds_a_handle_level_only_far_out_finds_where_to_open_the_drawer(tmp_path: Path) -> None:
+    """Seed 47's arm holds a handle level only from 0.6 m in front of its base on (reasoning/ik.py's FEW_JOINT_SEEDS):
+    every pose in line with the drawer's pull was `out of reach` before, and search could not open the spoon's drawer."""
+    world = load_world(write_world(generate(47), tmp_path))
+    pose = locate(world, {"accessing": "sink_area_left_upper_drawer_handle"}).next()
+    assert pose.arm == "main"
+    world.exit()
