@@ -1,7 +1,8 @@
 """The floor map: where the robot's base can stand, as a 2-D grid built from the world.
 
-Everything is made of axis-aligned boxes: the links of every object but the robot, what it
-holds and the floor (each link's bounding box), and the robot's own links, read with its
+Everything is made of axis-aligned boxes: the collision shapes of every object but the robot, what it
+holds and the floor (a box per shape, `world/shapes.py`: a cabinet of panels leaves the room under its handle bar
+that its link's one bounding box would fill), and the robot's own links (a box per link), read with its
 base turned to yaw 0 in its current configuration (arms parked or carrying). The height
 from the floor to the robot's top is cut into *bands* at every height where the set of
 robot links or the set of obstacles changes; bands with the same obstacles share one
@@ -25,6 +26,7 @@ import numpy as np
 
 from ..planning.contacts import PENETRATION, SUPPORT_SLACK, collisions, ground_z, support_links, supports_from_below
 from ..world.pose import yaw_quaternion
+from ..world.shapes import shape_boxes
 
 if TYPE_CHECKING:
     from ..robots import Robot
@@ -128,16 +130,17 @@ class FloorMap:
 # -- building --------------------------------------------------------------------------------------------
 
 
-def _link_boxes(obj: Object, skip: frozenset[int] = frozenset()) -> list[tuple[str, Box]]:
+def _link_boxes(obj: Object, skip: frozenset[int] = frozenset(), shapes: bool = True) -> list[tuple[str, Box]]:
+    """A box per collision shape of every solid link (`shape_boxes`: a cabinet of panels leaves the room under its
+    handle that its one bounding box would fill), each named by its link; `shapes=False`: a box per link."""
     boxes = []
     solid = obj.solid_links()
     for index in [-1, *range(len(obj.joints))]:
         if index not in solid or index in skip:  # a frame without geometry (PyBullet still gives it a box of a few mm)
             continue
-        lo, hi = obj.get_aabb(index)
-        lo_a, hi_a = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
         name = obj.get_link_name(index)
-        boxes.append((f"{obj.name}/{name}" if obj.joints else obj.name, (lo_a, hi_a)))
+        found = shape_boxes(obj, index) if shapes else [tuple(np.asarray(v, dtype=float) for v in obj.get_aabb(index))]
+        boxes.extend((f"{obj.name}/{name}" if obj.joints else obj.name, box) for box in found)
     return boxes
 
 
@@ -150,7 +153,7 @@ def robot_boxes(robot: Object, held: Sequence[Object]) -> list[tuple[str, Box]]:
     robot.set_position_and_orientation(position, (0.0, 0.0, 0.0, 1.0))
     try:
         base = np.array([position[0], position[1], position[2]])
-        boxes = [(name, (lo - base, hi - base)) for name, (lo, hi) in _link_boxes(robot)]
+        boxes = [(name, (lo - base, hi - base)) for name, (lo, hi) in _link_boxes(robot, shapes=False)]
         for obj in held:
             lo, hi = obj.get_aabb()
             boxes.append((obj.name, (np.asarray(lo) - base, np.asarray(hi) - base)))
@@ -258,7 +261,8 @@ def build(robot: Object, held: Sequence[Object] = (), resolution: float = RESOLU
         occupied = _rasterise([obstacles[i][1] for i in sorted(blockers)], lo, shape, resolution)
         samples = _footprint_samples([own[i][1] for i in sorted(parts)], resolution)
         bands.append(Band(heights[parts][0], heights[parts][1], occupied, samples,
-                          tuple(own[i][0] for i in sorted(parts)), tuple(obstacles[i][0] for i in sorted(blockers))))
+                          tuple(dict.fromkeys(own[i][0] for i in sorted(parts))),
+                          tuple(dict.fromkeys(obstacles[i][0] for i in sorted(blockers)))))
     reachable_boxes = [b for _, b in obstacles if b[0][2] - floor_z < robot_top and b[1][2] - floor_z > low_limit]
     everything = _rasterise(reachable_boxes, lo, shape, resolution)
     footprint = _footprint_samples([b for _, b in own], resolution) if own else np.zeros((0, 2))

@@ -281,6 +281,20 @@ def test_the_floor_map_never_calls_a_colliding_pose_free(kitchen):
     assert said.sum() > 20 and (~said).sum() > 20
 
 
+def test_the_floor_map_leaves_the_room_under_a_cabinets_handle_bar(kitchen):
+    """A cabinet of panels, its plinth set back and a handle bar out front, is as solid on the map as its shapes, not
+    as its one bounding box: at the base's height the floor under the dish washer's handle is free (a robot whose
+    wheels go under it stands as close to the counter as it really can)."""
+    cabinet = kitchen.get_object_by_name("kitchen")
+    lo, hi = cabinet.get_aabb("sink_area")
+    built = floor.build(kitchen.robot)
+    base = built.bands[0]  # the lowest: the base's
+    ix, iy, _ = built.index(np.array([lo[0] + 0.03, (lo[1] + hi[1]) / 2]))
+    assert not base.occupied[ix, iy]
+    ix, iy, _ = built.index(np.array([lo[0] + 0.2, (lo[1] + hi[1]) / 2]))  # the cabinet itself
+    assert base.occupied[ix, iy]
+
+
 def test_the_floor_map_is_cached_while_the_world_stands_still(kitchen):
     robot = Robot.of(kitchen)
     first = floor_map(robot, [])
