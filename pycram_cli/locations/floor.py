@@ -130,16 +130,21 @@ class FloorMap:
 # -- building --------------------------------------------------------------------------------------------
 
 
+def _link_box(obj: Object, index: int) -> Box:
+    lo, hi = obj.get_aabb(index)
+    return np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+
+
 def _link_boxes(obj: Object, skip: frozenset[int] = frozenset(), shapes: bool = True) -> list[tuple[str, Box]]:
     """A box per collision shape of every solid link (`shape_boxes`: a cabinet of panels leaves the room under its
     handle that its one bounding box would fill), each named by its link; `shapes=False`: a box per link."""
-    boxes = []
+    boxes: list[tuple[str, Box]] = []
     solid = obj.solid_links()
     for index in [-1, *range(len(obj.joints))]:
         if index not in solid or index in skip:  # a frame without geometry (PyBullet still gives it a box of a few mm)
             continue
         name = obj.get_link_name(index)
-        found = shape_boxes(obj, index) if shapes else [tuple(np.asarray(v, dtype=float) for v in obj.get_aabb(index))]
+        found = shape_boxes(obj, index) if shapes else [_link_box(obj, index)]
         boxes.extend((f"{obj.name}/{name}" if obj.joints else obj.name, box) for box in found)
     return boxes
 

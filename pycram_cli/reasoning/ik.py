@@ -43,7 +43,8 @@ MAX_ITERATIONS = 60
 RESTARTS = 6
 #: the seeds of an oriented target for a chain with no more joints than a pose has numbers (six or fewer): its
 #: solutions are a few isolated configurations, whose basins six seeds miss (a pan, pitches, a telescope and a roll
-#: holding a handle level found it only with the arm nearly stretched, where twenty seeds find it wherever it is)
+#: holding a handle level found it only with the arm nearly stretched, where twenty seeds find it wherever it is);
+#: the seeds beyond RESTARTS are searched only when the first find nothing (`_Batch.search`)
 FEW_JOINT_SEEDS = 20
 #: how many answers each robot keeps (the latest used), and the world's cache table that keeps them (world/cache.py)
 MEMO_SIZE = 512
@@ -265,7 +266,31 @@ class _Batch:
         return answer
 
     def search(self, searched: list[int]) -> Iterator[tuple[int, IKSolution]]:
-        """The searched queries' answers, each judged by PyBullet's forward kinematics and kept, as they are found."""
+        """The searched queries' answers, each judged by PyBullet's forward kinematics and kept, as they are found.
+        A query that asks for more seeds than RESTARTS (`Settings.seed_count`) is searched from the first RESTARTS
+        and, only when those find no answer, from the others: what the first find stays the answer (a pull's next
+        step stays on the branch the arm is on), and what they miss is found."""
+        settings = self.asked.settings
+        counts = {k: self._seeds(k) for k in searched}
+        second: dict[int, IKSolution] = {}
+        for k, verdict in self._round(searched, {k: min(c, RESTARTS) if settings.seeds is None else c
+                                                 for k, c in counts.items()}, 0):
+            if verdict.success or settings.seeds is not None or counts[k] <= RESTARTS:
+                _remember(self.memo, self.keys[k], verdict)
+                yield k, verdict
+            else:
+                second[k] = verdict
+        if second:
+            for k, verdict in self._round(list(second), {k: counts[k] for k in second}, RESTARTS):
+                answer = verdict if verdict.success else second[k]
+                _remember(self.memo, self.keys[k], answer)
+                yield k, answer
+
+    def _seeds(self, k: int) -> int:
+        return self.asked.settings.seed_count(len(self.problem.names), self.asked.rotations[k] is not None)
+
+    def _round(self, searched: list[int], counts: dict[int, int], skip: int) -> Iterator[tuple[int, IKSolution]]:
+        """One batched search of the queries `searched`, each from its seeds `skip` to `counts[k]`, judged (not kept)."""
         asked, settings = self.asked, self.asked.settings
         rows: dict[tuple, int] = {}  # the same seed towards the same target in two queries is searched once
         union: list[np.ndarray] = []
@@ -275,8 +300,7 @@ class _Batch:
             rotation = asked.rotations[k]
             aim = (asked.targets[k].tobytes(), None if rotation is None else rotation.tobytes())
             group = []
-            count = settings.seed_count(len(self.problem.names), rotation is not None)
-            for seed in initial_seeds(self.problem, count, self.starts[k], self.fixed_seeds):
+            for seed in initial_seeds(self.problem, counts[k], self.starts[k], self.fixed_seeds)[skip:]:
                 key = (seed.tobytes(), aim)
                 if key not in rows:
                     rows[key] = len(union)
@@ -291,17 +315,14 @@ class _Batch:
             target_rot = None if asked.rotations[0] is None else np.array([asked.rotations[k] for k in row_target])
         for g, found in search_groups(self.problem, np.array(union), groups, target_pos, target_rot,
                                       settings.threshold, settings.angle_threshold, settings.max_iterations):
-            k = searched[g]
-            yield k, self._judged(k, found)
+            yield searched[g], self._judged(searched[g], found)
 
     def _judged(self, k: int, found: Found) -> IKSolution:
-        """PyBullet's verdict on a found configuration for query k, kept for the same question."""
+        """PyBullet's verdict on a found configuration for query k."""
         asked = self.asked
         solution = {name: float(v) for name, v in zip(self.problem.names, found[0])}
         pos, orn = forward_pose(asked.robot, asked.tool_link, solution)
-        verdict = _verdict(solution, pos, orn, asked.targets[k], asked.rotations[k], asked.settings)
-        _remember(self.memo, self.keys[k], verdict)
-        return verdict
+        return _verdict(solution, pos, orn, asked.targets[k], asked.rotations[k], asked.settings)
 
 
 def _verdict(solution: dict[str, float], pos: Sequence[float], orn: Sequence[float], target: np.ndarray,

@@ -136,8 +136,11 @@ def zoo_kitchen(request, tmp_path):
 
 
 def _pull_from(world, pose, distance):
-    """Stand at `pose` and pull the drawer to `distance` with the pose's arm (the accessing process module)."""
+    """Stand at `pose` (the torso at the height it was found with, as the actions' `go` stands) and pull the drawer
+    to `distance` with the pose's arm (the accessing process module)."""
     perform(world, "moving", {"target": list(pose.position), "orientation": list(pose.orientation)})
+    if pose.torso is not None:
+        perform(world, "moving-torso", {"position": pose.torso})
     perform(world, "accessing", {"drawer-handle": HANDLE, "drawer-joint": JOINT, "part-of": "kitchen",
                                  "distance": distance, "arm": pose.arm})
 

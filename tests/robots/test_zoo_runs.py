@@ -1,7 +1,7 @@
 """The action-level demo runs unchanged on robots nobody tuned pycram for (pycram_cli/robots/zoo).
 
 Seed 2 is a wheeled robot with a 6-joint arm, a one-finger gripper and its camera on the wrist:
-wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 6's arm is too
+wheels on the floor, no head, a tool frame of its own. It sets the table. Seed 32's arm (0.68 m) is too
 short for the counter: the run ends with a location failure saying the object is out of reach —
 a plan failure (exit 1), never an internal error. Seed 12 has a 5-joint arm (a pan, three pitches, a
 wrist roll) mounted off the base's centre line: its tool stays in the plane the pan turns, so it puts
@@ -37,7 +37,7 @@ def test_a_wrist_camera_robot_on_wheels_sets_the_table(tmp_path: Path) -> None:
 
 
 def test_a_robot_whose_arm_is_too_short_says_it_cannot_reach(tmp_path: Path) -> None:
-    result = run_demo(6, tmp_path, "objects=[bowl]")  # the first object: the others fail the same way, each as slowly
+    result = run_demo(32, tmp_path, "objects=[bowl]")  # the first object: the others fail the same way, each as slowly
     assert result.exit_code == 1, result.output
     text = " ".join(result.output.split())
     assert "LocationFailure" in text and "out of reach" in text
