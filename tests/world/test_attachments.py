@@ -7,10 +7,8 @@ from pycram_cli import Object
 
 
 @pytest.fixture
-def scene(world, data_dir):
-    arm = Object("arm", "robot", data_dir / "arm.urdf")
-    cube = Object("cube", "box", data_dir / "cube.obj", [0.5, 0, 0.5])
-    return world, arm, cube
+def scene(arm_scene):
+    return arm_scene
 
 
 def test_attached_object_follows_a_teleported_parent_without_a_simulation_step(scene):

@@ -4,19 +4,11 @@ from __future__ import annotations
 
 import pytest
 
-from pycram_cli import Object
 from pycram_cli.world.riders import carrying
 
 
-@pytest.fixture
-def scene(world, data_dir):
-    arm = Object("arm", "robot", data_dir / "arm.urdf")
-    cube = Object("cube", "box", data_dir / "cube.obj", [0.5, 0, 0.5])
-    return world, arm, cube
-
-
-def test_carrying_puts_riders_where_an_attachment_would_take_them(scene):
-    _, arm, cube = scene
+def test_carrying_puts_riders_where_an_attachment_would_take_them(arm_scene):
+    _, arm, cube = arm_scene
     with arm.joints_kept(["slide"]), carrying(arm, arm.get_link_id("hand"), [cube]) as follow:
         arm.reset_joints({"slide": 0.2})
         follow()
@@ -26,8 +18,8 @@ def test_carrying_puts_riders_where_an_attachment_would_take_them(scene):
     assert cube.get_pose() == carried  # bitwise: what a location test tries is what the action then does
 
 
-def test_carrying_puts_riders_back_bitwise_keeping_their_versions(scene):
-    _, arm, cube = scene
+def test_carrying_puts_riders_back_bitwise_keeping_their_versions(arm_scene):
+    _, arm, cube = arm_scene
     pose, version = cube.get_pose(), cube.version
     with arm.joints_kept(["slide"]), carrying(arm, arm.get_link_id("hand"), [cube]) as follow:
         arm.reset_joints({"slide": 0.2})
