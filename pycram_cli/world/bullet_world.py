@@ -537,8 +537,12 @@ class BulletWorld(GuiWindow):
         caches a run leaves behind (nor sleep): one physics step from the restored state refreshes
         them, a second restore undoes the step. Worlds reset like this give byte-identical traces
         whatever ran on them before (tests/scenario/test_variations.py): what makes a sweep's
-        outcomes independent of its workers, and a projection's of the runs before it.
+        outcomes independent of its workers, and a projection's of the runs before it. What the layers above kept
+        about the world (`cache`: IK answers, walks, searches, floor maps) is forgotten too: an answer kept for a
+        question asked within a rounding of another (IK's targets to 1e-6, a search's ends to 1e-9) would answer
+        the next run's question with the bits of an earlier run's.
         """
+        self.cache.forget()
         fresh = self._fresh_from
         if fresh is not None and fresh[0] is state and fresh[1] == self._steps_taken:
             # nothing stepped since the last reset to this state: the contact caches are the ones that reset

@@ -7,6 +7,7 @@ import pybullet as p
 import pytest
 
 from pycram_cli import Object
+from pycram_cli.locations import locate
 from pycram_cli.world import StateError
 
 
@@ -79,3 +80,18 @@ def test_a_reset_with_no_step_since_the_last_is_a_restore_and_simulates_on_exact
     assert world._steps_taken == taken
     world.simulate(0.5)
     assert full_state(world) == after_full
+
+
+def test_reset_to_forgets_what_was_worked_out_about_the_world(kitchen):
+    """A world reset as if just loaded remembers no answer of the runs before (IK answers, walks, floor maps): an
+    answer kept for a question within a rounding of the next run's would give it an earlier run's bits (a sweep's
+    outcomes then depended on which scenarios its worker had run before)."""
+    state = kitchen.save_state()
+    try:
+        locate(kitchen, {"reachable-for": "milk"}).next()
+        assert kitchen.cache.names()
+        kitchen.reset_to(state)
+        assert kitchen.cache.names() == []
+    finally:
+        kitchen.reset_to(state)
+        kitchen.release_state(state)
