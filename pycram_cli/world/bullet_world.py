@@ -106,6 +106,7 @@ class BulletWorld(GuiWindow):
             if client < 0:
                 raise WorldError(f"could not start a PyBullet {mode} client (for the GUI, is a display available?)")
             self.client_id: int = client
+            p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=client)
             self.mode = mode
             self._hidden = _hidden
             if mode == "gui":
@@ -534,8 +535,10 @@ class BulletWorld(GuiWindow):
         """Put the world back to `state` as if it had just been loaded, the same way whatever ran since.
 
         PyBullet's restoreState puts poses, joints and velocities back bitwise, but not the contact
-        caches a run leaves behind (nor sleep): one physics step from the restored state refreshes
-        them, a second restore undoes the step. Worlds reset like this give byte-identical traces
+        caches a run leaves behind (nor sleep): every object is first moved apart from every other and
+        collision detection run (the broadphase drops every pair with its contacts and warm starts, and
+        keeps its pairs sorted: `deterministicOverlappingPairs`), then one physics step from the restored
+        state makes them anew, and a second restore undoes the step. Worlds reset like this give byte-identical traces
         whatever ran on them before (tests/scenario/test_variations.py): what makes a sweep's
         outcomes independent of its workers, and a projection's of the runs before it. What the layers above kept
         about the world (`cache`: IK answers, walks, searches, floor maps) is forgotten too: an answer kept for a
@@ -549,6 +552,10 @@ class BulletWorld(GuiWindow):
             # made, so the step would make them again (about 2 ms on the kitchen, per projected run)
             self.restore_state(state)
             return
+        for index, obj in enumerate(self.objects):  # every pair apart: the broadphase drops its contacts and warm starts
+            p.resetBasePositionAndOrientation(obj.id, (0.0, 0.0, -1000.0 - 100.0 * index), (0, 0, 0, 1),
+                                              physicsClientId=self.client_id)
+        p.performCollisionDetection(physicsClientId=self.client_id)
         self.restore_state(state)
         self.step()
         self.restore_state(state)
