@@ -271,12 +271,11 @@ class _Batch:
         A query that asks for more seeds than RESTARTS (`Settings.seed_count`) is searched from the first RESTARTS
         and, only when those find no answer, from the others: what the first find stays the answer (a pull's next
         step stays on the branch the arm is on), and what they miss is found."""
-        settings = self.asked.settings
         counts = {k: self._seeds(k) for k in searched}
+        firsts = {k: c if self.asked.settings.seeds is not None else min(c, RESTARTS) for k, c in counts.items()}
         second: dict[int, IKSolution] = {}
-        for k, verdict in self._round(searched, {k: min(c, RESTARTS) if settings.seeds is None else c
-                                                 for k, c in counts.items()}, 0):
-            if verdict.success or settings.seeds is not None or counts[k] <= RESTARTS:
+        for k, verdict in self._round(searched, firsts, 0):
+            if verdict.success or firsts[k] == counts[k]:
                 _remember(self.memo, self.keys[k], verdict)
                 yield k, verdict
             else:

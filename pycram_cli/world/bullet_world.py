@@ -552,15 +552,22 @@ class BulletWorld(GuiWindow):
             # made, so the step would make them again (about 2 ms on the kitchen, per projected run)
             self.restore_state(state)
             return
-        for index, obj in enumerate(self.objects):  # every pair apart: the broadphase drops its contacts and warm starts
-            p.resetBasePositionAndOrientation(obj.id, (0.0, 0.0, -1000.0 - 100.0 * index), (0, 0, 0, 1),
-                                              physicsClientId=self.client_id)
-        p.performCollisionDetection(physicsClientId=self.client_id)
+        self.drop_contacts()
         self.restore_state(state)
         self.step()
         self.restore_state(state)
         self.wake_free_objects()
         self._fresh_from = (state, self._steps_taken)
+
+    def drop_contacts(self) -> None:
+        """Every object moved far from every other and collision detection run: no pair overlaps, so the broadphase
+        drops them all with their contact manifolds and warm starts (its pairs kept sorted, the next step finds
+        them in the same order whatever came before). The objects are left there, unmarked: the caller puts them
+        back (a restored state, or a sync that writes every object)."""
+        for index, obj in enumerate(self.objects):
+            p.resetBasePositionAndOrientation(obj.id, (0.0, 0.0, -1000.0 - 100.0 * index), (0, 0, 0, 1),
+                                              physicsClientId=self.client_id)
+        p.performCollisionDetection(physicsClientId=self.client_id)
 
     def release_state(self, state: WorldState) -> None:
         """Free the memory PyBullet holds for a saved state (once nobody holds it any more)."""

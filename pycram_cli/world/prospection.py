@@ -63,7 +63,6 @@ class Prospection:
     def __init__(self, world: BulletWorld) -> None:
         self.world = world
         self.copy = BulletWorld(mode="direct", gravity=world.gravity, _hidden=True)
-        p.setPhysicsEngineParameter(deterministicOverlappingPairs=1, physicsClientId=self.copy.client_id)
         self.copy._step_watchers = world._copy_watchers  # the world's watchers of its copy's steps (watch_steps)
         self._pairs: list[tuple[Object, Object]] = []  # (object, its copy), in the world's order
         self._copies: dict[int, Object] = {}  # by id() of the object (the pairs keep both alive)
@@ -151,11 +150,7 @@ class Prospection:
         kept sorted (`deterministicOverlappingPairs`), the next step finds the pairs of the synced
         state in the same order whatever came before: an answer depends on the world's state only.
         """
-        client = self.copy.client_id
-        for index, (_, copy) in enumerate(self._pairs):
-            p.resetBasePositionAndOrientation(copy.id, (0.0, 0.0, -1000.0 - 100.0 * index), (0, 0, 0, 1),
-                                              physicsClientId=client)
-        p.performCollisionDetection(physicsClientId=client)
+        self.copy.drop_contacts()  # (the copy's objects are exactly the pairs' copies, in their order)
         self._written = [None] * len(self._pairs)  # every copy was moved: each must be written again
         self._forgotten_at = self.copy._stepped
 
