@@ -301,10 +301,12 @@ class BasePoseResolution(Resolution):
         while self._unsearched:
             i = self._unsearched.pop(0)
             tests.searching = True
+            counted = self.expensive  # the candidate was counted against patience when first tested
             try:
                 pose = self._test(i)
             finally:
                 tests.searching = False
+                self.expensive = counted
             if pose is not None:
                 self.candidates.outcome[i] = CODE["ok"]
                 self.found.append(pose)
