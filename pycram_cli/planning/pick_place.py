@@ -111,8 +111,12 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             # may be touched before: the approach stops there
             hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
             if not hits:
-                taken.append((candidate, pre, solution))
-                return True
+                hits = _approach_hits(robot, obj, pre, solution, opened)
+                if not hits:
+                    taken.append((candidate, pre, solution))
+                    return True
+                blocked.extend(hits)
+                return False
             shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
             if shifted is not None:
                 taken.append(shifted)
@@ -139,6 +143,17 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
     error = best[0] if best is not None else math.inf
     raise ReachabilityFailure(f"{arm_words(arm)} cannot reach {obj.name} with {how}: the tool frame stays "
                               f"{error * 100:.1f} cm away", arm=arm, position_error=error, object=obj.name)
+
+
+def _approach_hits(robot: Robot, obj: Object, pre: IKSolution, solution: IKSolution,
+                   opened: Mapping[str, float]) -> list[motion.Hit]:
+    """What the open gripper meets on its way in from the pre-grasp pose before it touches `obj`: pick-up moves in
+    until the first touch, so a neighbour the fingers brush on the way (a bottle beside a cereal box) stops them
+    short of the object, and they close on nothing."""
+    with robot.body.joints_kept([*solution.joint_positions, *opened]):
+        robot.body.reset_joints({**pre.joint_positions, **opened})
+        _, hits = motion.advance(robot, solution.joint_positions)
+    return [hit for hit in hits if hit.obstacle is not obj]
 
 
 def _short_of(robot: Robot, arm: str, obj: Object, candidate: Grasp, pre: IKSolution, hits: list[motion.Hit],

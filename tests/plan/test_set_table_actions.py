@@ -131,16 +131,30 @@ def test_the_fetch_lowers_the_cereal_straight_onto_the_island(tmp_path):
     assert result.exit_code == 0, result.output[-2000:]
 
 
-def test_a_pose_searched_again_costs_the_location_no_patience(tmp_path):
-    """Sweep scenario 16 of the action demo puts the cereal at the island's far end, where the first poses tested
-    reach it only along a way the arm's joint-space search finds. They are searched again once a few wait; that second
-    test is the same candidate's, not another's, so it must not use up the location's patience: counted twice, the
-    place ran out of candidates ("no pose for reachable-for (-0.875, 1.45, 0.862)") with 422 untried."""
+def replay(*args: str):
     from click.testing import CliRunner
 
     from pycram_cli.cli.main import cli
 
     vary = plans_dir() / "set_table.vary.yaml"
-    result = CliRunner().invoke(cli, ["run", str(PLAN), "--vary", str(vary), "--scenario", "1462206085"])
+    return CliRunner().invoke(cli, ["run", str(PLAN), "--vary", str(vary), *args])
+
+
+def test_a_pose_searched_again_costs_the_location_no_patience():
+    """Sweep scenario 16 of the action demo puts the cereal at the island's far end, where the first poses tested
+    reach it only along a way the arm's joint-space search finds. They are searched again once a few wait; that second
+    test is the same candidate's, not another's, so it must not use up the location's patience: counted twice, the
+    place ran out of candidates ("no pose for reachable-for (-0.875, 1.45, 0.862)") with 422 untried."""
+    result = replay("--scenario", "1462206085")
     assert result.exit_code == 0, result.output[-2000:]
     assert "succeeded" in result.output
+
+
+def test_a_grasp_whose_way_in_brushes_a_neighbour_is_not_taken():
+    """Sweep scenario 24 on the Fetch: the bottle stands beside the cereal, and the open gripper's straight way in
+    from the pre-grasp pose (a grasp from the right) brushes it 22 % of the way in. Pick-up moves in until the first
+    touch, so the fingers stopped short and closed on nothing, three times; the grasp planning (and the location
+    test that asks it) now walks that way in, and the Fetch takes the cereal from another pose."""
+    result = replay("--world", "kitchen_fetch", "--scenario", "192017152")
+    assert result.exit_code == 0, result.output[-2000:]
+    assert "closed on nothing" not in result.output
