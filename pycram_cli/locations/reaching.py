@@ -18,7 +18,7 @@ from ..failures import GripperFailure, ManipulationFailure, ReachabilityFailure
 from ..kinds import arm_phrase, arm_words
 from ..planning.paths import move_over
 from ..planning.pick_place import grasp_orientation, plan_grasp, plan_place
-from ..planning.reach import reach, rest_configuration, rest_pose
+from ..planning.reach import back_off, reach, rest_configuration, rest_pose, set_gripper
 from ..robots import Robot
 from ..world import Object
 from .accessing import takes_handle
@@ -231,22 +231,33 @@ class ArmTests:
         return Miss("blocked", ", ".join(blocked), unsearched) if blocked else Miss("out of reach", "", unsearched)
 
     def _way_back_free(self, arm: str, obj: Object, placed: Mapping[str, float], blocked: list[str]) -> bool:
-        """Whether the arm, having let `obj` go at the place (`placed`: its joint values there), finds a way back to the
-        pose it rests in empty (an arm that cannot get away from what stands around the place would be stuck there);
-        the object itself is not in the way (the arm backs off it first). What is in the way is added to `blocked`."""
+        """Whether the arm, having let `obj` go at the place (`placed`: its joint values there), gets back to the pose
+        it rests in empty, as place and the park after it move it: the gripper opens, the hand backs off along its
+        approach as far as the arm reaches (`back_off`; an elbow folded to its limit may not), and from there a way
+        leads to rest; the object, where it was let go, is in the way only while the hand has not backed off it (an
+        arm that cannot get away from the object or what stands around the place would be stuck there). What is in
+        the way is added to `blocked`."""
         robot = self.robot
         body = robot.body
         rest = rest_configuration(robot, arm, holding=False)
         if rest is None:
             return True
-        with let_go_for_now(obj), body.joints_kept(list(placed)):
+        gripper = list(robot.description.arm(arm).gripper.joints)
+        with body.joints_kept([*placed, *gripper]):
             body.reset_joints(placed)
-            try:
-                move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the place", down_onto_goal=False,
-                          ignore=[obj], search=self.searching)
-            except ManipulationFailure as failure:
-                blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
-                return False
+            body.move_attached()  # the object where place lets it go
+            with let_go_for_now(obj):
+                try:
+                    set_gripper(robot, arm, "open")
+                    backed = back_off(robot, arm, obj.name)
+                    move_over(robot, arm, rest, f"the {arm_words(arm)}'s way back from the place", down_onto_goal=False,
+                              ignore=[obj] if backed else [], search=self.searching)
+                except ManipulationFailure as failure:
+                    blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
+                    return False
+                finally:
+                    body.reset_joints(placed)
+        body.move_attached()
         return True
 
     def _reach_targets(self) -> Iterator[tuple[Any, Any, Any]]:

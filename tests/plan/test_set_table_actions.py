@@ -158,3 +158,13 @@ def test_a_grasp_whose_way_in_brushes_a_neighbour_is_not_taken():
     result = replay("--world", "kitchen_fetch", "--scenario", "192017152")
     assert result.exit_code == 0, result.output[-2000:]
     assert "closed on nothing" not in result.output
+
+
+def test_a_place_the_hand_cannot_back_off_from_is_not_chosen():
+    """Sweep scenario 34 on the Fetch: the place chosen for the milk put the Fetch's elbow within a degree of its limit,
+    so the hand could not back off along its approach after letting go; the park then started with the palm on the
+    milk and every way from there pushed into it. The place location now tests the whole of letting go (the gripper
+    opens, the hand backs off as far as the arm reaches, a way to rest from there) and chooses another pose."""
+    result = replay("--world", "kitchen_fetch", "--scenario", "2370723418")
+    assert result.exit_code == 0, result.output[-2000:]
+    assert "inside milk" not in result.output
