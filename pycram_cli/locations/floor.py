@@ -180,7 +180,29 @@ def obstacle_boxes(robot: Object, held: Sequence[Object], extra_ignore: Iterable
 
 
 def _footprint_samples(boxes: Sequence[Box], resolution: float) -> np.ndarray:
-    """Sample points of the union of boxes' (x, y) rectangles: every outline cell, every few inside cells."""
+    """Sample points of the union of boxes' (x, y) rectangles: every outline cell, every few inside cells. A robot
+    whose configuration has not changed has the same footprints at every map rebuilt after a motion: remembered
+    (`_FOOTPRINTS`, by the boxes' values), the array shared and read-only."""
+    rounded = np.round(np.array([[b[0][:2], b[1][:2]] for b in boxes], dtype=float), KEY_DIGITS)
+    key = (resolution, rounded.tobytes())
+    known = _FOOTPRINTS.get(key)
+    if known is None:
+        if len(_FOOTPRINTS) >= FOOTPRINTS_KEPT:
+            _FOOTPRINTS.pop(next(iter(_FOOTPRINTS)))
+        known = _FOOTPRINTS[key] = _sampled_footprint([(lo, hi) for lo, hi in rounded], resolution)
+        known.setflags(write=False)
+    return known
+
+
+#: the footprints sampled lately (`_footprint_samples`), the oldest forgotten first beyond FOOTPRINTS_KEPT
+_FOOTPRINTS: dict[tuple[float, bytes], np.ndarray] = {}
+FOOTPRINTS_KEPT = 512
+#: the boxes are rounded to this many decimals (m) before they are sampled: the same robot read again after a motion
+#: of its base differs in the 16th, and the samples must not depend on which came first
+KEY_DIGITS = 9
+
+
+def _sampled_footprint(boxes: Sequence[Box], resolution: float) -> np.ndarray:
     lo = np.min([b[0][:2] for b in boxes], axis=0)
     hi = np.max([b[1][:2] for b in boxes], axis=0)
     n = np.maximum(np.ceil((hi - lo) / resolution).astype(int), 1)

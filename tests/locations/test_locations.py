@@ -295,6 +295,20 @@ def test_the_floor_map_leaves_the_room_under_a_cabinets_handle_bar(kitchen):
     assert base.occupied[ix, iy]
 
 
+def test_a_footprint_is_the_same_whatever_was_sampled_before():
+    """The robot's footprints are remembered across maps (a robot whose arms did not move has the same ones after
+    every motion); boxes a rounding error apart (the robot read again elsewhere) give the footprint of the boxes as
+    given, not of the ones sampled first: a sweep's scenario must not depend on what its worker ran before."""
+    boxes = [(np.array([-0.3, -0.3, 0.0]), np.array([0.3, 0.3, 0.3])), (np.array([0.1, -0.1, 0.3]), np.array([0.45, 0.1, 0.9]))]
+    fresh = floor._sampled_footprint(boxes, floor.RESOLUTION)
+    floor._FOOTPRINTS.clear()
+    nudged = [(lo + 1e-15, hi - 1e-15) for lo, hi in boxes]
+    first = floor._footprint_samples(nudged, floor.RESOLUTION)
+    again = floor._footprint_samples(boxes, floor.RESOLUTION)
+    assert again is first and np.array_equal(first, fresh)
+    assert len(floor._footprint_samples([(lo, hi + 0.1) for lo, hi in boxes], floor.RESOLUTION)) > len(fresh)  # others
+
+
 def test_the_floor_map_is_cached_while_the_world_stands_still(kitchen):
     robot = Robot.of(kitchen)
     first = floor_map(robot, [])
