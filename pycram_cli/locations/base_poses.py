@@ -190,10 +190,13 @@ class BasePoseResolution(Resolution):
         if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
             rx, ry = robot.body.get_position()[:2]
             ryaw = yaw_of(robot.body.get_orientation())
+            pulled = self._handle_path[-1] if spec.accessing is not None and self._handle_path else None
+            here_arms = here_arm_order(arms, reach_target, rx, ry, ryaw, self.floor_z, pulled, bounded=True)
+            beyond = reach_target is not None and bool(len(arms)) and bool((here_arms < 0).all())
             xs, ys, yaws = np.append(xs, rx), np.append(ys, ry), np.append(yaws, ryaw)
-            scores, outcome, first = np.append(scores, -1.0), np.append(outcome, 0), np.append(first, False)
-            self.arm_order = np.concatenate([self.arm_order,
-                                             here_arm_order(arms, reach_target, rx, ry, ryaw, self.floor_z)])
+            scores, first = np.append(scores, -1.0), np.append(first, False)
+            outcome = np.append(outcome, CODE["out of reach"] if beyond else 0)
+            self.arm_order = np.concatenate([self.arm_order, here_arms])
             self.here_index = len(xs) - 1
         self.candidates = Candidates(xs, ys, yaws, scores, outcome, first)
         self.arm_tests = ArmTests(robot, spec, self.held, allowed_contacts(robot.world, spec), self._handle_path)

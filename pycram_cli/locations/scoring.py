@@ -22,6 +22,8 @@ from .geometry import ArmGeometry
 
 #: the comfortable distance from the shoulder to the target, as a fraction of the arm's length
 REACH_FRACTION = 0.6
+#: an arm reaches no farther from its shoulder than its length and this (m): beyond, no candidate tests it
+REACH_SLACK = 0.02
 #: a tool held level (taken along a reach line, `lattice.InLine`): the comfortable distance from the shoulder to the
 #: wrist, as a fraction of the arm's length less the hand's; a level hand folds the arm less far than a free one, and
 #: 0.75 lies inside the range IK reaches for every 5-joint arm of the robot zoo (0.46-0.63 to 0.89-1.0)
@@ -65,7 +67,7 @@ def add_reach(scores: np.ndarray, outcome: np.ndarray, xs: np.ndarray, ys: np.nd
         sx = xs + c * geo.shoulder[0] - s * geo.shoulder[1]
         sy = ys + s * geo.shoulder[0] + c * geo.shoulder[1]
         shoulder = (sx, sy, floor_z + geo.shoulder[2])
-        beyond = np.any([_distance(end, shoulder) > geo.length + 0.02 for end in ends], axis=0)
+        beyond = np.any([_distance(end, shoulder) > geo.length + REACH_SLACK for end in ends], axis=0)
         cost = np.abs(_distance(scored, shoulder) - REACH_FRACTION * geo.length)
         if level is not None and (level[0] == k).any():
             on, wrist, hand = level[0] == k, level[1], level[2]
@@ -113,11 +115,22 @@ def add_view(robot: Robot, scores: np.ndarray, outcome: np.ndarray, xs: np.ndarr
 
 
 def here_arm_order(arms: dict[str, ArmGeometry], target: np.ndarray | None, x: float, y: float, yaw: float,
-                   floor_z: float) -> np.ndarray:
-    """The arms to try from the robot's own pose (x, y, yaw): nearest shoulder first (one row of arm indices)."""
+                   floor_z: float, also: np.ndarray | None = None, bounded: bool = False) -> np.ndarray:
+    """The arms to try from the robot's own pose (x, y, yaw): nearest shoulder first (one row of arm indices).
+    `bounded`: an arm whose shoulder is farther from the target (or from `also`, where a pull takes the handle) than
+    the arm is long is -1, as `add_reach` rules it out for every other candidate (the pose the robot stands at after
+    taking something at the counter is tried first for the place on the island: without the bound, inverse
+    kinematics spent 50-100 ms finding each arm short)."""
     if target is None or not arms:
         return np.zeros((1, len(arms)), dtype=np.int8)
     c, s = math.cos(yaw), math.sin(yaw)
-    distance = [math.dist(target, (x + c * g.shoulder[0] - s * g.shoulder[1], y + s * g.shoulder[0] + c * g.shoulder[1],
-                                   floor_z + g.shoulder[2])) for g in arms.values()]
-    return np.array([sorted(range(len(arms)), key=lambda k: (distance[k], k))], dtype=np.int8)
+    shoulders = [(x + c * g.shoulder[0] - s * g.shoulder[1], y + s * g.shoulder[0] + c * g.shoulder[1],
+                  floor_z + g.shoulder[2]) for g in arms.values()]
+    distance = [math.dist(target, shoulder) for shoulder in shoulders]
+    order = sorted(range(len(arms)), key=lambda k: (distance[k], k))
+    if bounded:
+        ends = [target] if also is None else [target, also]
+        lengths = [g.length for g in arms.values()]
+        order = [k if all(math.dist(end, shoulders[k]) <= lengths[k] + REACH_SLACK for end in ends) else -1
+                 for k in order]
+    return np.array([order], dtype=np.int8)
