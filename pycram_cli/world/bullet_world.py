@@ -9,7 +9,6 @@ import contextlib
 import itertools
 import math
 import threading
-import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,7 +25,7 @@ from .events import Event
 from .pose import Vec3, check_position
 from .state import StateCache, WorldState
 from .view import ViewRenderer
-from .window import GuiWindow
+from .window import GuiWindow, open_window
 
 if TYPE_CHECKING:
     from .object import Object
@@ -101,8 +100,10 @@ class BulletWorld(GuiWindow):
                 )
             if mode == "gui":
                 check_display()  # PyBullet would end the process (exit code 1) without a display
-            with silenced():
-                client = p.connect(p.GUI if mode == "gui" else p.DIRECT)
+                client = open_window()
+            else:
+                with silenced():
+                    client = p.connect(p.DIRECT)
             if client < 0:
                 raise WorldError(f"could not start a PyBullet {mode} client (for the GUI, is a display available?)")
             self.client_id: int = client
@@ -111,13 +112,6 @@ class BulletWorld(GuiWindow):
             self._hidden = _hidden
             if mode == "gui":
                 BulletWorld._gui_world = self
-                with silenced():  # the window's OpenGL set-up prints its driver names from its own thread
-                    p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
-                    p.configureDebugVisualizer(p.COV_ENABLE_SHADOWS, 0, physicsClientId=client)
-                    deadline = time.monotonic() + 3.0
-                    while p.getDebugVisualizerCamera(physicsClientId=client)[0] <= 0 and time.monotonic() < deadline:
-                        time.sleep(0.02)
-                    time.sleep(0.2)
             if not _hidden:
                 BulletWorld._live.append(self)
                 BulletWorld.current_world = BulletWorld.current_bullet_world = self

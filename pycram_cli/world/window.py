@@ -8,14 +8,54 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
 
 import numpy as np
 import pybullet as p
 
-from ..quiet import silenced
+from ..quiet import held_back, is_verbose, silenced
 from .camera import Camera
 from .pose import matrix_to_quat
+
+#: the window's thread prints its OpenGL driver's names last of its start-up (lines 'ven = ...', MARK); what it prints
+#: is held back until MARK came and then nothing for CHATTER_QUIET s, or nothing at all for CHATTER_SILENT s (a build
+#: that prints no such line), at most CHATTER_WAIT s after the window opened (s)
+MARK = b"ven = "
+CHATTER_QUIET = 0.15
+CHATTER_SILENT = 1.0
+CHATTER_WAIT = 5.0
+
+
+def open_window() -> int:
+    """Connect a PyBullet GUI client (its id, negative when none opened) with its side panel and shadows off, once its
+    window shows the scene, its driver chatter kept off the terminal (`held_back`: the window prints it from its own
+    thread, which on a loaded machine came after a fixed wait and reached the terminal)."""
+    with held_back() as said:
+        client = p.connect(p.GUI)
+        if client < 0:
+            return client
+        p.configureDebugVisualizer(p.COV_ENABLE_GUI, 0, physicsClientId=client)
+        p.configureDebugVisualizer(p.COV_ENABLE_SHADOWS, 0, physicsClientId=client)
+        deadline = time.monotonic() + CHATTER_WAIT
+        while p.getDebugVisualizerCamera(physicsClientId=client)[0] <= 0 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        if not is_verbose():
+            _until_said(said, deadline)
+    return client
+
+
+def _until_said(said: Callable[[], bytes], deadline: float) -> None:
+    """Wait until the window's start-up chatter is over (see MARK) or the deadline."""
+    size, changed = -1, time.monotonic()
+    while time.monotonic() < deadline:
+        text = said()
+        now = time.monotonic()
+        if len(text) != size:
+            size, changed = len(text), now
+        if now - changed >= (CHATTER_QUIET if MARK in text else CHATTER_SILENT):
+            return
+        time.sleep(0.02)
 
 
 class GuiWindow:
