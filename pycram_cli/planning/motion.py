@@ -65,6 +65,9 @@ STILL = 1e-5
 MEMO_SIZE = 512
 #: the world's cache table of them (world/cache.py)
 MEMO = "motion checks"
+#: walks are remembered by where the robot is to this many decimals: PyBullet normalises a base orientation given
+#: again (a snapshot put back) a rounding error apart, and a pick-up missed every way its location had found
+WALK_DIGITS = 12
 
 
 @dataclass(frozen=True)
@@ -432,7 +435,7 @@ class Motion:
         names = [j.name for j in self.joints]
         if not len(start):
             return 1.0, [], {}
-        situation = self.situation()
+        situation = self.situation(WALK_DIGITS)
         key = None if situation is None else (situation, "walk", start.tobytes(), end.tobytes(), stop_at_contact)
         known = self.remembered(key)
         if known is not None:
