@@ -87,6 +87,7 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
         raise GripperFailure(f"the {gripper_words(arm)} cannot hold {obj.name} with {how}: {why}", arm=arm, object=obj.name)
     best: tuple[float, IKSolution] | None = None
     blocked: list[motion.Hit] = []
+    brushed: list[motion.Hit] = []  # what the open gripper's way in meets before the object
     refused: list[ManipulationFailure] = []  # the gripper could not open at the pre-grasp pose
     opened = gripper_values(robot, arm, "open")
     taken: list[tuple[Grasp, IKSolution, IKSolution]] = []
@@ -111,11 +112,10 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             # may be touched before: the approach stops there
             hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
             if not hits:
-                hits = _approach_hits(robot, obj, pre, solution, opened)
-                if not hits:
+                brushed.extend(_approach_hits(robot, obj, pre, solution, opened))
+                if not brushed:
                     taken.append((candidate, pre, solution))
                     return True
-                blocked.extend(hits)
                 return False
             shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
             if shifted is not None:
@@ -134,9 +134,10 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             break
     if taken:
         return taken[0]
-    if blocked:
-        raise ManipulationFailure(f"the {arm_words(arm)} cannot take {obj.name} with {how}: {blocked[0]}",
-                                  arm=arm, object=obj.name, colliding=sorted({h.obstacle.name for h in blocked}))
+    if blocked or brushed:
+        why = f"{blocked[0]}" if blocked else f"on the way in from the pre-grasp pose, {brushed[0]}"
+        raise ManipulationFailure(f"the {arm_words(arm)} cannot take {obj.name} with {how}: {why}", arm=arm,
+                                  object=obj.name, colliding=sorted({h.obstacle.name for h in blocked + brushed}))
     if refused:
         raise ManipulationFailure(f"the {arm_words(arm)} cannot take {obj.name} with {how}: {refused[0]}", arm=arm,
                                   object=obj.name, colliding=sorted({n for f in refused for n in f.details.get("colliding", [])}))
