@@ -427,6 +427,8 @@ class BasePoseResolution(Resolution):
         """How many candidates get the expensive tests: the limit, or REACH_PATIENCE times it while nothing was found
         blocked (an arm that is merely short of the geometric estimate, as a user's weaker arm is, finds its pose
         farther down the list; something in the way is the plan's to move, and waits for no more tries)."""
+        if self.spec.patience is not None:
+            return self.spec.patience
         if CODE["blocked"] in self.candidates.outcome:
             return self.limit
         return self.limit * REACH_PATIENCE

@@ -71,6 +71,10 @@ class LocationSpec:
     #: place action: the arm may touch that surface)
     placing: Object | None = None
     onto: Surface | None = None
+    #: at most this many candidates get the expensive tests (None: the resolution's own patience, which grows while
+    #: nothing is in the way). An action with a cheaper way to try next sets it (the open action's one stroke, before
+    #: it tries strokes: an arm that follows no pull that long failed IK at 120 poses, 6 s, to learn it)
+    patience: int | None = None
 
     @property
     def kind(self) -> str:

@@ -14,6 +14,7 @@ from typing import Any
 from ...errors import InputError, Location, did_you_mean
 from ...failures import Failure, LocationFailure, ManipulationFailure, ReasoningFailure
 from ...locations import Handle, LocationSpec, find_handle, handle_of
+from ...locations.base_poses import EXPENSIVE_LIMIT
 from ...locations.spec import find_object
 from ...planning.drawers import DISTANCE
 from ...reasoning import QUERIES
@@ -141,10 +142,10 @@ def _handle_of_joint(actor: Actor, joint: str, part_of: Any) -> Handle:
     return Handle(owners[0], name, joint)
 
 
-def _access(actor: Actor, slots: Mapping[str, Any], distance: float, verb: str) -> None:
+def _access(actor: Actor, slots: Mapping[str, Any], distance: float, verb: str, patience: int | None = None) -> None:
     handle = handle_from(actor, slots)
     _rest_first(actor)
-    spec = LocationSpec(accessing=handle, distance=distance, arm=slots.get("arm"))
+    spec = LocationSpec(accessing=handle, distance=distance, arm=slots.get("arm"), patience=patience)
 
     def pull(a: Actor, pose: Any) -> None:
         go(a, pose)
@@ -179,9 +180,12 @@ def _in_strokes(actor: Actor, slots: Mapping[str, Any], distance: float, verb: s
     info = handle.obj.joint(handle.joint)
     for strokes in range(1, STROKES + 1 if info.limited else 2):
         start = handle.obj.get_joint_position(handle.joint) - info.lower
+        # while shorter strokes are left to try, each pose search is as patient as one that meets something in the
+        # way (EXPENSIVE_LIMIT), not three times that: an arm whose pull is too long fails at every pose
+        patience = EXPENSIVE_LIMIT if strokes < STROKES and info.limited else None
         try:
             for k in range(1, strokes + 1):
-                _access(actor, slots, start + (distance - start) * k / strokes, verb)
+                _access(actor, slots, start + (distance - start) * k / strokes, verb, patience)
             return
         except LocationFailure:  # no pose for this stroke: shorter strokes, while there are
             if strokes == STROKES or not info.limited:
