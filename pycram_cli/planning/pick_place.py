@@ -112,10 +112,11 @@ def plan_grasp(robot: Robot, arm: str, obj: Object,
             # may be touched before: the approach stops there
             hits = motion.hits_at(robot, {**solution.joint_positions, **opened}, ignore=[obj])
             if not hits:
-                brushed.extend(_approach_hits(robot, obj, pre, solution, opened))
-                if not brushed:
+                brush = _approach_hits(robot, obj, pre, solution, opened)
+                if not brush:
                     taken.append((candidate, pre, solution))
                     return True
+                brushed.extend(brush)
                 return False
             shifted = _short_of(robot, arm, obj, candidate, pre, hits, opened)
             if shifted is not None:
