@@ -187,28 +187,28 @@ class BasePoseResolution(Resolution):
                                          np.ones(int(later.sum()), dtype=bool)), self.arm_order[later])
             xs, ys, yaws, scores, outcome, first = xs[kept], ys[kept], yaws[kept], scores[kept], outcome[kept], first[kept]
             self.arm_order = self.arm_order[kept]
-        self.candidates = Candidates(xs, ys, yaws, scores, outcome, first)
         if self.here:  # the pose the robot stands at, tried first (its map test is skipped: it stands there)
-            self._add_here(arms, reach_target)
+            row, here_arms = self._here_row(arms, reach_target)
+            xs, ys, yaws, scores, outcome, first = (np.append(column, value) for column, value in
+                                                    zip((xs, ys, yaws, scores, outcome, first), row))
+            self.arm_order = np.concatenate([self.arm_order, here_arms])
+            self.here_index = len(xs) - 1
+        self.candidates = Candidates(xs, ys, yaws, scores, outcome, first)
         self.arm_tests = ArmTests(robot, spec, self.held, allowed_contacts(robot.world, spec), self._handle_path)
         self.arm_tests.searching = False
         self._unsearched = []
 
-    def _add_here(self, arms: dict[str, Any], reach_target: np.ndarray | None) -> None:
-        """The pose the robot stands at as the last candidate, scored first; out of reach when no arm is long enough
-        for the target (or the handle's pulled end), as `add_reach` rules out the others."""
-        robot, spec, cand = self.robot, self.spec, self.candidates
+    def _here_row(self, arms: dict[str, Any], reach_target: np.ndarray | None) -> tuple[tuple, np.ndarray]:
+        """The pose the robot stands at as a candidate (x, y, yaw, score: first, outcome, not `first`) and its arms;
+        out of reach when no arm is long enough for the target (or the handle's pulled end), as `add_reach` rules
+        out the others."""
+        robot, spec = self.robot, self.spec
         rx, ry = robot.body.get_position()[:2]
         ryaw = yaw_of(robot.body.get_orientation())
         pulled = self._handle_path[-1] if spec.accessing is not None and self._handle_path else None
         here_arms = here_arm_order(arms, reach_target, rx, ry, ryaw, self.floor_z, pulled, bounded=True)
         beyond = reach_target is not None and bool(len(arms)) and bool((here_arms < 0).all())
-        self.candidates = Candidates(np.append(cand.xs, rx), np.append(cand.ys, ry), np.append(cand.yaws, ryaw),
-                                     np.append(cand.scores, -1.0),
-                                     np.append(cand.outcome, CODE["out of reach"] if beyond else 0),
-                                     np.append(cand.first, False))
-        self.arm_order = np.concatenate([self.arm_order, here_arms])
-        self.here_index = len(self.candidates.xs) - 1
+        return (rx, ry, ryaw, -1.0, CODE["out of reach"] if beyond else 0, False), here_arms
 
     def _prepare_here(self) -> None:
         """What `take_here` needs of `_prepare`, for the one pose the robot stands at: its arms, nearest first, and the

@@ -246,6 +246,7 @@ class ArmTests:
         with body.joints_kept([*placed, *gripper]):
             body.reset_joints(placed)
             body.move_attached()  # the object where place lets it go
+            free = True
             with let_go_for_now(obj):
                 try:
                     set_gripper(robot, arm, "open")
@@ -254,11 +255,9 @@ class ArmTests:
                               ignore=[obj] if backed else [], search=self.searching)
                 except ManipulationFailure as failure:
                     blocked.extend(n for n in failure.details.get("colliding", []) if n not in blocked)
-                    return False
-                finally:
-                    body.reset_joints(placed)
-        body.move_attached()
-        return True
+                    free = False
+        body.move_attached()  # what it holds back with the arm, either way
+        return free
 
     def _reach_targets(self) -> Iterator[tuple[Any, Any, Any]]:
         """(grasp, tool position or None when the gripper cannot hold it so, tool orientation) to try, in order."""
