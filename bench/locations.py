@@ -55,7 +55,7 @@ PYCRAM_FIGURE = "no pose in 5.3 s"
 def first_pose(world: Any, location: dict[str, Any], cold: bool = True) -> Any:
     forget_everywhere(ANSWERS)  # IK answers are kept per robot state (reasoning/ik.py): each run asks its questions afresh
     if cold:
-        world.cache.forget(floor_maps.MAPS)
+        floor_maps.forget(world)
     return locate(world, location).next()
 
 

@@ -43,7 +43,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
     try:
         times, found = [], True
         for _ in range(repeat):
-            world.cache.forget(floor_maps.MAPS)
+            floor_maps.forget(world)
             forget_everywhere(ANSWERS)  # IK answers are kept per robot state (reasoning/ik.py): each run asks afresh
             with world.snapshot():
                 start = time.perf_counter()

@@ -175,8 +175,18 @@ def obstacle_boxes(robot: Object, held: Sequence[Object], extra_ignore: Iterable
     for obj in robot.world.objects:
         if obj.id in skip or supports_from_below(robot, obj, ground):
             continue
-        boxes.extend(_link_boxes(obj, skip=support_links(robot, obj, ground)))
+        boxes.extend(_placed_boxes(obj, support_links(robot, obj, ground)))
     return boxes
+
+
+#: the world's cache table of each object's boxes (`_link_boxes`) where it last stood
+PLACED = "floor map boxes"
+
+
+def _placed_boxes(obj: Object, skip: frozenset[int]) -> list[tuple[str, Box]]:
+    """`_link_boxes(obj, skip)`, kept while the object stands where it stood (`Object.placement`: its base's pose
+    and joints, exactly): the kitchen's hundreds of shapes are read once, not at every map rebuilt after a motion."""
+    return obj.world.cache.kept(PLACED, obj, (obj.placement(), skip), lambda: _link_boxes(obj, skip=skip))
 
 
 def _footprint_samples(boxes: Sequence[Box], resolution: float) -> np.ndarray:
@@ -224,15 +234,32 @@ def _sampled_footprint(boxes: Sequence[Box], resolution: float) -> np.ndarray:
 
 
 def _rasterise(boxes: Sequence[Box], origin: np.ndarray, shape: tuple[int, int], resolution: float) -> np.ndarray:
-    grid = np.zeros(shape, dtype=bool)
-    for lo, hi in boxes:
-        i0 = max(int(math.floor((lo[0] - origin[0]) / resolution)), 0)
-        j0 = max(int(math.floor((lo[1] - origin[1]) / resolution)), 0)
-        i1 = min(int(math.floor((hi[0] - origin[0]) / resolution)) + 1, shape[0])
-        j1 = min(int(math.floor((hi[1] - origin[1]) / resolution)) + 1, shape[1])
-        if i0 < i1 and j0 < j1:
+    """The cells (shape) that the boxes' (x, y) rectangles cover, a cell wherever a rectangle touches it. The grids
+    of a map rebuilt after a motion are mostly those of the map before it (the same furniture at the same heights):
+    remembered (`_GRIDS`, by the cells' index ranges, which decide the grid), shared and read-only."""
+    if not len(boxes):
+        return np.zeros(shape, dtype=bool)
+    corners = np.array([(lo[0], lo[1], hi[0], hi[1]) for lo, hi in boxes], dtype=float)
+    cells = np.floor((corners - np.array([origin[0], origin[1], origin[0], origin[1]])) / resolution).astype(np.int64)
+    cells[:, :2] = np.maximum(cells[:, :2], 0)
+    cells[:, 2:] = np.minimum(cells[:, 2:] + 1, shape)
+    cells = cells[(cells[:, 0] < cells[:, 2]) & (cells[:, 1] < cells[:, 3])]
+    key = (shape, cells.tobytes())
+    grid = _GRIDS.get(key)
+    if grid is None:
+        if len(_GRIDS) >= GRIDS_KEPT:
+            _GRIDS.pop(next(iter(_GRIDS)))
+        grid = np.zeros(shape, dtype=bool)
+        for i0, j0, i1, j1 in cells.tolist():
             grid[i0:i1, j0:j1] = True
+        grid.setflags(write=False)
+        _GRIDS[key] = grid
     return grid
+
+
+#: the occupancy grids made lately (`_rasterise`), the oldest forgotten first beyond GRIDS_KEPT (a few MB)
+_GRIDS: dict[tuple[tuple[int, int], bytes], np.ndarray] = {}
+GRIDS_KEPT = 64
 
 
 # long: one pass from boxes to bands to grids, each step's arrays feeding the next
@@ -265,11 +292,13 @@ def build(robot: Object, held: Sequence[Object] = (), resolution: float = RESOLU
     levels = sorted(c for c in cuts if low_limit <= c <= robot_top)
     by_obstacles: dict[frozenset[int], set[int]] = {}
     spans: dict[frozenset[int], list[float]] = {}
+    mine_lo, mine_hi = (np.array([pair[k] for pair in mine_z], dtype=float) for k in (0, 1))
+    theirs_lo, theirs_hi = (np.array([pair[k] for pair in theirs_z], dtype=float) for k in (0, 1))
     for a, b in zip(levels, levels[1:]):
         if b - a < THIN:
             continue
-        mine = frozenset(i for i, (z0, z1) in enumerate(mine_z) if z0 < b and z1 > a)
-        theirs = frozenset(i for i, (z0, z1) in enumerate(theirs_z) if z0 < b and z1 > a)
+        mine = frozenset(np.flatnonzero((mine_lo < b) & (mine_hi > a)).tolist())
+        theirs = frozenset(np.flatnonzero((theirs_lo < b) & (theirs_hi > a)).tolist())
         if not mine or not theirs:
             continue
         by_obstacles.setdefault(theirs, set()).update(mine)
@@ -374,3 +403,11 @@ def floor_map(robot: Robot, held: Sequence[Object], saved: bool = False) -> Floo
             return build(robot.body, held)
 
     return world.cache.kept(MAPS, world, _signature(robot, held), built)
+
+
+def forget(world: Any) -> None:
+    """Forget the world's floor map and everything a map is built from that is kept (its objects' boxes, the
+    grids and footprints made lately): the next map is built from nothing, as a benchmark of a first map wants."""
+    world.cache.forget(MAPS, PLACED)
+    _GRIDS.clear()
+    _FOOTPRINTS.clear()
