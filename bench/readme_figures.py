@@ -194,12 +194,12 @@ def plans_table(results: dict[str, Any]) -> str:
     return "\n".join(rows) + "\n\n" + note + "\n"
 
 
-def bench_table(name: str) -> Callable[[dict[str, Any]], str]:
-    """A benchmark's own Markdown table (`tables.NAME`, kept by its script), with where and when it was measured."""
+def bench_table(name: str, script: str | None = None) -> Callable[[dict[str, Any]], str]:
+    """A benchmark's own Markdown table (`tables.NAME`, kept by its script: bench/SCRIPT.py, by default the name's
+    first word), with where and when it was measured."""
     def render_table(results: dict[str, Any]) -> str:
         table = results["tables"][name]
-        script = name.split("_")[0]
-        return (table["table"] + f"\n(`python bench/{script}.py` on commit {table['commit']}"
+        return (table["table"] + f"\n(`python bench/{script or name.split('_')[0]}.py` on commit {table['commit']}"
                 f"{' with uncommitted changes' if table['dirty'] else ''}, {table['date']}; load average "
                 f"{table['load_before']:.1f} before the run, {table['load']:.1f} after it.)\n")
 
@@ -208,7 +208,8 @@ def bench_table(name: str) -> Callable[[dict[str, Any]], str]:
 
 REGIONS: dict[str, Callable[[dict[str, Any]], str]] = {
     "plans": plans_table, **{name: bench_table(name) for name in (
-        "reasoning", "locations", "motion", "scale_design", "scale_crowded", "scale_plans")}}
+        "reasoning", "locations", "motion", "scale_design", "scale_crowded", "scale_plans", "sweep")},
+    "zoo_locate": bench_table("zoo_locate", "zoo_locate")}
 
 
 def fill_regions(text: str, results: dict[str, Any]) -> str:

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Benchmark of `pycram sweep` on the set-table demo (plans/set_table.vary.yaml), all in one run.
 
-    python bench/sweep.py                    # 40 scenarios per configuration, memory over 200
-    python bench/sweep.py -n 60 --memory 1000 --baseline 8
+    python bench/sweep.py                    # 40 scenarios per configuration, memory over 200; keeps its table
+    python bench/sweep.py -n 60 --memory 1000 --baseline 8   # in bench/results.json (`tables.sweep`) unless --no-keep
 
 Prints, for the same scenarios (seed 0):
 - throughput (scenarios/s, worker start-up included) with 1 and 2 local workers, and their ratio
@@ -36,6 +36,8 @@ sys.path.insert(0, str(REPO))
 from pycram_cli.scenario.variations import scenario_seed  # noqa: E402
 from pycram_cli.sweep import SweepSettings, prepare_sweep, run_sweep  # noqa: E402
 from pycram_cli.sweep.worker import SweepJob, Task, Worker  # noqa: E402
+
+import results_file  # noqa: E402  (bench/results_file.py, beside this script)
 
 PLAN = REPO / "plans" / "set_table.yaml"
 ACTIONS = REPO / "plans" / "set_table_actions.yaml"
@@ -97,8 +99,11 @@ def main() -> None:
     parser.add_argument("--memory", type=int, default=200, help="scenarios for the memory check (0: skip)")
     parser.add_argument("--actions", type=int, default=20, help="scenarios of the action demo's sweep (0: skip)")
     parser.add_argument("--no-ray", action="store_true")
+    parser.add_argument("--no-keep", action="store_true", help="print only: keep no table in bench/results.json")
     args = parser.parse_args()
     n = args.n
+    load_before = os.getloadavg()[0]
+    rows: list[str] = []  # the README's table, a row per figure
     print(f"set-table sweep, {n} scenarios of {VARY.relative_to(REPO)}, seed 0, on {os.cpu_count()} cores")
 
     wall1, arrivals1, one = sweep(n, 1)
@@ -117,10 +122,18 @@ def main() -> None:
     print(f"  same results with 1 and 2 workers: {untimed(one) == untimed(two)}")
     succeeded = sum(r["status"] == "succeeded" for r in one)
     print(f"  succeeded {succeeded} of {n}; plan time per scenario: median {plan * 1000:.0f} ms")
+    rows.append(f"| `set_table`, {n} scenarios, 1 worker | {tp1:.2f} scenarios/s ({succeeded} of {n} succeeded; plan "
+                f"time median {plan * 1000:.0f} ms) | | |")
+    rows.append(f"| the same, 2 workers | {tp2:.2f} scenarios/s, {tp2 / tp1:.2f}× one worker; the same results: "
+                f"{'yes' if untimed(one) == untimed(two) else '**no**'} | | ≥ 1.8×: "
+                f"{'met' if tp2 / tp1 >= 1.8 else '**missed**'} |")
     overhead = statistics.median(setups) + max(0.0, bookkeeping)
     print(f"  overhead per scenario: reset+variation median {statistics.median(setups) * 1000:.2f} ms, "
           f"bookkeeping median {bookkeeping * 1000:.2f} ms = {100 * overhead / plan:.1f} % of the plan's time "
           f"(target <= 5 %: {'met' if overhead / plan <= 0.05 else 'MISSED'})")
+    rows.append(f"| a scenario's reset, variation and bookkeeping (1 worker) | {overhead * 1000:.1f} ms, "
+                f"{100 * overhead / plan:.1f} % of its plan time | | ≤ 5 %: "
+                f"{'met' if overhead / plan <= 0.05 else '**missed**'} |")
 
     if args.baseline:
         base = baseline(args.baseline)
@@ -128,6 +141,8 @@ def main() -> None:
         print(f"  baseline, a fresh `pycram run --scenario` process per scenario: median {mb:.2f} s "
               f"= {1 / mb:.2f} scenarios/s; the sweep is {tp1 * mb:.1f}x faster on 1 worker, "
               f"{tp2 * mb:.1f}x on 2")
+        rows.append(f"| baseline: a fresh `pycram run --scenario` process per scenario | {1 / mb:.2f} scenarios/s | "
+                    f"the sweep {tp1 * mb:.1f}× faster on 1 worker, {tp2 * mb:.1f}× on 2 | |")
 
     if not args.no_ray:
         try:
@@ -138,6 +153,9 @@ def main() -> None:
             wall_ray, _, on_ray = sweep(n, 2, "ray")
             print(f"  ray, 2 actors on a local Ray: {n / wall_ray:5.2f} scenarios/s ({wall_ray:.1f} s, Ray's start "
                   f"included); same results as the local backend: {untimed(on_ray) == untimed(two)}")
+            rows.append(f"| the same on Ray, 2 actors (local Ray, its start-up included) | {n / wall_ray:.2f} "
+                        f"scenarios/s; the local backend's results: "
+                        f"{'yes' if untimed(on_ray) == untimed(two) else '**no**'} | | |")
 
     if args.actions:
         wall, _, done = sweep(args.actions, 2, plan=ACTIONS)
@@ -147,6 +165,9 @@ def main() -> None:
         print(f"  {ACTIONS.name}, 2 workers: {rate:5.2f} scenarios/s ({wall:.1f} s for {args.actions}, succeeded "
               f"{ok}; plan time median {plans:.2f} s) target >= {ACTIONS_TARGET:g}/s: "
               f"{'met' if rate >= ACTIONS_TARGET else 'MISSED'}")
+        rows.append(f"| `set_table_actions`, {args.actions} scenarios, 2 workers | {rate:.2f} scenarios/s ({ok} of "
+                    f"{args.actions} succeeded; plan time median {plans:.2f} s) | | ≥ {ACTIONS_TARGET:g}/s: "
+                    f"{'met' if rate >= ACTIONS_TARGET else '**missed**'} |")
 
     if args.memory:
         samples = memory(args.memory)
@@ -154,6 +175,12 @@ def main() -> None:
         growth = samples[-1][1] - samples[min(1, len(samples) - 1)][1]
         print(f"  worker memory (RSS) over {args.memory} scenarios: {text} (growth after the first 100: "
               f"{growth:+.1f} MB)")
+        rows.append(f"| a worker's memory (RSS) over {args.memory} scenarios | {text} | | flat: "
+                    f"{growth:+.1f} MB after the first 100 |")
+    if not args.no_keep:
+        table = "\n".join([f"| sweep (`{VARY.relative_to(REPO)}`, seed 0, {os.cpu_count()} cores) | measured | "
+                            "baseline | target |", "|---|---|---|---|", *rows])
+        print(f"wrote {results_file.record_table('sweep', table, load_before)}", file=sys.stderr)
 
 
 if __name__ == "__main__":
