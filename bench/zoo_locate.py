@@ -62,7 +62,7 @@ def first_pose_seconds(world_file: Any, repeat: int) -> tuple[float, bool]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=48, help="seeds 0..N-1 (default 48, as bench/zoo.py)")
+    parser.add_argument("--seeds", type=int, default=48, help="seeds 0..N-1 (default 48)")
     parser.add_argument("--only", type=int, nargs="*", help="just these seeds")
     parser.add_argument("--repeat", type=int, default=3, help="cold first poses per robot (default 3)")
     args = parser.parse_args()
