@@ -5,19 +5,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from ..failures import ManipulationFailure
 from ..kinds import arm_words
-from ..reasoning.ik import IKSolution, solutions
+from ..reasoning.ik import IKSolution
 from ..robots import Robot
 from ..world import Object
 from . import motion
 from .motion import Motion
-from .reach import REACHING_VERDICT, arm_configuration, middle_of_ranges, reach_from_middle, solve_tool
+from .reach import arm_configuration, middle_of_ranges, reach_from_middle, reach_solutions, solve_tool
 
 # -- finding a way around: a small bidirectional search in joint space ---------------------------------------------
 
@@ -260,11 +259,6 @@ BACK = 0.15
 #: leg between two poses far apart can swing what the hand holds down into the counter it was lifted from)
 LINE_BACKS = (0.3, 0.45)
 LINE_STEPS = 3
-#: a pose a way goes through is searched for at most this many iterations (a grasp's: MAX_ITERATIONS): a waypoint need
-#: only be within the thresholds, not refined to micrometres, and a search that creeps on (an arm that reaches the
-#: pose only to within millimetres) or fails need not run three times as long to say so
-VIA_ITERATIONS = 20
-VIA_SETTINGS = replace(REACHING_VERDICT, max_iterations=VIA_ITERATIONS)
 
 
 def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: float,
@@ -282,9 +276,9 @@ def _shifted(robot: Robot, arm: str, joints: Mapping[str, float] | None, up: flo
         target = (position[0] + toward[0], position[1] + toward[1], position[2] + up)
         # inverse kinematics may stall from a folded arm: then from the middle of its ranges (searched at once)
         found: dict[int, IKSolution] = {}
-        for k, answer in solutions(robot, arm, [(target, orientation, None),
-                                                (target, orientation, middle_of_ranges(robot, arm))],
-                                   settings=VIA_SETTINGS):  # only whether
+        for k, answer in reach_solutions(robot, arm, [(target, orientation, None),
+                                                      (target, orientation, middle_of_ranges(robot, arm))],
+                                         best_effort=False):  # only whether
             found[k] = answer
             if k == 0 and answer.success:
                 break
